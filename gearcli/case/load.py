@@ -1,0 +1,175 @@
+"""Load a case file: YAML -> validated :class:`~gearcli.case.schema.Case`, errors located.
+
+Every failure is a :class:`~gearcli.errors.CaseError` formatted as
+``FILE:LINE: key.path: got VALUE; expected ...`` plus the offending YAML line.
+"""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass
+from pathlib import Path
+
+from pydantic import BaseModel, ValidationError
+
+from gearcli.case.schema import Case, FieldError
+from gearcli.case.yamlsrc import Loc, Source, parse_source, read_source
+from gearcli.errors import CaseError
+
+
+@dataclass(frozen=True)
+class LoadedCase:
+    """A validated case with the source it came from (for located errors later on)."""
+
+    case: Case
+    source: Source
+    name: str
+
+    def error(self, loc: Loc, message: str, value: object = None, has_value: bool = False):
+        return self.source.error(loc, message, value, has_value)
+
+
+def load_case(path: str | Path) -> LoadedCase:
+    """Read, parse and validate the case file at ``path``."""
+    return validate_source(read_source(path), Path(path).stem)
+
+
+def load_case_text(text: str, name: str = "<case>") -> LoadedCase:
+    """Validate case text (used by tests and `gearcli new`)."""
+    return validate_source(parse_source(text, name), Path(name).stem)
+
+
+def validate_source(src: Source, stem: str) -> LoadedCase:
+    try:
+        case = Case.model_validate(src.data)
+    except ValidationError as exc:
+        raise _first_error(exc, src) from None
+    return LoadedCase(case, src, case.name or stem)
+
+
+def _first_error(exc: ValidationError, src: Source) -> CaseError:
+    """The first (by line) validation error as a located CaseError, with a count of the rest."""
+    errors = []
+    for err in exc.errors():
+        loc = _data_loc(tuple(err["loc"]), src.data)
+        cause = err.get("ctx", {}).get("error")
+        if isinstance(cause, FieldError):
+            loc = (*loc, *cause.loc)
+        missing = err["type"] == "missing"  # an unknown key (a typo) explains a missing one
+        errors.append((missing, src.line_of(loc) or 0, loc, err, cause))
+    errors.sort(key=lambda e: e[:2])
+    _, line, loc, err, cause = errors[0]
+    message = _message(err, cause, loc)
+    if len(errors) > 1:
+        message += f" (+{len(errors) - 1} more error{'s' if len(errors) > 2 else ''})"
+    value, has_value = _raw_value(src.data, loc)
+    if err["type"] == "missing" or isinstance(cause, FieldError) or isinstance(value, dict | list):
+        has_value = False
+    return src.error(loc, message, value, has_value)
+
+
+def _raw_value(data: object, loc: Loc) -> tuple[object, bool]:
+    """The value as written in the YAML (not the unit-converted one)."""
+    for part in loc:
+        if isinstance(data, dict) and part in data:
+            data = data[part]
+        elif isinstance(data, list) and isinstance(part, int) and part < len(data):
+            data = data[part]
+        else:
+            return None, False
+    return data, True
+
+
+def _data_loc(loc: tuple, data: object) -> Loc:
+    """Drop pydantic's union/validator tags from ``loc`` so it follows the YAML keys."""
+    out: list = []
+    node = data
+    for part in loc:
+        if isinstance(node, dict) and part in node:
+            out.append(part)
+            node = node[part]
+        elif isinstance(node, list) and isinstance(part, int) and part < len(node):
+            out.append(part)
+            node = node[part]
+        elif isinstance(part, str) and not any(c in part for c in "[]()") and node is not None:
+            out.append(part)  # a key that is missing or unknown
+            node = None
+    return tuple(out)
+
+
+def _message(err: dict, cause: Exception | None, loc: Loc) -> str:
+    kind = err["type"]
+    if kind == "extra_forbidden":
+        allowed = _allowed_keys(loc[:-1])
+        msg = "unknown key"
+        close = difflib.get_close_matches(str(loc[-1]), allowed, n=1, cutoff=0.6)
+        if close:
+            msg += f" (did you mean '{close[0]}'?)"
+        return msg + "; expected one of: " + ", ".join(allowed)
+    if kind == "missing":
+        return "missing required key"
+    if cause is not None:
+        text = str(cause)
+        return text if text.startswith(("expected", "missing", "cannot", "wrong", "give", "only",
+                                         "a load", "malformed", "'")) else "expected: " + text
+    limit = _limit_message(err, loc)
+    if limit:
+        return limit
+    msg = err["msg"]
+    for prefix in ("Input should be ", "Value error, "):
+        if msg.startswith(prefix):
+            msg = msg[len(prefix):]
+    msg = msg.replace("greater than or equal to", ">=").replace("less than or equal to", "<=")
+    msg = msg.replace("greater than", ">").replace("less than", "<")
+    return "expected " + msg
+
+
+_LIMITS = {"greater_than": (">", "gt"), "greater_than_equal": (">=", "ge"),
+           "less_than": ("<", "lt"), "less_than_equal": ("<=", "le")}
+
+
+def _limit_message(err: dict, loc: Loc) -> str | None:
+    """'expected > 0 mm': a bound of a quantity field, in the field's default unit."""
+    if err["type"] not in _LIMITS:
+        return None
+    op, key = _LIMITS[err["type"]]
+    limit = err.get("ctx", {}).get(key)
+    field = _field_at(loc)
+    dim = None
+    for meta in getattr(field, "metadata", ()):
+        dim = getattr(getattr(meta, "func", None), "dim", None) or dim
+    if dim is None or limit is None:
+        return None
+    return f"expected {op} {float(limit) / dim.factor:g} {dim.default}"
+
+
+def _field_at(loc: Loc):
+    model: type[BaseModel] | None = Case
+    field = None
+    for part in loc:
+        if model is None or str(part) not in model.model_fields:
+            return None
+        field = model.model_fields[str(part)]
+        model = _model_in(field.annotation)
+    return field
+
+
+def _allowed_keys(loc: Loc) -> list[str]:
+    """Field names of the schema section at ``loc`` (for did-you-mean)."""
+    model: type[BaseModel] | None = Case
+    for part in loc:
+        field = model.model_fields.get(str(part)) if model is not None else None
+        if field is None:
+            return []
+        model = _model_in(field.annotation)
+    return list(model.model_fields) if model is not None else []
+
+
+def _model_in(annotation) -> type[BaseModel] | None:
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in getattr(annotation, "__args__", ()):
+        found = _model_in(arg)
+        if found is not None:
+            return found
+    return None

@@ -1,0 +1,354 @@
+"""The case-file schema (pydantic v2, unknown keys rejected), values in internal units.
+
+Defaults are documented in each field's description (and by ``gearcli schema``). Physics is
+in ``../shared/docs/model.md``; section numbers below refer to it.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, Strict, field_validator, model_validator
+
+from gearcli import units
+from gearcli.case.types import (
+    Angle,
+    AngularVelocity,
+    Density,
+    Frequency,
+    Inertia,
+    Length,
+    LinearDamping,
+    Mass,
+    QuadraticDamping,
+    SpeedFunction,
+    Stress,
+    Time,
+    TorqueFunction,
+    TorsionalDamping,
+    TorsionalStiffness,
+    Velocity,
+    qfield,
+    time_field,
+)
+
+class FieldError(ValueError):
+    """A validation error that names the key it is about, relative to the validated section."""
+
+    def __init__(self, loc: tuple[str, ...], message: str) -> None:
+        super().__init__(message)
+        self.loc = loc
+
+
+Teeth = Annotated[int, Strict(), Field(ge=3, description="number of teeth z (integer >= 3)")]
+Coefficient = Annotated[float, Field(allow_inf_nan=False)]
+
+
+class Section(BaseModel):
+    """Base of every section: unknown keys are errors, values are immutable."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+# --- §2 geometry -------------------------------------------------------------------------------
+class Rack(Section):
+    """Basic rack profile (ISO 53 profile A defaults), coefficients of the module."""
+
+    addendum: Coefficient = Field(1.0, gt=0, description="h_aP* (default 1.0)")
+    dedendum: Coefficient = Field(1.25, gt=0, description="h_fP* (default 1.25)")
+    root_radius: Coefficient = Field(0.38, ge=0, description="rho_fP* (default 0.38)")
+
+
+class Material(Section):
+    """Isotropic gear material (defaults: the seed's steel, Table 1 text)."""
+
+    density: Density = qfield(units.DENSITY, 7.85e-6, "density", gt=0)
+    youngs_modulus: Stress = qfield(units.STRESS, 2.07e5, "Young's modulus E", gt=0)
+    poisson_ratio: Coefficient = Field(0.29, gt=0, lt=0.5, description="Poisson's ratio (0.29)")
+    contact_fatigue_limit: Stress | None = qfield(units.STRESS, None, "sigma_Hlim", gt=0)
+    bending_fatigue_limit: Stress | None = qfield(units.STRESS, None, "sigma_Flim", gt=0)
+
+
+class InertiaSpec(Section):
+    """Mass properties: a solid disc (model.md §2) or given values, plus extra inertia."""
+
+    model: Literal["disc", "given"] = Field("disc", description="'disc' (default) or 'given'")
+    diameter: Length | None = qfield(units.LENGTH, None, "disc diameter; default pitch d", gt=0)
+    value: Inertia | None = qfield(units.INERTIA, None, "polar inertia J for model 'given'", gt=0)
+    mass: Mass | None = qfield(units.MASS, None, "mass for model 'given'", gt=0)
+    extra: Inertia = qfield(units.INERTIA, 0.0, "added inertia (shaft, hub)", ge=0)
+
+    @model_validator(mode="after")
+    def _given_needs_value(self):
+        if self.model == "given" and self.value is None:
+            raise FieldError(("value",), "inertia model 'given' needs a polar inertia 'value'")
+        if self.model == "disc" and self.value is not None:
+            raise FieldError(("value",), "'value' is only used with inertia model 'given'")
+        return self
+
+
+class Gear(Section):
+    """One gear of the pair."""
+
+    teeth: Teeth
+    profile_shift: Coefficient = Field(0.0, ge=-1.5, le=2.0, description="x (default 0)")
+    tip_shortening: Coefficient = Field(0.0, ge=0, le=1, description="k, tip reduced by k m (0)")
+    thickness_allowance: Length = qfield(
+        units.LENGTH, 0.0, "reduction of the reference tooth thickness (backlash)", ge=0
+    )
+    tip_rounding: Length = qfield(units.LENGTH, 0.0, "tip rounding radius (0: sharp)", ge=0)
+    face_width: Length | None = qfield(units.LENGTH, None, "face width; default gears.face_width", gt=0)
+    material: Material | None = Field(None, description="default: the case's material")
+    inertia: InertiaSpec = Field(default_factory=InertiaSpec, description="mass properties")
+
+
+class Gears(Section):
+    """The gear pair: common data, pinion (driver, body 1) and gear (driven, body 2)."""
+
+    module: Length = qfield(units.LENGTH, ..., "module m", gt=0)
+    pressure_angle: Angle = qfield(units.ANGLE, 20.0, "pressure angle alpha", gt=0, lt=math.pi / 4)
+    face_width: Length = qfield(units.LENGTH, ..., "face width b", gt=0)
+    rack: Rack = Field(default_factory=Rack)
+    centre_distance: Length | None = qfield(
+        units.LENGTH, None, "operating centre distance a_w; default zero-backlash from x1+x2", gt=0
+    )
+    pinion: Gear
+    gear: Gear
+
+
+# --- §4 contact, §5 friction ---------------------------------------------------------------------
+class Contact(Section):
+    """Adams IMPACT contact law per tooth pair and flank (model.md §4)."""
+
+    law: Literal["impact"] = Field("impact", description="contact law (Adams IMPACT)")
+    exponent: Coefficient = Field(1.5, ge=1.0, le=3.0, description="force exponent e (1.5)")
+    stiffness: float | Literal["derived"] = Field(
+        1e5,
+        description="k [N/mm^e] (default 1e5 N/mm^1.5), or 'derived' (ISO 6336-1 c' b, e = 1)",
+        json_schema_extra={"anyOf": [{"type": "number"}, {"type": "string"}]},
+    )
+    max_damping: LinearDamping = qfield(units.LINEAR_DAMPING, 100.0, "c_max", ge=0)
+    penetration_depth: Length = qfield(units.LENGTH, 0.1, "d_max, full damping depth", gt=0)
+    engagement: Literal["extended", "rigid"] = Field(
+        "extended", description="'extended' (tooth-geometry gap table, default) or 'rigid'"
+    )
+
+    @field_validator("stiffness", mode="before")
+    @classmethod
+    def _stiffness_units(cls, value, info):
+        if value == "derived":
+            return value
+        exponent = info.data.get("exponent", 1.5)
+        return units.parse_quantity(value, units.contact_stiffness_dim(exponent))
+
+
+class Friction(Section):
+    """Adams contact friction (model.md §5); velocities are sliding speeds."""
+
+    enabled: bool = Field(True, description="include friction (default true)")
+    static_coefficient: Coefficient = Field(0.08, ge=0, description="mu_s (0.08)")
+    dynamic_coefficient: Coefficient = Field(0.05, ge=0, description="mu_d (0.05)")
+    stiction_velocity: Velocity = qfield(units.VELOCITY, 0.01, "v_s", gt=0)
+    transition_velocity: Velocity = qfield(units.VELOCITY, 0.1, "v_d", gt=0)
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        if not self.stiction_velocity < self.transition_velocity:
+            raise FieldError(
+                ("stiction_velocity",), "expected stiction_velocity < transition_velocity"
+            )
+        return self
+
+
+# --- §6 drive, load, bearings -------------------------------------------------------------------
+class DriveShaft(Section):
+    """Torsional drive shaft between the prescribed motor angle and the pinion."""
+
+    stiffness: TorsionalStiffness = qfield(units.TORSIONAL_STIFFNESS, ..., "shaft stiffness", gt=0)
+    damping: TorsionalDamping = qfield(units.TORSIONAL_DAMPING, 0.0, "shaft damping", ge=0)
+
+
+class MotorCurve(Section):
+    """Linear motor curve: T = torque(t) (1 - omega1 / no_load_speed)."""
+
+    no_load_speed: AngularVelocity = qfield(units.ANGULAR_VELOCITY, ..., "no-load speed", gt=0)
+
+
+class Drive(Section):
+    """How the pinion is driven (model.md §6)."""
+
+    type: Literal["speed", "shaft", "torque"] = Field(
+        "speed", description="'speed' (prescribed pinion speed, Adams MOTION; default), "
+        "'shaft' (prescribed speed through a drive shaft), 'torque' (prescribed torque)"
+    )
+    speed: SpeedFunction | None = time_field(units.ANGULAR_VELOCITY, "pinion/motor speed", None)
+    torque: TorqueFunction | None = time_field(units.TORQUE, "drive torque (type torque)", None)
+    shaft: DriveShaft | None = None
+    motor_curve: MotorCurve | None = None
+    initial_speed: AngularVelocity = qfield(units.ANGULAR_VELOCITY, 0.0, "initial pinion speed")
+    reference_speed: AngularVelocity | None = qfield(
+        units.ANGULAR_VELOCITY, None, "pinion speed for frequencies with a torque drive", gt=0
+    )
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        need = {"speed": ("speed",), "shaft": ("speed", "shaft"), "torque": ("torque",)}[self.type]
+        for key in need:
+            if getattr(self, key) is None:
+                raise FieldError((key,), f"missing; drive type '{self.type}' needs '{key}'")
+        if self.type != "torque" and (self.torque is not None or self.motor_curve is not None):
+            key = "torque" if self.torque is not None else "motor_curve"
+            raise FieldError((key,), f"only applies to drive type 'torque', not '{self.type}'")
+        if self.type != "shaft" and self.shaft is not None:
+            raise FieldError(("shaft",), "'shaft' only applies to drive type 'shaft'")
+        return self
+
+
+class Load(Section):
+    """Load torque opposing rotation plus speed-dependent terms (model.md §6)."""
+
+    applied_to: Literal["gear", "pinion"] = Field("gear", description="body loaded ('gear')")
+    torque: TorqueFunction = time_field(units.TORQUE, "load torque", 0.0)
+    viscous: TorsionalDamping = qfield(units.TORSIONAL_DAMPING, 0.0, "viscous coefficient", ge=0)
+    quadratic: QuadraticDamping = qfield(units.QUADRATIC_DAMPING, 0.0, "quadratic coeff.", ge=0)
+
+
+class Bearing(Section):
+    """Bearing of one gear; torsional viscous damping to ground."""
+
+    damping: TorsionalDamping = qfield(units.TORSIONAL_DAMPING, 0.0, "bearing damping c", ge=0)
+
+
+class Bearings(Section):
+    pinion: Bearing = Field(default_factory=Bearing)
+    gear: Bearing = Field(default_factory=Bearing)
+
+
+# --- §3 modifications and errors ----------------------------------------------------------------
+class Relief(Section):
+    """Profile relief on one gear: amount and extent (length along the path, or start diameter)."""
+
+    amount: Length = qfield(units.LENGTH, ..., "relief amount C_a at the tip (or root)", gt=0)
+    length: Length | None = qfield(units.LENGTH, None, "relief length along the LoA", gt=0)
+    start_diameter: Length | None = qfield(units.LENGTH, None, "diameter where it starts", gt=0)
+    shape: Literal["linear", "parabolic"] = Field("linear", description="'linear' or 'parabolic'")
+
+    @model_validator(mode="after")
+    def _one_extent(self):
+        if (self.length is None) == (self.start_diameter is None):
+            raise FieldError(("length",), "give exactly one of 'length' or 'start_diameter'")
+        return self
+
+
+class ReliefPair(Section):
+    pinion: Relief | None = None
+    gear: Relief | None = None
+
+
+class Modifications(Section):
+    tip_relief: ReliefPair = Field(default_factory=ReliefPair)
+    root_relief: ReliefPair = Field(default_factory=ReliefPair)
+
+
+class Runout(Section):
+    eccentricity: Length = qfield(units.LENGTH, ..., "eccentricity e", ge=0)
+    phase: Angle = qfield(units.ANGLE, 0.0, "phase of the eccentricity")
+
+
+class PitchDeviation(Section):
+    """Single pitch deviations per tooth: a list, or an ISO 1328-1 grade with a random seed."""
+
+    values: list[Length] | None = Field(None, description="f_pt per tooth [mm], one per tooth")
+    iso1328_grade: Annotated[int, Strict()] | None = Field(None, ge=1, le=11,
+                                                           description="ISO 1328-1 grade 1..11")
+    seed: Annotated[int, Strict()] = Field(0, description="random seed for the grade (0)")
+
+    @model_validator(mode="after")
+    def _one_source(self):
+        if (self.values is None) == (self.iso1328_grade is None):
+            raise FieldError(("values",), "give exactly one of 'values' or 'iso1328_grade'")
+        return self
+
+
+class RunoutPair(Section):
+    pinion: Runout | None = None
+    gear: Runout | None = None
+
+
+class PitchPair(Section):
+    pinion: PitchDeviation | None = None
+    gear: PitchDeviation | None = None
+
+
+class Errors(Section):
+    runout: RunoutPair = Field(default_factory=RunoutPair)
+    pitch_deviation: PitchPair = Field(default_factory=PitchPair)
+
+
+# --- run, checks --------------------------------------------------------------------------------
+class Run(Section):
+    """Simulation length, output sampling and solver tolerances."""
+
+    end_time: Time = qfield(units.TIME, ..., "simulated time", gt=0)
+    output_steps: Annotated[int, Strict()] | None = Field(
+        None, ge=10, description="number of output intervals (Adams STEPS); default: enough for "
+        "checks.harmonics harmonics of the mesh frequency"
+    )
+    output_rate: Frequency | None = qfield(units.FREQUENCY, None, "output sample rate", gt=0)
+    rtol: Coefficient = Field(1e-6, gt=0, lt=1e-2, description="relative tolerance (1e-6)")
+    atol: Length = qfield(units.LENGTH, 1e-8, "absolute tolerance on deflections", gt=0)
+    max_step: Time | None = qfield(units.TIME, None, "largest solver step", gt=0)
+
+    @model_validator(mode="after")
+    def _one_rate(self):
+        if self.output_steps is not None and self.output_rate is not None:
+            raise FieldError(("output_rate",), "give at most one of 'output_steps' and 'output_rate'")
+        return self
+
+
+class Checks(Section):
+    """Limits for analyze/modal checks (documented defaults)."""
+
+    harmonics: Annotated[int, Strict()] = Field(5, ge=1, le=50, description="GMF harmonics (5)")
+    speed_ratio_error_percent: Coefficient = Field(0.1, gt=0, description="limit (0.1 %)")
+    resonance_margin_percent: Coefficient = Field(10.0, ge=0, description="limit (10 %)")
+    dynamic_factor_max: Coefficient | None = Field(None, gt=0, description="optional limit")
+    dte_peak_to_peak_max: Length | None = qfield(units.LENGTH, None, "optional DTE limit", gt=0)
+    energy_balance_tolerance: Coefficient = Field(0.01, gt=0, description="relative (0.01)")
+
+
+class Case(Section):
+    """A gearcli case: one spur gear pair, its contact, drive, load and run settings."""
+
+    name: str | None = Field(None, description="case name (default: file stem)")
+    description: str = Field("", description="free text")
+    gears: Gears
+    material: Material = Field(default_factory=Material)
+    contact: Contact = Field(default_factory=Contact)
+    friction: Friction = Field(default_factory=Friction)
+    drive: Drive
+    load: Load = Field(default_factory=Load)
+    bearings: Bearings = Field(default_factory=Bearings)
+    modifications: Modifications = Field(default_factory=Modifications)
+    errors: Errors = Field(default_factory=Errors)
+    run: Run
+    checks: Checks = Field(default_factory=Checks)
+
+    @model_validator(mode="after")
+    def _cross_checks(self):
+        if self.load.applied_to == "pinion" and self.drive.type == "speed":
+            raise FieldError(
+                ("load", "applied_to"),
+                "a load on the pinion with drive type 'speed' is refused: a torque on a "
+                "motion-driven body never reaches the mesh (model.md §9); apply it to the gear",
+            )
+        for name in ("pinion", "gear"):
+            dev = getattr(self.errors.pitch_deviation, name)
+            teeth = getattr(self.gears, name).teeth
+            if dev is not None and dev.values is not None and len(dev.values) != teeth:
+                raise FieldError(
+                    ("errors", "pitch_deviation", name, "values"),
+                    f"{len(dev.values)} entries; expected one per tooth ({teeth})",
+                )
+        return self

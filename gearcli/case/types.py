@@ -1,0 +1,178 @@
+"""Annotated pydantic field types for case files: quantities with units and time functions.
+
+A quantity field accepts a bare number in its documented default unit or a string with units
+(parsed by pint, see :mod:`gearcli.units`) and stores the value in internal units. In JSON
+output (the resolved case) it is written back as "<value> <internal unit>", which loads again
+to the identical float.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import Annotated, Any
+
+from pydantic import BeforeValidator, Field, PlainSerializer, WithJsonSchema
+
+from gearcli import units
+from gearcli.units import Dim
+
+
+def _quantity_validator(dim: Dim):
+    def validate(value: Any) -> float:
+        return units.parse_quantity(value, dim)
+
+    validate.dim = dim  # lets error messages show limits in the default unit
+    return validate
+
+
+@functools.cache
+def quantity(dim: Dim):
+    """The annotated float type of a quantity of dimension ``dim``."""
+    return Annotated[
+        float,
+        BeforeValidator(_quantity_validator(dim)),
+        PlainSerializer(lambda v: units.format_internal(v, dim), when_used="json"),
+        WithJsonSchema(
+            {
+                "anyOf": [{"type": "number"}, {"type": "string"}],
+                "description": f"{dim.name}: a number in {dim.default} or a string with units, "
+                f"e.g. {dim.example}",
+            }
+        ),
+    ]
+
+
+def qfield(dim: Dim, default: float | None = ..., description: str = "", **kw) -> Any:
+    """A pydantic Field for a quantity whose ``default`` is written in ``dim.default``.
+
+    The description gets the default unit and value appended, so `gearcli schema` documents it.
+    """
+    text = f"{description} [{dim.default}]"
+    if default is None:
+        return Field(default=None, description=text + " (optional)", **kw)
+    if default is ...:
+        return Field(description=text + " (required)", **kw)
+    text += f" (default {default:g} {dim.default})"
+    return Field(default=units.default_to_internal(default, dim), description=text, **kw)
+
+
+Length = quantity(units.LENGTH)
+Angle = quantity(units.ANGLE)
+AngularVelocity = quantity(units.ANGULAR_VELOCITY)
+Torque = quantity(units.TORQUE)
+Time = quantity(units.TIME)
+Frequency = quantity(units.FREQUENCY)
+Mass = quantity(units.MASS)
+Density = quantity(units.DENSITY)
+Inertia = quantity(units.INERTIA)
+Stress = quantity(units.STRESS)
+Velocity = quantity(units.VELOCITY)
+LinearStiffness = quantity(units.LINEAR_STIFFNESS)
+LinearDamping = quantity(units.LINEAR_DAMPING)
+TorsionalStiffness = quantity(units.TORSIONAL_STIFFNESS)
+TorsionalDamping = quantity(units.TORSIONAL_DAMPING)
+QuadraticDamping = quantity(units.QUADRATIC_DAMPING)
+
+
+@dataclass(frozen=True)
+class TimeFunction:
+    """A function of time from a case file, kept as written plus the unit of its numbers.
+
+    ``pp`` is the exact piecewise polynomial in internal units (see
+    :mod:`gearcli.model.timefunction`).
+    """
+
+    expression: str
+    unit: str
+    dim: Dim
+
+    @functools.cached_property
+    def pp(self):
+        from gearcli.case.expr import parse_time_function
+
+        return parse_time_function(self.expression).scale(units.unit_factor(self.unit, self.dim))
+
+    def to_json(self) -> dict[str, str]:
+        return {"function": self.expression, "unit": self.unit}
+
+
+def _time_function_validator(dim: Dim):
+    def validate(value: Any) -> TimeFunction:
+        from gearcli.case.expr import ExpressionError, is_expression, parse_time_function
+
+        if isinstance(value, TimeFunction):
+            return value
+        unit = dim.default
+        if isinstance(value, dict):
+            extra = set(value) - {"function", "unit"}
+            if extra or "function" not in value:
+                raise ValueError(
+                    "expected a mapping with keys 'function' (an expression such as "
+                    "'STEP(time, 0, 0, 1, 450)') and optional 'unit'"
+                )
+            unit = str(value.get("unit", dim.default))
+            units.unit_factor(unit, dim)  # validates the unit and its dimension
+            value = value["function"]
+            if isinstance(value, int | float) and not isinstance(value, bool):
+                value = repr(float(value))
+        if isinstance(value, bool) or not isinstance(value, int | float | str):
+            raise ValueError(
+                f"expected a {dim.name} ({dim.default}): a number, a string with units, or an "
+                "expression such as 'STEP(time, 0, 0, 1, 3000)'"
+            )
+        if isinstance(value, str) and is_expression(value):
+            try:
+                parse_time_function(value)
+            except ExpressionError as exc:
+                raise ValueError(f"malformed expression: {exc}") from None
+            return TimeFunction(" ".join(value.split()), unit, dim)
+        constant = units.parse_quantity(value, dim)
+        return TimeFunction(repr(constant), dim.internal, dim)
+
+    return validate
+
+
+@functools.cache
+def time_function(dim: Dim):
+    """The annotated type of a time function of dimension ``dim``."""
+    return Annotated[
+        TimeFunction,
+        BeforeValidator(_time_function_validator(dim)),
+        PlainSerializer(lambda v: v.to_json(), when_used="json"),
+        WithJsonSchema(
+            {
+                "anyOf": [
+                    {"type": "number"},
+                    {"type": "string"},
+                    {
+                        "type": "object",
+                        "properties": {"function": {"type": "string"}, "unit": {"type": "string"}},
+                        "required": ["function"],
+                        "additionalProperties": False,
+                    },
+                ],
+                "description": f"{dim.name} as a function of time: a number in {dim.default}, a "
+                f"string with units, an expression like 'STEP(time, 0, 0, 1, 3000)' in "
+                f"{dim.default}, or {{function: ..., unit: ...}}",
+            }
+        ),
+    ]
+
+
+def time_field(dim: Dim, description: str, default: float | None = ...) -> Any:
+    """A Field for a time function; a numeric ``default`` is a constant in ``dim.default``."""
+    text = f"{description} [{dim.default}]"
+    if default is ...:
+        return Field(description=text + " (required)")
+    if default is None:
+        return Field(default=None, description=text + " (optional)")
+    value = units.default_to_internal(default, dim)
+    return Field(
+        default=TimeFunction(repr(value), dim.internal, dim),
+        description=text + f" (default {default:g} {dim.default})",
+    )
+
+
+SpeedFunction = time_function(units.ANGULAR_VELOCITY)
+TorqueFunction = time_function(units.TORQUE)

@@ -1,0 +1,126 @@
+"""Safe YAML loading that keeps the line of every key, for error messages.
+
+Uses PyYAML's SafeLoader only (no arbitrary object construction). Duplicate keys, which YAML
+parsers silently resolve by keeping the last one, are refused.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import yaml
+
+from gearcli.errors import CaseError
+
+Loc = tuple[str | int, ...]
+
+
+@dataclass
+class Source:
+    """A loaded YAML document: its data, its text lines and the line of each key path."""
+
+    file: str
+    data: object
+    lines: list[str]
+    key_lines: dict[Loc, int] = field(default_factory=dict)
+
+    def line_of(self, loc: Loc) -> int | None:
+        """1-based line of the deepest existing key on ``loc``."""
+        loc = tuple(loc)
+        while loc:
+            if loc in self.key_lines:
+                return self.key_lines[loc]
+            loc = loc[:-1]
+        return self.key_lines.get((), None)
+
+    def text_of(self, line: int | None) -> str | None:
+        if line is None or not 1 <= line <= len(self.lines):
+            return None
+        return self.lines[line - 1]
+
+    def error(self, loc: Loc, message: str, value: object = None, has_value: bool = False):
+        """A :class:`CaseError` located at ``loc``."""
+        line = self.line_of(loc)
+        return CaseError(
+            message,
+            file=self.file,
+            line=line,
+            path=".".join(str(p) for p in loc) or None,
+            value=value,
+            has_value=has_value,
+            source_line=self.text_of(line),
+        )
+
+
+def read_source(path: str | Path) -> Source:
+    """Read and parse a YAML case file; every failure is a :class:`CaseError`."""
+    p = Path(path)
+    name = str(path)
+    if not p.exists():
+        raise CaseError("file not found; expected the path of a YAML case file", file=name)
+    if p.is_dir():
+        raise CaseError("is a directory; expected a YAML case file", file=name)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise CaseError(f"not UTF-8 text ({exc.reason}); expected a YAML case file", file=name) from None
+    except OSError as exc:
+        raise CaseError(f"cannot read ({exc.strerror}); expected a readable file", file=name) from None
+    return parse_source(text, name)
+
+
+def parse_source(text: str, name: str = "<case>") -> Source:
+    """Parse YAML text into a :class:`Source` (mapping at the top level)."""
+    lines = text.splitlines()
+    if not text.strip():
+        raise CaseError("file is empty; expected a YAML mapping of case keys", file=name)
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        data = yaml.load(text, Loader=yaml.SafeLoader)  # noqa: S506 - SafeLoader
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
+        line = mark.line + 1 if mark is not None else None
+        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+        raise CaseError(
+            f"invalid YAML ({problem}); expected a YAML mapping of case keys",
+            file=name,
+            line=line,
+            source_line=lines[line - 1] if line and line <= len(lines) else None,
+        ) from None
+    if node is None or data is None:
+        raise CaseError("file holds no data; expected a YAML mapping of case keys", file=name)
+    src = Source(name, data, lines)
+    if not isinstance(data, dict):
+        line = node.start_mark.line + 1
+        raise CaseError(
+            f"the document is a YAML {type(data).__name__}; expected a mapping of case keys "
+            "(gears:, contact:, drive:, ...)",
+            file=name,
+            line=line,
+            source_line=src.text_of(line),
+        )
+    src.key_lines[()] = node.start_mark.line + 1
+    _index(node, (), src)
+    return src
+
+
+def _index(node: yaml.Node, loc: Loc, src: Source) -> None:
+    """Record the line of every key below ``node``; refuse duplicate keys."""
+    if isinstance(node, yaml.MappingNode):
+        seen: set = set()
+        for key_node, value_node in node.value:
+            key = str(key_node.value)  # complex keys are refused later by the schema
+            child = (*loc, key)
+            line = key_node.start_mark.line + 1
+            if key in seen:
+                src.key_lines[child] = line
+                raise src.error(child, "duplicate key; each key may appear once per mapping")
+            seen.add(key)
+            src.key_lines[child] = line
+            _index(value_node, child, src)
+    elif isinstance(node, yaml.SequenceNode):
+        for i, item in enumerate(node.value):
+            child = (*loc, i)
+            src.key_lines[child] = item.start_mark.line + 1
+            _index(item, child, src)

@@ -1,0 +1,32 @@
+"""`gearcli schema` and `gearcli new`: the case file's JSON Schema and a starter case."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from gearcli.cli import app
+from gearcli.cli.common import handle_errors
+
+
+@app.command()
+@handle_errors
+def schema() -> None:
+    """Print the case file's JSON Schema (for editor completion and validation)."""
+    import json
+
+    from gearcli.case.schema import Case
+
+    typer.echo(json.dumps(Case.model_json_schema(), indent=2))
+
+
+@app.command()
+@handle_errors
+def new(path: Path = typer.Argument(..., help="Where to write the starter case (.yaml).")) -> None:
+    """Write a commented starter case (the seed study); never overwrites a file."""
+    from gearcli.io.files import write_new_text
+    from gearcli.case.starter import starter_text
+
+    write_new_text(path, starter_text())
+    typer.echo(f"wrote {path} (the seed case; edit it, then: gearcli geometry {path})")

@@ -1,0 +1,55 @@
+"""One place that turns library errors into messages and exit codes (see gearcli.errors)."""
+
+from __future__ import annotations
+
+import functools
+import os
+import sys
+import tempfile
+import traceback
+from pathlib import Path
+
+import typer
+
+from gearcli.errors import ExitCode, GearcliError
+
+
+def handle_errors(func):
+    """Decorator for every command: GearcliError -> one message line + its exit code;
+    Ctrl-C -> 130; anything else -> exit 3 with the traceback written to a log file."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except (typer.Exit, typer.Abort, SystemExit):
+            raise
+        except GearcliError as exc:
+            typer.echo(f"error: {exc}", err=True)
+            raise typer.Exit(int(exc.exit_code)) from None
+        except KeyboardInterrupt:
+            typer.echo("interrupted", err=True)
+            raise typer.Exit(int(ExitCode.INTERRUPTED)) from None
+        except Exception:  # a bug: keep the traceback for the report, not on the screen
+            log = _write_log(traceback.format_exc())
+            typer.echo(
+                f"internal error: {sys.exc_info()[1]!r}; traceback written to {log} "
+                "(please report it)",
+                err=True,
+            )
+            raise typer.Exit(int(ExitCode.INTERNAL)) from None
+
+    return wrapper
+
+
+def _write_log(text: str) -> Path:
+    folder = Path(os.environ.get("GEARCLI_LOG_DIR", tempfile.gettempdir()))
+    folder.mkdir(parents=True, exist_ok=True)
+    fd, name = tempfile.mkstemp(prefix="gearcli-error-", suffix=".log", dir=folder)
+    with os.fdopen(fd, "w") as fh:
+        fh.write(text)
+    return Path(name)
+
+
+def is_terminal() -> bool:
+    return sys.stdout.isatty()

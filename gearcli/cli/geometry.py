@@ -1,0 +1,123 @@
+"""`gearcli geometry CASE`: the checked involute geometry of the pair (table, JSON, drawing)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from gearcli.cli import app
+from gearcli.cli.common import handle_errors
+
+# (label, json key, unit) rows of the per-gear and per-pair tables.
+GEAR_ROWS = [
+    ("teeth z", "z", ""),
+    ("module m", "module_mm", "mm"),
+    ("pressure angle α", "pressure_angle_deg", "deg"),
+    ("profile shift x", "profile_shift", ""),
+    ("reference diameter d", "d_mm", "mm"),
+    ("base diameter d_b", "d_b_mm", "mm"),
+    ("tip diameter d_a", "d_a_mm", "mm"),
+    ("root diameter d_f", "d_f_mm", "mm"),
+    ("operating pitch diameter d_w", "d_w_mm", "mm"),
+    ("root form diameter d_Ff", "d_Ff_mm", "mm"),
+    ("active profile start d_Nf", "d_Nf_mm", "mm"),
+    ("tooth thickness at d, s", "s_mm", "mm"),
+    ("tooth thickness at d_a, s_a", "s_a_mm", "mm"),
+    ("base pitch p_b", "p_b_mm", "mm"),
+    ("tip clearance (to mate's root)", "tip_clearance_mm", "mm"),
+    ("root clearance (mate's tip)", "root_clearance_mm", "mm"),
+    ("undercut limit x_min", "x_min_undercut", ""),
+    ("undercut", "undercut", ""),
+    ("mass", "mass_kg", "kg"),
+    ("polar inertia J", "inertia_kg_m2", "kg·m²"),
+]
+PAIR_ROWS = [
+    ("reference centre distance a", "a_mm", "mm"),
+    ("operating centre distance a_w", "a_w_mm", "mm"),
+    ("operating pressure angle α_w", "alpha_w_deg", "deg"),
+    ("backlash, normal (along LoA) j_n", "backlash_normal_mm", "mm"),
+    ("backlash, circumferential j_wt", "backlash_circumferential_mm", "mm"),
+    ("ratio i = z2/z1", "ratio", ""),
+    ("T1T2 (line of action)", "T1T2_mm", "mm"),
+    ("path of contact g_α = AE", "path_of_contact_mm", "mm"),
+    ("T1A (start of contact)", "T1A_mm", "mm"),
+    ("T1B (start of single contact)", "T1B_mm", "mm"),
+    ("T1C (pitch point)", "T1C_mm", "mm"),
+    ("T1D (end of single contact)", "T1D_mm", "mm"),
+    ("T1E (end of contact)", "T1E_mm", "mm"),
+    ("transverse contact ratio ε_α", "contact_ratio", ""),
+    ("single-contact fraction", "single_contact_fraction", ""),
+    ("double-contact fraction", "double_contact_fraction", ""),
+    ("pinion speed", "pinion_speed_deg_s", "deg/s"),
+    ("gear-mesh frequency f_z", "gear_mesh_frequency_Hz", "Hz"),
+    ("pinion shaft frequency n1", "pinion_shaft_frequency_Hz", "Hz"),
+    ("gear shaft frequency n2", "gear_shaft_frequency_Hz", "Hz"),
+]
+
+
+@app.command()
+@handle_errors
+def geometry(
+    case: Path = typer.Argument(..., help="Case file (YAML)."),
+    as_json: bool = typer.Option(False, "--json", help="Print JSON (keys carry units)."),
+    plot: Path | None = typer.Option(
+        None, "--plot", help="Draw the pair in mesh to FILE (.png, .svg or .pdf)."
+    ),
+) -> None:
+    """Involute geometry of the pair, checked (ISO 21771): per gear, per pair, warnings."""
+    from gearcli.pipeline.geometry import geometry_dict, run_geometry
+
+    if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
+        from gearcli.errors import OutputError
+
+        raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
+    result = run_geometry(case)
+    data = geometry_dict(result)
+    if plot is not None:
+        from gearcli.pipeline.geometry import save_geometry_plot
+
+        save_geometry_plot(result, plot)
+    if as_json:
+        import json
+
+        typer.echo(json.dumps(data, indent=2))
+    else:
+        _print_tables(data)
+        if plot is not None:
+            typer.echo(f"drawing written to {plot}")
+    for w in data["warnings"]:
+        typer.echo(f"warning: {w['message']}", err=True)
+
+
+def _print_tables(data: dict) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    t = Table(title=f"Gear geometry — {data['case']}", title_justify="left")
+    t.add_column("quantity")
+    t.add_column("pinion", justify="right")
+    t.add_column("gear", justify="right")
+    t.add_column("unit")
+    for label, key, unit in GEAR_ROWS:
+        t.add_row(label, _fmt(data["pinion"].get(key)), _fmt(data["gear"].get(key)), unit)
+    console.print(t)
+    p = Table(title="Pair", title_justify="left")
+    p.add_column("quantity")
+    p.add_column("value", justify="right")
+    p.add_column("unit")
+    for label, key, unit in PAIR_ROWS:
+        if data["pair"].get(key) is not None:
+            p.add_row(label, _fmt(data["pair"][key]), unit)
+    console.print(p)
+
+
+def _fmt(v) -> str:
+    if v is None:
+        return "—"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, int):
+        return str(v)
+    return f"{v:.6g}" if abs(v) >= 1e-3 or v == 0 else f"{v:.4e}"

@@ -1,0 +1,1 @@
+"""File output: atomic writes, never silently overwriting results."""

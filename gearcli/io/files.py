@@ -1,0 +1,45 @@
+"""Atomic file writes that never silently overwrite existing results."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+from gearcli.errors import OutputError
+
+
+def write_new_text(path: str | Path, text: str) -> None:
+    """Write ``text`` to ``path``, refusing if it exists; atomic (temp file + link)."""
+    p = Path(path)
+    if p.exists():
+        raise OutputError(f"{p}: already exists; expected a new path (gearcli never overwrites it)")
+    if not p.parent.exists():
+        raise OutputError(f"{p}: folder {p.parent} does not exist; expected an existing folder")
+    tmp = _temp_with(p, text.encode("utf-8"))
+    try:
+        os.link(tmp, p)  # fails if p appeared meanwhile: no race, no overwrite
+    except FileExistsError:
+        raise OutputError(f"{p}: already exists; expected a new path") from None
+    finally:
+        os.unlink(tmp)
+
+
+def write_atomic(path: str | Path, data: bytes | str) -> None:
+    """Write ``data`` to ``path`` via a temp file in the same folder and an atomic rename."""
+    p = Path(path)
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    tmp = _temp_with(p, raw)
+    os.replace(tmp, p)
+
+
+def _temp_with(p: Path, raw: bytes) -> str:
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent or ".")
+    except OSError as exc:
+        raise OutputError(f"{p}: cannot write ({exc.strerror})") from None
+    with os.fdopen(fd, "wb") as fh:
+        fh.write(raw)
+        fh.flush()
+        os.fsync(fh.fileno())
+    return tmp

@@ -1,0 +1,1 @@
+"""Gear model: involute geometry, tooth profiles, mass and stiffness parameters (pure functions)."""
