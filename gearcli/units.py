@@ -108,7 +108,9 @@ def parse_quantity(value: object, dim: Dim) -> float:
     ------
     UnitError : unparseable, wrong dimension, non-finite
     """
-    expected = f"a {dim.name} as a number in {dim.default} or a string with units, e.g. {dim.example}"
+    expected = (
+        f"a {dim.name} as a number in {dim.default} or a string with units, e.g. {dim.example}"
+    )
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise UnitError(f"expected {expected}")
     if isinstance(value, int | float):
@@ -127,7 +129,9 @@ def parse_quantity(value: object, dim: Dim) -> float:
     try:
         q = ureg.Quantity(text)
     except Exception as exc:  # pint raises a zoo of types (UndefinedUnitError, AssertionError, ...)
-        raise UnitError(f"cannot parse units ({type(exc).__name__}: {exc}); expected {expected}") from None
+        raise UnitError(
+            f"cannot parse units ({type(exc).__name__}: {exc}); expected {expected}"
+        ) from None
     if not hasattr(q, "units") or isinstance(q.magnitude, complex):
         raise UnitError(f"expected {expected}")
     _refuse_cycles(text, dim)
@@ -164,9 +168,7 @@ def default_to_internal(number: float, dim: Dim) -> float:
 def _refuse_cycles(text: str, dim: Dim) -> None:
     """pint treats Hz as 1/s = rad/s; for angular quantities that silently loses 2π."""
     if dim.angular and any(tok in text for tok in ("Hz", "hertz")):
-        raise UnitError(
-            f"'Hz' is ambiguous for a {dim.name}; write rev/s, rpm, deg/s or rad/s"
-        )
+        raise UnitError(f"'Hz' is ambiguous for a {dim.name}; write rev/s, rpm, deg/s or rad/s")
 
 
 def format_internal(value: float, dim: Dim) -> str:

@@ -110,22 +110,41 @@ def _message(err: dict, cause: Exception | None, loc: Loc) -> str:
         return "missing required key"
     if cause is not None:
         text = str(cause)
-        return text if text.startswith(("expected", "missing", "cannot", "wrong", "give", "only",
-                                         "a load", "malformed", "'")) else "expected: " + text
+        return (
+            text
+            if text.startswith(
+                (
+                    "expected",
+                    "missing",
+                    "cannot",
+                    "wrong",
+                    "give",
+                    "only",
+                    "a load",
+                    "malformed",
+                    "'",
+                )
+            )
+            else "expected: " + text
+        )
     limit = _limit_message(err, loc)
     if limit:
         return limit
     msg = err["msg"]
     for prefix in ("Input should be ", "Value error, "):
         if msg.startswith(prefix):
-            msg = msg[len(prefix):]
+            msg = msg[len(prefix) :]
     msg = msg.replace("greater than or equal to", ">=").replace("less than or equal to", "<=")
     msg = msg.replace("greater than", ">").replace("less than", "<")
     return "expected " + msg
 
 
-_LIMITS = {"greater_than": (">", "gt"), "greater_than_equal": (">=", "ge"),
-           "less_than": ("<", "lt"), "less_than_equal": ("<=", "le")}
+_LIMITS = {
+    "greater_than": (">", "gt"),
+    "greater_than_equal": (">=", "ge"),
+    "less_than": ("<", "lt"),
+    "less_than_equal": ("<=", "le"),
+}
 
 
 def _limit_message(err: dict, loc: Loc) -> str | None:

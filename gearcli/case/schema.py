@@ -33,6 +33,7 @@ from gearcli.case.types import (
     time_field,
 )
 
+
 class FieldError(ValueError):
     """A validation error that names the key it is about, relative to the validated section."""
 
@@ -98,7 +99,9 @@ class Gear(Section):
         units.LENGTH, 0.0, "reduction of the reference tooth thickness (backlash)", ge=0
     )
     tip_rounding: Length = qfield(units.LENGTH, 0.0, "tip rounding radius (0: sharp)", ge=0)
-    face_width: Length | None = qfield(units.LENGTH, None, "face width; default gears.face_width", gt=0)
+    face_width: Length | None = qfield(
+        units.LENGTH, None, "face width; default gears.face_width", gt=0
+    )
     material: Material | None = Field(None, description="default: the case's material")
     inertia: InertiaSpec = Field(default_factory=InertiaSpec, description="mass properties")
 
@@ -179,8 +182,9 @@ class Drive(Section):
     """How the pinion is driven (model.md §6)."""
 
     type: Literal["speed", "shaft", "torque"] = Field(
-        "speed", description="'speed' (prescribed pinion speed, Adams MOTION; default), "
-        "'shaft' (prescribed speed through a drive shaft), 'torque' (prescribed torque)"
+        "speed",
+        description="'speed' (prescribed pinion speed, Adams MOTION; default), "
+        "'shaft' (prescribed speed through a drive shaft), 'torque' (prescribed torque)",
     )
     speed: SpeedFunction | None = time_field(units.ANGULAR_VELOCITY, "pinion/motor speed", None)
     torque: TorqueFunction | None = time_field(units.TORQUE, "drive torque (type torque)", None)
@@ -260,8 +264,9 @@ class PitchDeviation(Section):
     """Single pitch deviations per tooth: a list, or an ISO 1328-1 grade with a random seed."""
 
     values: list[Length] | None = Field(None, description="f_pt per tooth [mm], one per tooth")
-    iso1328_grade: Annotated[int, Strict()] | None = Field(None, ge=1, le=11,
-                                                           description="ISO 1328-1 grade 1..11")
+    iso1328_grade: Annotated[int, Strict()] | None = Field(
+        None, ge=1, le=11, description="ISO 1328-1 grade 1..11"
+    )
     seed: Annotated[int, Strict()] = Field(0, description="random seed for the grade (0)")
 
     @model_validator(mode="after")
@@ -292,8 +297,10 @@ class Run(Section):
 
     end_time: Time = qfield(units.TIME, ..., "simulated time", gt=0)
     output_steps: Annotated[int, Strict()] | None = Field(
-        None, ge=10, description="number of output intervals (Adams STEPS); default: enough for "
-        "checks.harmonics harmonics of the mesh frequency"
+        None,
+        ge=10,
+        description="number of output intervals (Adams STEPS); default: enough for "
+        "checks.harmonics harmonics of the mesh frequency",
     )
     output_rate: Frequency | None = qfield(units.FREQUENCY, None, "output sample rate", gt=0)
     rtol: Coefficient = Field(1e-6, gt=0, lt=1e-2, description="relative tolerance (1e-6)")
@@ -303,7 +310,9 @@ class Run(Section):
     @model_validator(mode="after")
     def _one_rate(self):
         if self.output_steps is not None and self.output_rate is not None:
-            raise FieldError(("output_rate",), "give at most one of 'output_steps' and 'output_rate'")
+            raise FieldError(
+                ("output_rate",), "give at most one of 'output_steps' and 'output_rate'"
+            )
         return self
 
 

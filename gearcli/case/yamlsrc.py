@@ -64,9 +64,13 @@ def read_source(path: str | Path) -> Source:
     try:
         text = p.read_text(encoding="utf-8")
     except UnicodeDecodeError as exc:
-        raise CaseError(f"not UTF-8 text ({exc.reason}); expected a YAML case file", file=name) from None
+        raise CaseError(
+            f"not UTF-8 text ({exc.reason}); expected a YAML case file", file=name
+        ) from None
     except OSError as exc:
-        raise CaseError(f"cannot read ({exc.strerror}); expected a readable file", file=name) from None
+        raise CaseError(
+            f"cannot read ({exc.strerror}); expected a readable file", file=name
+        ) from None
     return parse_source(text, name)
 
 

@@ -12,7 +12,7 @@ from gearcli import __version__
 
 app = typer.Typer(
     name="gearcli",
-    help="Dynamics of spur gear pairs from a YAML case file: geometry, simulation, spectra, checks.",
+    help="Dynamics of spur gear pairs from a YAML case file: geometry, simulation, checks.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,

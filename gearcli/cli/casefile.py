@@ -25,8 +25,8 @@ def schema() -> None:
 @handle_errors
 def new(path: Path = typer.Argument(..., help="Where to write the starter case (.yaml).")) -> None:
     """Write a commented starter case (the seed study); never overwrites a file."""
-    from gearcli.io.files import write_new_text
     from gearcli.case.starter import starter_text
+    from gearcli.io.files import write_new_text
 
     write_new_text(path, starter_text())
     typer.echo(f"wrote {path} (the seed case; edit it, then: gearcli geometry {path})")

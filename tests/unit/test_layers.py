@@ -65,4 +65,6 @@ def test_library_never_imports_typer():
         if (PKG / "cli") in f.parents:
             continue
         for mod in _imports(f):
-            assert mod.split(".")[0] not in {"typer", "click"}, f"{f.relative_to(PKG)} imports {mod}"
+            assert mod.split(".")[0] not in {"typer", "click"}, (
+                f"{f.relative_to(PKG)} imports {mod}"
+            )

@@ -1,0 +1,457 @@
+"""Spur gear pair geometry (ISO 21771 / DIN 3960 quantities) and its feasibility findings.
+
+Input: :class:`PairSpec` (module, pressure angle, two :class:`GearSpec`, basic rack, optional
+operating centre distance). Output: :class:`PairGeometry` with two :class:`GearGeometry`,
+line-of-action points, contact ratio, backlash and a tuple of :class:`Finding`.
+Invalid numbers raise ``ValueError``; a pair that cannot exist or cannot run is *reported*
+through findings (severity "error" or "warning"), never raised, so callers can show all
+problems at once. Units: mm, rad, Hz; coefficients in units of the module.
+
+References
+----------
+ISO 21771:2007 Cylindrical involute gears and gear pairs — Concepts and geometry.
+DIN 3960:1987 Begriffe und Bestimmungsgrößen für Stirnräder mit Evolventenverzahnung.
+ISO 53:1998 Standard basic rack tooth profile.
+ISO/TR 10064-2:1996 (backlash j_bn = j_wt cos α_wt for spur gears).
+G. Niemann, H. Winter, *Maschinenelemente* Bd. II, 2. Aufl., Springer 1989 (spur gear geometry).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from numbers import Real
+from typing import Literal
+
+from gearcli.model import profile
+from gearcli.model.involute import half_thickness_angle, inv, inv_inverse
+
+__all__ = ["RackSpec", "GearSpec", "PairSpec", "Finding", "GearGeometry", "PairGeometry",
+           "compute_pair_geometry", "mesh_frequencies"]
+
+
+@dataclass(frozen=True)
+class RackSpec:
+    """Basic rack (ISO 53), coefficients of the module. Defaults: ISO 53 profile A."""
+
+    addendum_coef: float = 1.0  #: h_aP* (gear addendum)
+    dedendum_coef: float = 1.25  #: h_fP* (gear dedendum = generating tool addendum)
+    root_radius_coef: float = 0.38  #: ρ_fP* (tool tip rounding generating the fillet)
+
+
+@dataclass(frozen=True)
+class GearSpec:
+    """One gear of the pair (input)."""
+
+    teeth: int  #: z
+    face_width_mm: float  #: b [mm]
+    profile_shift: float = 0.0  #: x
+    tip_shortening_coef: float = 0.0  #: k: d_a = d + 2m(h_aP* + x − k)
+    thickness_allowance_mm: float = 0.0  #: reduction of s at the reference circle [mm], >= 0
+    tip_rounding_mm: float = 0.0  #: tip rounding radius ρ_a [mm] (0 = sharp corner)
+
+
+@dataclass(frozen=True)
+class PairSpec:
+    """A spur gear pair (input). ``centre_distance_mm=None``: zero-backlash a_w from x1 + x2."""
+
+    module_mm: float
+    pressure_angle_rad: float
+    pinion: GearSpec
+    gear: GearSpec
+    rack: RackSpec = RackSpec()
+    centre_distance_mm: float | None = None
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A feasibility problem: one line naming the quantity, its value and what is allowed."""
+
+    severity: Literal["error", "warning"]
+    code: str
+    message: str
+    subject: Literal["pinion", "gear"] | None = None  #: the gear concerned; None: the pair
+
+
+@dataclass(frozen=True)
+class GearGeometry:
+    """Geometry of one gear in the pair. Diameters d_* [mm]; see the docstring of each field.
+
+    Pair-dependent fields (d_w, d_Nf, clearances) refer to the operating centre distance a_w;
+    they are NaN when a_w admits no operating pressure angle.
+    """
+
+    teeth: int  #: z
+    module_mm: float  #: m [mm]
+    pressure_angle_rad: float  #: α [rad]
+    profile_shift: float  #: x
+    tip_shortening_coef: float  #: k
+    face_width_mm: float  #: b [mm]
+    thickness_allowance_mm: float  #: A_s: reduction of s at the reference circle [mm]
+    tip_rounding_mm: float  #: ρ_a [mm]
+    rack: RackSpec  #: basic rack the gear is generated with
+    d_mm: float  #: reference diameter d = m z
+    d_b_mm: float  #: base diameter d_b = d cos α
+    d_a_mm: float  #: tip diameter d_a = d + 2m(h_aP* + x − k)
+    d_f_mm: float  #: root diameter d_f = d − 2m(h_fP* − x)
+    s_mm: float  #: reference arc tooth thickness m(π/2 + 2x tan α) − A_s
+    s_a_mm: float  #: arc tooth thickness at the tip circle (sharp corner) [mm]
+    p_b_mm: float  #: base pitch p_b = π m cos α
+    x_min: float  #: smallest shift without undercut
+    z_min: float  #: smallest tooth count without undercut at this x
+    undercut: bool  #: x < x_min
+    undercut_coef: float  #: x_min − x when undercut, else 0 (module units)
+    undercut_mm: float  #: undercut_coef · m [mm]
+    d_Ff_mm: float  #: root form diameter: start of the generated involute
+    d_Fa_mm: float  #: tip form diameter: end of the involute (d_a unless rounded/pointed)
+    d_w_mm: float = math.nan  #: operating pitch diameter 2 a_w z / (z1 + z2)
+    d_Nf_mm: float = math.nan  #: active profile start (where the mate's tip contacts)
+    tip_clearance_mm: float = math.nan  #: a_w − r_a − r_f(mate): this tip to the mate's root
+    root_clearance_mm: float = math.nan  #: a_w − r_a(mate) − r_f: mate's tip to this root
+
+    r_mm = property(lambda self: 0.5 * self.d_mm, doc="Reference radius [mm].")
+    r_b_mm = property(lambda self: 0.5 * self.d_b_mm, doc="Base radius [mm].")
+    r_a_mm = property(lambda self: 0.5 * self.d_a_mm, doc="Tip radius [mm].")
+    r_f_mm = property(lambda self: 0.5 * self.d_f_mm, doc="Root radius [mm].")
+    r_w_mm = property(lambda self: 0.5 * self.d_w_mm, doc="Operating pitch radius [mm].")
+
+
+@dataclass(frozen=True)
+class PairGeometry:
+    """Geometry of the pair at its operating centre distance.
+
+    Points on the line of action are distances from T1 (pinion base-circle tangency) [mm]:
+    A start of active contact (mate's tip), B = E − p_b, C pitch point, D = A + p_b, E end of
+    contact (pinion tip). ``pair_fractions`` lists (number of pairs in contact, fraction of a
+    mesh period): ε_α = n + f gives n + 1 pairs during f and n pairs during 1 − f.
+    """
+
+    pinion: GearGeometry
+    gear: GearGeometry
+    module_mm: float  #: m [mm]
+    pressure_angle_rad: float  #: α [rad]
+    a_mm: float  #: reference centre distance m (z1 + z2)/2 [mm]
+    a_w_mm: float  #: operating centre distance [mm]
+    a_w_zero_backlash_mm: float  #: a_w giving zero backlash with the allowances [mm]
+    alpha_w_rad: float  #: operating pressure angle [rad]
+    j_wt_mm: float  #: circumferential backlash on the operating pitch circle [mm]
+    j_n_mm: float  #: normal backlash along the line of action j_wt cos α_w [mm]
+    ratio: float  #: i = z2 / z1
+    T1T2_mm: float  #: length of the line of action a_w sin α_w [mm]
+    g_alpha_mm: float  #: path of contact |AE| [mm]
+    A_mm: float
+    B_mm: float
+    C_mm: float
+    D_mm: float
+    E_mm: float
+    eps_alpha: float  #: transverse contact ratio g_α / p_b
+    pair_fractions: tuple[tuple[int, float], ...]  #: ((pairs, fraction of time), ...)
+    single_contact_fraction: float  #: fraction of time with exactly one pair in contact
+    double_contact_fraction: float  #: fraction of time with exactly two pairs in contact
+    findings: tuple[Finding, ...]
+
+    errors = property(lambda self: tuple(f for f in self.findings if f.severity == "error"),
+                      doc="Findings with severity 'error'.")
+    warnings = property(lambda self: tuple(f for f in self.findings if f.severity == "warning"),
+                        doc="Findings with severity 'warning'.")
+    p_b_mm = property(lambda self: self.pinion.p_b_mm, doc="Base pitch [mm].")
+
+    def line_of_action_points(self) -> dict[str, float]:
+        """Points T1, A, B, C, D, E, T2 as distances from T1 [mm]."""
+        return {"T1": 0.0, "A": self.A_mm, "B": self.B_mm, "C": self.C_mm,
+                "D": self.D_mm, "E": self.E_mm, "T2": self.T1T2_mm}
+
+
+def _check_finite(name: str, value: float, *, positive: bool = False, nonneg: bool = False):
+    """Raise ValueError unless value is a finite real (> 0 / >= 0 when asked)."""
+    ok = isinstance(value, Real) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or (positive and value <= 0.0) or (nonneg and value < 0.0):
+        need = " > 0" if positive else " >= 0" if nonneg else ""
+        raise ValueError(f"{name} must be a finite number{need}, got {value!r}")
+
+
+def _validate(spec: PairSpec) -> None:
+    """Raise ValueError for numbers no gear can have (the schema normally catches these)."""
+    _check_finite("module_mm", spec.module_mm, positive=True)
+    _check_finite("pressure_angle_rad", spec.pressure_angle_rad)
+    if not 0.0 < spec.pressure_angle_rad < 0.25 * math.pi:
+        raise ValueError(
+            f"pressure_angle_rad must lie in (0, pi/4), got {spec.pressure_angle_rad!r}"
+        )
+    rack = spec.rack
+    _check_finite("rack.addendum_coef", rack.addendum_coef, positive=True)
+    _check_finite("rack.dedendum_coef", rack.dedendum_coef, positive=True)
+    _check_finite("rack.root_radius_coef", rack.root_radius_coef, nonneg=True)
+    # tool tip rounding must fit on the tool tooth (ξ_c >= 0, see profile._cutter):
+    # ρ* (1 − sin α)/cos α <= π/4 − h_fP* tan α
+    a = spec.pressure_angle_rad
+    rho_max = (0.25 * math.pi - rack.dedendum_coef * math.tan(a)) * math.cos(a) / (1 - math.sin(a))
+    if rack.root_radius_coef > rho_max:
+        raise ValueError(
+            f"rack.root_radius_coef = {rack.root_radius_coef:g} does not fit the rack tooth; "
+            f"allowed: <= {rho_max:.4f} for h_fP* = {rack.dedendum_coef:g}, alpha = {a:.4f} rad"
+        )
+    for role, g in (("pinion", spec.pinion), ("gear", spec.gear)):
+        z = g.teeth
+        if isinstance(z, bool) or not isinstance(z, Real) or z != int(z) or z < 1:
+            raise ValueError(f"{role}.teeth must be an integer >= 1, got {z!r}")
+        _check_finite(f"{role}.face_width_mm", g.face_width_mm, positive=True)
+        _check_finite(f"{role}.profile_shift", g.profile_shift)
+        _check_finite(f"{role}.tip_shortening_coef", g.tip_shortening_coef)
+        _check_finite(f"{role}.thickness_allowance_mm", g.thickness_allowance_mm, nonneg=True)
+        _check_finite(f"{role}.tip_rounding_mm", g.tip_rounding_mm, nonneg=True)
+    if spec.centre_distance_mm is not None:
+        _check_finite("centre_distance_mm", spec.centre_distance_mm, positive=True)
+
+
+def _gear_alone(g: GearSpec, m: float, alpha: float, rack: RackSpec) -> GearGeometry:
+    """Quantities of one gear that do not depend on the mate (ISO 21771, DIN 3960)."""
+    z, x = int(g.teeth), g.profile_shift
+    d = m * z
+    d_b = d * math.cos(alpha)
+    d_a = d + 2.0 * m * (rack.addendum_coef + x - g.tip_shortening_coef)
+    d_f = d - 2.0 * m * (rack.dedendum_coef - x)
+    s = m * (0.5 * math.pi + 2.0 * x * math.tan(alpha)) - g.thickness_allowance_mm
+    # tip thickness s_a = d_a (s/d + inv α − inv α_a) (ISO 21771); none below d_b
+    s_a = d_a * half_thickness_angle(s, d, alpha, 0.5 * d_a) if d_a > d_b else math.nan
+    # undercut limit with the height of the straight tool flank above the reference line,
+    # h* = h_fP* − ρ_fP* (1 − sin α) (≈ 1.0 for ISO 53 A); no undercut while the flank end stays
+    # inside the interference point: h* − x <= z sin²α / 2 (Niemann/Winter II, undercut limit)
+    h_lim = rack.dedendum_coef - rack.root_radius_coef * (1.0 - math.sin(alpha))
+    sin2 = math.sin(alpha) ** 2
+    x_min = h_lim - 0.5 * z * sin2
+    z_min = 2.0 * (h_lim - x) / sin2
+    undercut = x < x_min - 1e-12
+    cut = max(x_min - x, 0.0) if undercut else 0.0
+    geo = GearGeometry(
+        teeth=z, module_mm=m, pressure_angle_rad=alpha, profile_shift=x,
+        tip_shortening_coef=g.tip_shortening_coef, face_width_mm=g.face_width_mm,
+        thickness_allowance_mm=g.thickness_allowance_mm, tip_rounding_mm=g.tip_rounding_mm,
+        rack=rack, d_mm=d, d_b_mm=d_b, d_a_mm=d_a, d_f_mm=d_f, s_mm=s, s_a_mm=s_a,
+        p_b_mm=math.pi * m * math.cos(alpha), x_min=x_min, z_min=z_min, undercut=undercut,
+        undercut_coef=cut, undercut_mm=cut * m, d_Ff_mm=math.nan, d_Fa_mm=math.nan,
+    )
+    if d_f <= 0.0 or d_a <= d_b:
+        return geo  # no tooth to generate; reported by the findings
+    d_ff = 2.0 * profile.root_form_radius(geo)
+    try:
+        d_fa = 2.0 * profile.tip_form_radius(geo)
+    except ValueError:  # tip rounding does not fit: reported by the findings
+        d_fa = math.nan
+    return replace(geo, d_Ff_mm=d_ff, d_Fa_mm=d_fa)
+
+
+def _sqrt(value: float) -> float:
+    """√value, NaN for negative input (geometry that does not exist)."""
+    return math.sqrt(value) if value >= 0.0 else math.nan
+
+
+def _contact_fractions(eps: float) -> tuple[tuple[tuple[int, float], ...], float, float]:
+    """Time fractions with n and n + 1 pairs for ε_α = n + f; single and double fractions."""
+    if not math.isfinite(eps) or eps < 0.0:
+        return (), math.nan, math.nan
+    n = math.floor(eps)
+    f = eps - n
+    fractions = ((n, 1.0 - f), (n + 1, f)) if f > 0.0 else ((n, 1.0),)
+    by_count = dict(fractions)
+    return fractions, by_count.get(1, 0.0), by_count.get(2, 0.0)
+
+
+def compute_pair_geometry(spec: PairSpec) -> PairGeometry:
+    """Geometry, line of action, contact ratio, backlash and findings of a spur gear pair.
+
+    Parameters
+    ----------
+    spec : PairSpec
+        Module m [mm], pressure angle α [rad], the two gears, the basic rack and optionally
+        the operating centre distance a_w [mm].
+
+    Returns
+    -------
+    PairGeometry
+        All quantities in mm/rad; ``findings`` lists errors and warnings.
+
+    Raises
+    ------
+    ValueError
+        For invalid numbers (z < 1, m <= 0, α outside (0, π/4), ...).
+
+    Notes
+    -----
+    ISO 21771:2007 / DIN 3960:
+    a = m (z1 + z2)/2; zero-backlash inv α_w = inv α + 2 (x1 + x2) tan α / (z1 + z2) (allowances
+    excluded: they create backlash); a_w cos α_w = a cos α; d_w = 2 a_w z / (z1 + z2);
+    s_w = d_w (s/d + inv α − inv α_w); j_wt = π d_w / z − s_w1 − s_w2; j_n = j_wt cos α_w
+    (ISO/TR 10064-2). Line of action T1T2 = a_w sin α_w; T1E = √(r_a1² − r_b1²),
+    T1A = T1T2 − √(r_a2² − r_b2²), T1C = r_b1 tan α_w, ε_α = (E − A)/p_b, with r_a replaced by
+    the tip form radius when the tip is rounded or pointed (contact leaves the involute there).
+    """
+    _validate(spec)
+    m, alpha = spec.module_mm, spec.pressure_angle_rad
+    g1 = _gear_alone(spec.pinion, m, alpha, spec.rack)
+    g2 = _gear_alone(spec.gear, m, alpha, spec.rack)
+    z_sum = g1.teeth + g2.teeth
+    a = 0.5 * m * z_sum
+    tan_a, inv_a = math.tan(alpha), inv(alpha)
+    x_sum = g1.profile_shift + g2.profile_shift
+    inv_w0 = inv_a + 2.0 * x_sum * tan_a / z_sum
+    a_w0 = a * math.cos(alpha) / math.cos(inv_inverse(inv_w0)) if inv_w0 >= 0 else math.nan
+    # zero backlash with the thickness allowances: s1 + s2 = π m + m z_sum (inv α_w − inv α)
+    inv_wj = inv_a + (g1.s_mm + g2.s_mm - math.pi * m) / (m * z_sum)
+    a_wj = a * math.cos(alpha) / math.cos(inv_inverse(inv_wj)) if inv_wj >= 0 else math.nan
+    a_w = a_w0 if spec.centre_distance_mm is None else float(spec.centre_distance_mm)
+    cos_w = a * math.cos(alpha) / a_w if math.isfinite(a_w) else math.nan
+    alpha_w = math.acos(cos_w) if 0.0 < cos_w <= 1.0 else math.nan
+    inv_w = inv(alpha_w) if math.isfinite(alpha_w) else math.nan
+
+    d_w1, d_w2 = 2.0 * a_w * g1.teeth / z_sum, 2.0 * a_w * g2.teeth / z_sum
+    s_w1 = d_w1 * (g1.s_mm / g1.d_mm + inv_a - inv_w)
+    s_w2 = d_w2 * (g2.s_mm / g2.d_mm + inv_a - inv_w)
+    j_wt = math.pi * d_w1 / g1.teeth - s_w1 - s_w2
+    if abs(j_wt) < 1e-12 * a_w:  # rounding of an exact zero-backlash mesh
+        j_wt = 0.0
+    j_n = j_wt * math.cos(alpha_w)
+
+    p_b = g1.p_b_mm
+    t1t2 = a_w * math.sin(alpha_w)
+    e_pt = _sqrt((0.5 * g1.d_Fa_mm) ** 2 - g1.r_b_mm**2)
+    a_pt = t1t2 - _sqrt((0.5 * g2.d_Fa_mm) ** 2 - g2.r_b_mm**2)
+    c_pt = g1.r_b_mm * math.tan(alpha_w)
+    g_alpha = e_pt - a_pt
+    eps = g_alpha / p_b
+    fractions, single, double = _contact_fractions(eps)
+
+    def active_start(rb: float, roll_len: float) -> float:  # d_Nf from the mate's tip point
+        if math.isnan(roll_len):
+            return math.nan
+        return 2.0 * math.hypot(rb, roll_len) if roll_len >= 0.0 else 2.0 * rb  # beyond T: d_b
+
+    g1 = replace(
+        g1, d_w_mm=d_w1, d_Nf_mm=active_start(g1.r_b_mm, a_pt),
+        tip_clearance_mm=a_w - g1.r_a_mm - g2.r_f_mm,
+        root_clearance_mm=a_w - g2.r_a_mm - g1.r_f_mm,
+    )
+    g2 = replace(
+        g2, d_w_mm=d_w2, d_Nf_mm=active_start(g2.r_b_mm, t1t2 - e_pt),
+        tip_clearance_mm=a_w - g2.r_a_mm - g1.r_f_mm,
+        root_clearance_mm=a_w - g1.r_a_mm - g2.r_f_mm,
+    )
+    geo = PairGeometry(
+        pinion=g1, gear=g2, module_mm=m, pressure_angle_rad=alpha, a_mm=a, a_w_mm=a_w,
+        a_w_zero_backlash_mm=a_wj, alpha_w_rad=alpha_w, j_wt_mm=j_wt, j_n_mm=j_n,
+        ratio=g2.teeth / g1.teeth, T1T2_mm=t1t2, g_alpha_mm=g_alpha,
+        A_mm=a_pt, B_mm=e_pt - p_b, C_mm=c_pt, D_mm=a_pt + p_b, E_mm=e_pt, eps_alpha=eps,
+        pair_fractions=fractions, single_contact_fraction=single,
+        double_contact_fraction=double, findings=(),
+    )
+    return replace(geo, findings=_findings(geo, inv_w0 >= 0.0))
+
+
+def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
+    """Feasibility checks (model.md §2; limits from ISO 21771 / Niemann/Winter II).
+
+    Errors: ε_α < 1; involute interference; negative backlash / undefined α_w; tip not above
+    the base circle; d_f <= 0; negative tip clearance; s_a <= 0; tip rounding that does not
+    fit. Warnings: undercut; s_a < 0.2 m; tip clearance < 0.1 m.
+    """
+    out: list[Finding] = []
+    m = geo.module_mm
+
+    def add(severity: Literal["error", "warning"], code: str,
+            subject: Literal["pinion", "gear"] | None, message: str) -> None:
+        out.append(Finding(severity, code, message, subject))
+
+    pair = (("pinion", geo.pinion, "gear"), ("gear", geo.gear, "pinion"))
+    for role, g, mate in pair:
+        if g.d_f_mm <= 0.0:
+            add("error", "root_diameter", role, f"{role}: root diameter d_f = {g.d_f_mm:.3f} mm; "
+                "allowed: d_f > 0 (raise the profile shift or the tooth count)")
+        if g.d_a_mm <= g.d_b_mm:
+            add("error", "tip_diameter", role, f"{role}: tip diameter d_a = {g.d_a_mm:.3f} mm is "
+                f"not above the base diameter d_b = {g.d_b_mm:.3f} mm; allowed: d_a > d_b")
+        if g.undercut:
+            add("warning", "undercut", role, f"{role}: undercut: profile shift x = "
+                f"{g.profile_shift:.4f} is {g.undercut_coef:.4f} m = {g.undercut_mm:.3f} mm "
+                f"below x_min = {g.x_min:.4f} (z = {g.teeth} < z_min = {g.z_min:.2f}); "
+                "allowed without undercut: x >= x_min")
+        if g.s_a_mm <= 0.0:
+            add("error", "pointed_tip", role, f"{role}: tip thickness s_a = {g.s_a_mm:.3f} mm "
+                "(the flanks meet below the tip circle); allowed: s_a > 0, >= 0.2 m = "
+                f"{0.2 * m:.3f} mm recommended")
+        elif g.s_a_mm < 0.2 * m:
+            add("warning", "pointed_tip", role, f"{role}: tip thickness s_a = {g.s_a_mm:.3f} mm = "
+                f"{g.s_a_mm / m:.3f} m; recommended: s_a >= 0.2 m = {0.2 * m:.3f} mm")
+        if g.tip_rounding_mm > 0.0 and g.d_a_mm > g.d_b_mm and math.isnan(g.d_Fa_mm):
+            add("error", "tip_rounding", role, f"{role}: tip rounding radius "
+                f"{g.tip_rounding_mm:.3f} mm does not fit on the tooth tip; allowed: the "
+                "roundings of both flanks must not overlap and r_a - rho_a must exceed r_b")
+        c = g.tip_clearance_mm
+        if c < 0.0:
+            add("error", "clearance", role, f"{role} tip to {mate} root: clearance c = {c:.3f} mm "
+                f"(the tip hits the root); allowed: c >= 0, >= 0.1 m = {0.1 * m:.3f} mm "
+                "recommended")
+        elif c < 0.1 * m:
+            add("warning", "clearance", role, f"{role} tip to {mate} root: clearance c = {c:.3f} mm"
+                f"; recommended: c >= 0.1 m = {0.1 * m:.3f} mm")
+
+    z_sum = geo.pinion.teeth + geo.gear.teeth
+    alpha = geo.pressure_angle_rad
+    if not shift_sum_ok:
+        x_sum = geo.pinion.profile_shift + geo.gear.profile_shift
+        limit = -z_sum * inv(alpha) / (2.0 * math.tan(alpha))
+        add("error", "centre_distance", None, f"profile shift sum x1 + x2 = {x_sum:.4f} admits no "
+            f"zero-backlash centre distance; allowed: x1 + x2 > {limit:.4f}")
+    if math.isnan(geo.alpha_w_rad) and not math.isnan(geo.a_w_mm):
+        add("error", "centre_distance", None, "operating centre distance a_w = "
+            f"{geo.a_w_mm:.4f} mm gives no operating pressure angle; allowed: a_w > a cos(alpha) = "
+            f"{geo.a_mm * math.cos(alpha):.4f} mm")
+    elif geo.j_wt_mm < -1e-9 * geo.a_w_mm:
+        add("error", "centre_distance", None, "operating centre distance a_w = "
+            f"{geo.a_w_mm:.4f} mm gives negative backlash j_wt = {geo.j_wt_mm:.4f} mm (the "
+            f"teeth overlap); allowed: a_w >= {geo.a_w_zero_backlash_mm:.4f} mm (zero backlash)")
+
+    if geo.eps_alpha < 1.0:
+        add("error", "contact_ratio", None, f"transverse contact ratio eps_alpha = "
+            f"{geo.eps_alpha:.4f}; allowed: eps_alpha >= 1 (else contact is lost between pairs)")
+    beyond = {"pinion": geo.A_mm < 0.0, "gear": geo.E_mm > geo.T1T2_mm}
+    if beyond["pinion"]:
+        add("error", "interference", "pinion", f"pinion: gear tip reaches beyond T1, |T1A| = "
+            f"{geo.A_mm:.3f} mm (involute interference at the pinion root); allowed: >= 0")
+    if beyond["gear"]:
+        add("error", "interference", "gear", f"gear: pinion tip reaches beyond T2, |T2E| = "
+            f"{geo.T1T2_mm - geo.E_mm:.3f} mm (involute interference at the gear root); "
+            "allowed: >= 0")
+    for role, g, mate in pair:
+        if not beyond[role] and g.d_Nf_mm < g.d_Ff_mm * (1.0 - 1e-9):
+            zone = ("undercut: that part of the path has no involute, the real contact ratio "
+                    "is lower" if g.undercut else "fillet: the tip hits the root fillet")
+            # In an undercut the fillet lies inside the involute: no collision, only a shorter
+            # active profile (ISO 21771 d_Nf >= d_Ff is then a rating issue): warn. Otherwise
+            # the tip would cut the fillet: fillet interference, an error.
+            severity = "warning" if g.undercut else "error"
+            code = "undercut_contact" if g.undercut else "interference"
+            add(severity, code, role, f"{role}: the {mate} tip reaches d_Nf = "
+                f"{g.d_Nf_mm:.3f} mm, below the root form diameter d_Ff = {g.d_Ff_mm:.3f} mm "
+                f"({zone}); allowed: d_Nf >= d_Ff")
+    return tuple(out)
+
+
+def mesh_frequencies(z1: int, pinion_speed_rad_s: float, i: float) -> tuple[float, float, float]:
+    """Gear-mesh and shaft frequencies.
+
+    Parameters
+    ----------
+    z1 : int
+        Pinion teeth.
+    pinion_speed_rad_s : float
+        Pinion angular speed ω1 [rad/s].
+    i : float
+        Ratio z2 / z1.
+
+    Returns
+    -------
+    (f_z, n1, n2) : tuple of float [Hz]
+        n1 = ω1 / (2π), n2 = n1 / i, f_z = z1 n1 (model.md §7).
+    """
+    n1 = pinion_speed_rad_s / (2.0 * math.pi)
+    return z1 * n1, n1, n1 / i

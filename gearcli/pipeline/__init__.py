@@ -1,0 +1,1 @@
+"""Orchestration of the commands: case -> model -> (core) -> results."""

@@ -1,0 +1,183 @@
+"""`gearcli geometry`: checked pair geometry, mass properties and mesh frequencies of a case."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+from gearcli.case.build import mass_inputs, nominal_pinion_speed, pair_spec
+from gearcli.case.load import LoadedCase, load_case
+from gearcli.model.geometry import Finding, PairGeometry, compute_pair_geometry, mesh_frequencies
+from gearcli.model.params import MassProperties, gear_mass_properties
+
+
+@dataclass(frozen=True)
+class GeometryResult:
+    """Everything `gearcli geometry` reports, in internal units."""
+
+    name: str
+    geometry: PairGeometry
+    mass: tuple[MassProperties, MassProperties]  #: (pinion, gear)
+    pinion_speed_rad_s: float | None
+    warnings: tuple[Finding, ...]
+
+
+# Which case key an error finding is about, by code (and gear, where it names one).
+_FINDING_KEYS = {
+    "contact_ratio": ("gears", "centre_distance"),
+    "centre_distance": ("gears", "centre_distance"),
+    "interference": ("gears", "{gear}", "teeth"),
+    "undercut": ("gears", "{gear}", "profile_shift"),
+    "pointed_tip": ("gears", "{gear}", "profile_shift"),
+    "clearance": ("gears", "{gear}", "tip_shortening"),
+    "root_diameter": ("gears", "{gear}", "profile_shift"),
+    "tip_diameter": ("gears", "{gear}", "profile_shift"),
+    "tip_rounding": ("gears", "{gear}", "tip_rounding"),
+}
+
+
+# When several errors hold, report the root cause first (a wrong centre distance also breaks
+# clearance and contact ratio).
+_ROOT_CAUSE_ORDER = [
+    "centre_distance",
+    "root_diameter",
+    "tip_diameter",
+    "interference",
+    "contact_ratio",
+    "pointed_tip",
+    "tip_rounding",
+    "clearance",
+]
+
+
+def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
+    """Load (if needed) and check the case's geometry; geometry errors raise a located CaseError."""
+    loaded = source if isinstance(source, LoadedCase) else load_case(source)
+    case = loaded.case
+    geo = compute_pair_geometry(pair_spec(case))
+    errors = sorted(
+        (f for f in geo.findings if f.severity == "error"),
+        key=lambda f: _ROOT_CAUSE_ORDER.index(f.code) if f.code in _ROOT_CAUSE_ORDER else 99,
+    )
+    if errors:
+        raise _located(loaded, errors[0], len(errors) - 1)
+    pinion_in, gear_in = mass_inputs(case)
+    mass = tuple(
+        gear_mass_properties(
+            m.model,
+            m.density_t_mm3,
+            m.diameter_mm,
+            gg.d_mm,
+            gg.face_width_mm,
+            m.inertia_t_mm2,
+            m.mass_t,
+            m.extra_inertia_t_mm2,
+        )
+        for m, gg in ((pinion_in, geo.pinion), (gear_in, geo.gear))
+    )
+    warnings = tuple(f for f in geo.findings if f.severity == "warning")
+    return GeometryResult(loaded.name, geo, mass, nominal_pinion_speed(case), warnings)
+
+
+def _located(loaded: LoadedCase, finding: Finding, more: int):
+    keys = _FINDING_KEYS.get(finding.code, ("gears",))
+    gear = finding.subject or "pinion"
+    loc = tuple(k.format(gear=gear) for k in keys)
+    if loc[-1] == "centre_distance" and loaded.case.gears.centre_distance is None:
+        loc = ("gears",)
+    text = finding.message + (f" (+{more} more)" if more else "")
+    value = _raw(loaded, loc)
+    return loaded.error(loc, text, value, has_value=value is not None)
+
+
+def _raw(loaded: LoadedCase, loc) -> object:
+    node = loaded.source.data
+    for part in loc:
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return None if isinstance(node, dict | list) else node
+
+
+def geometry_dict(result: GeometryResult) -> dict:
+    """JSON-ready dict; key names carry their units."""
+    g = result.geometry
+    deg = math.degrees
+
+    def gear(gg, mp) -> dict:
+        return {
+            "z": gg.teeth,
+            "module_mm": gg.module_mm,
+            "pressure_angle_deg": deg(gg.pressure_angle_rad),
+            "profile_shift": gg.profile_shift,
+            "face_width_mm": gg.face_width_mm,
+            "d_mm": gg.d_mm,
+            "d_b_mm": gg.d_b_mm,
+            "d_a_mm": gg.d_a_mm,
+            "d_f_mm": gg.d_f_mm,
+            "d_w_mm": gg.d_w_mm,
+            "d_Ff_mm": gg.d_Ff_mm,
+            "d_Nf_mm": gg.d_Nf_mm,
+            "s_mm": gg.s_mm,
+            "s_a_mm": gg.s_a_mm,
+            "p_b_mm": gg.p_b_mm,
+            "tip_clearance_mm": gg.tip_clearance_mm,
+            "root_clearance_mm": gg.root_clearance_mm,
+            "x_min_undercut": gg.x_min,
+            "z_min_undercut": gg.z_min,
+            "undercut": gg.undercut,
+            "undercut_mm": gg.undercut_mm,
+            "mass_kg": mp.mass_t * 1e3,  # t -> kg
+            "inertia_kg_m2": mp.inertia_t_mm2 * 1e-3,  # t*mm^2 -> kg*m^2
+        }
+
+    pair = {
+        "a_mm": g.a_mm,
+        "a_w_mm": g.a_w_mm,
+        "alpha_w_deg": deg(g.alpha_w_rad),
+        "backlash_normal_mm": g.j_n_mm,
+        "backlash_circumferential_mm": g.j_wt_mm,
+        "ratio": g.ratio,
+        "T1T2_mm": g.T1T2_mm,
+        "path_of_contact_mm": g.g_alpha_mm,
+        "T1A_mm": g.A_mm,
+        "T1B_mm": g.B_mm,
+        "T1C_mm": g.C_mm,
+        "T1D_mm": g.D_mm,
+        "T1E_mm": g.E_mm,
+        "contact_ratio": g.eps_alpha,
+        "single_contact_fraction": g.single_contact_fraction,
+        "double_contact_fraction": g.double_contact_fraction,
+    }
+    w = result.pinion_speed_rad_s
+    if w is not None:
+        f_z, n1, n2 = mesh_frequencies(g.pinion.teeth, w, g.ratio)
+        pair.update(
+            pinion_speed_deg_s=deg(w),
+            gear_mesh_frequency_Hz=f_z,
+            pinion_shaft_frequency_Hz=n1,
+            gear_shaft_frequency_Hz=n2,
+        )
+    return {
+        "case": result.name,
+        "pinion": gear(g.pinion, result.mass[0]),
+        "gear": gear(g.gear, result.mass[1]),
+        "pair": pair,
+        "warnings": [
+            {"code": f.code, "subject": f.subject, "message": f.message} for f in result.warnings
+        ],
+    }
+
+
+def save_geometry_plot(result: GeometryResult, path: str | Path) -> None:
+    """Draw the pair in mesh and write it atomically (.png, .svg or .pdf)."""
+    import io
+
+    from gearcli.io.files import write_atomic
+    from gearcli.plotting.geometry import plot_pair
+
+    fig = plot_pair(result.geometry, title=f"{result.name}: spur pair in mesh")
+    buf = io.BytesIO()
+    fig.savefig(buf, format=Path(path).suffix.lower().lstrip("."), dpi=150)
+    write_atomic(path, buf.getvalue())

@@ -1,0 +1,77 @@
+"""CLI: --help, --version, schema, new, python -m gearcli."""
+
+import json
+import subprocess
+import sys
+import time
+
+from typer.testing import CliRunner
+
+from gearcli import __version__
+from gearcli.cli import app
+from tests.conftest import SEED
+
+runner = CliRunner()
+
+
+def test_help_lists_commands():
+    result = runner.invoke(app, ["--help"])
+    assert result.exit_code == 0
+    for cmd in ("geometry", "schema", "new"):
+        assert cmd in result.output
+
+
+def test_version():
+    result = runner.invoke(app, ["--version"])
+    assert result.exit_code == 0
+    assert result.output.strip() == f"gearcli {__version__}"
+
+
+def test_python_m_gearcli_and_help_is_fast():
+    # `gearcli --help` must not import numba/pandas/matplotlib/pydantic/pint: measure the
+    # imports it triggers (robust), and the wall time (generous bound: CI machines vary; the
+    # 0.3 s target is measured by `make bench`).
+    code = (
+        "import sys, runpy; sys.argv=['gearcli','--help'];\n"
+        "try:\n runpy.run_module('gearcli', run_name='__main__')\n"
+        "except SystemExit: pass\n"
+        "heavy=[m for m in ('numba','pandas','matplotlib','pydantic','pint','scipy') "
+        "if m in sys.modules]\nprint('HEAVY', heavy)"
+    )
+    t0 = time.perf_counter()
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    elapsed = time.perf_counter() - t0
+    assert "HEAVY []" in out.stdout, out.stdout[-300:]
+    assert "geometry" in out.stdout
+    assert elapsed < 2.0
+
+
+def test_schema_is_json_schema():
+    result = runner.invoke(app, ["schema"])
+    assert result.exit_code == 0
+    schema = json.loads(result.output)
+    assert schema["type"] == "object"
+    assert {"gears", "drive", "run"} <= set(schema["required"])
+    assert schema["additionalProperties"] is False
+
+
+def test_new_writes_seed_and_refuses_overwrite(tmp_path):
+    target = tmp_path / "mine.yaml"
+    result = runner.invoke(app, ["new", str(target)])
+    assert result.exit_code == 0, result.output
+    assert target.read_text() == SEED.read_text()
+    result = runner.invoke(app, ["new", str(target)])
+    assert result.exit_code == 1
+    assert "already exists" in result.stderr
+    assert target.read_text() == SEED.read_text()
+
+
+def test_new_into_missing_folder(tmp_path):
+    result = runner.invoke(app, ["new", str(tmp_path / "nope" / "c.yaml")])
+    assert result.exit_code == 1
+    assert "does not exist" in result.stderr
+
+
+def test_unknown_command_is_usage_error():
+    result = runner.invoke(app, ["frobnicate"])
+    assert result.exit_code == 2
