@@ -99,8 +99,10 @@ def _tooth_angles(geo: PairGeometry, x_mm):
     tooth above it (the same layout as the drawing, plotting.geometry.mesh_layout).
     """
     ds = np.asarray(x_mm, float) - (geo.C_mm - geo.A_mm)
-    beta1 = -float(profile.flank_half_angle(geo.pinion, geo.pinion.r_w_mm)) + ds / geo.pinion.r_b_mm
-    beta2 = math.pi - float(profile.flank_half_angle(geo.gear, geo.gear.r_w_mm)) - ds / geo.gear.r_b_mm
+    psi1 = float(profile.flank_half_angle(geo.pinion, geo.pinion.r_w_mm))
+    psi2 = float(profile.flank_half_angle(geo.gear, geo.gear.r_w_mm))
+    beta1 = -psi1 + ds / geo.pinion.r_b_mm
+    beta2 = math.pi - psi2 - ds / geo.gear.r_b_mm
     return beta1, beta2
 
 
