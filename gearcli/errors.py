@@ -53,10 +53,9 @@ class CaseError(GearcliError):
         super().__init__(self.format())
 
     def format(self) -> str:
-        where = self.file or "<case>"
-        if self.line is not None:
-            where += f":{self.line}"
-        parts = [where]
+        parts = []
+        if self.file is not None:
+            parts.append(self.file + (f":{self.line}" if self.line is not None else ""))
         if self.path:
             parts.append(self.path)
         text = ": ".join(parts) + ": "

@@ -29,9 +29,21 @@ class LoadedCase:
         return self.source.error(loc, message, value, has_value)
 
 
-def load_case(path: str | Path) -> LoadedCase:
-    """Read, parse and validate the case file at ``path``."""
-    return validate_source(read_source(path), Path(path).stem)
+def load_case(path: str | Path, overrides: list[str] | None = None) -> LoadedCase:
+    """Read, parse and validate the case file at ``path``, with ``--set`` overrides applied.
+
+    Errors about an overridden key name the override; others name the file and line.
+    """
+    src = read_source(path)
+    if overrides:
+        from gearcli.case.overrides import apply_overrides
+
+        src.data = apply_overrides(src.data, overrides, Case)
+        for text in overrides:  # point errors in overridden values at the command line
+            key = tuple(text.partition("=")[0].strip().split("."))
+            src.key_lines.pop(key, None)
+            src.overridden[key] = text
+    return validate_source(src, Path(path).stem)
 
 
 def load_case_text(text: str, name: str = "<case>") -> LoadedCase:

@@ -24,6 +24,7 @@ class Source:
     data: object
     lines: list[str]
     key_lines: dict[Loc, int] = field(default_factory=dict)
+    overridden: dict[Loc, str] = field(default_factory=dict)  #: key path -> the --set text
 
     def line_of(self, loc: Loc) -> int | None:
         """1-based line of the deepest existing key on ``loc``."""
@@ -40,7 +41,16 @@ class Source:
         return self.lines[line - 1]
 
     def error(self, loc: Loc, message: str, value: object = None, has_value: bool = False):
-        """A :class:`CaseError` located at ``loc``."""
+        """A :class:`CaseError` located at ``loc`` (or at the --set option that set it)."""
+        loc = tuple(loc)
+        if loc in self.overridden:
+            return CaseError(
+                message,
+                file=f"--set {self.overridden[loc]}",
+                path=".".join(str(p) for p in loc),
+                value=value,
+                has_value=has_value,
+            )
         line = self.line_of(loc)
         return CaseError(
             message,

@@ -1,0 +1,97 @@
+"""Linearised mesh mode: stiffness, damping, natural frequency at the operating load.
+
+model.md §4 and §6. The Adams IMPACT law per pair, F = k p^e + STEP(p, 0, 0, d_max, c_max) ṗ
+(MSC Adams Solver, IMPACT function), linearised about the static deflection p_s that carries
+the static normal force F_s shared by ε_α pairs on average:
+
+    p_s = (F_s / (ε_α k))^(1/e),   k_pair = e k p_s^(e-1),   c_pair = STEP(p_s, 0, 0, d_max, c_max)
+    k_mesh = ε_α k_pair,           c_mesh = ε_α c_pair
+
+Mesh mode (2-DOF torsional, model.md §6): with a prescribed pinion speed only the gear moves,
+m = J2 / r_b2²; with both gears free, m_e = 1 / (r_b1²/J1 + r_b2²/J2) (the rigid-body mode
+has zero frequency). f_n = √(k_mesh/m)/2π, ζ = c_mesh / (2 √(k_mesh m)).
+Units: N, mm, s, t (k in N/mm, c in N·s/mm, m in t = N·s²/mm).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+
+def adams_step(x: float, x0: float, h0: float, x1: float, h1: float) -> float:
+    """Adams STEP: cubic blend h0 → h1 over [x0, x1] (MSC Adams Solver function STEP)."""
+    if x <= x0:
+        return h0
+    if x >= x1:
+        return h1
+    d = (x - x0) / (x1 - x0)
+    return h0 + (h1 - h0) * d * d * (3.0 - 2.0 * d)
+
+
+@dataclass(frozen=True)
+class MeshMode:
+    """Linearised mesh at the operating load (internal units)."""
+
+    static_force_N: float  #: F_s = T_load / r_b2
+    static_deflection_mm: float  #: p_s per pair
+    pair_stiffness_N_mm: float  #: k_pair = e k p_s^(e-1), one pair
+    mesh_stiffness_N_mm: float  #: mean over the mesh cycle, ε_α k_pair
+    single_pair_stiffness_N_mm: float  #: one pair carrying F_s
+    double_pair_stiffness_N_mm: float  #: two pairs sharing F_s
+    mesh_damping_Ns_mm: float  #: ε_α c_pair
+    modal_mass_t: float  #: equivalent mass along the line of action [t]
+    natural_frequency_Hz: float
+    damping_ratio: float
+
+
+def mesh_mode(
+    static_force_N: float,
+    eps_alpha: float,
+    k: float,
+    exponent: float,
+    c_max: float,
+    d_max: float,
+    r_b1_mm: float,
+    r_b2_mm: float,
+    J1_t_mm2: float,
+    J2_t_mm2: float,
+    pinion_free: bool,
+) -> MeshMode:
+    """Linearised mesh stiffness, damping and the mesh mode (see the module docstring).
+
+    At zero load the exponent-law stiffness vanishes (e > 1); the pair stiffness is then
+    evaluated at a deflection of 1 % of d_max so that frequencies stay finite, and the caller
+    should treat the result as indicative.
+    """
+    e = exponent
+    f = max(static_force_N, 0.0)
+
+    def deflection(force: float, pairs: float) -> float:
+        p = (force / (pairs * k)) ** (1.0 / e) if force > 0.0 else 0.0
+        return max(p, 0.01 * d_max) if e > 1.0 else p
+
+    def stiffness(p: float) -> float:
+        return e * k * p ** (e - 1.0) if e != 1.0 else k
+
+    p_s = deflection(f, eps_alpha)
+    k_pair = stiffness(p_s)
+    k_mesh = eps_alpha * k_pair
+    c_mesh = eps_alpha * adams_step(p_s, 0.0, 0.0, d_max, c_max)
+    if pinion_free:
+        m = 1.0 / (r_b1_mm**2 / J1_t_mm2 + r_b2_mm**2 / J2_t_mm2)
+    else:
+        m = J2_t_mm2 / r_b2_mm**2
+    omega = math.sqrt(k_mesh / m)
+    return MeshMode(
+        static_force_N=f,
+        static_deflection_mm=p_s,
+        pair_stiffness_N_mm=k_pair,
+        mesh_stiffness_N_mm=k_mesh,
+        single_pair_stiffness_N_mm=stiffness(deflection(f, 1.0)),
+        double_pair_stiffness_N_mm=2.0 * stiffness(deflection(f, 2.0)),
+        mesh_damping_Ns_mm=c_mesh,
+        modal_mass_t=m,
+        natural_frequency_Hz=omega / (2.0 * math.pi),
+        damping_ratio=c_mesh / (2.0 * math.sqrt(k_mesh * m)),
+    )

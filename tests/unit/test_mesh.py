@@ -1,0 +1,42 @@
+"""Linearised mesh mode against hand calculations for the seed case."""
+
+import math
+
+import pytest
+
+from gearcli.model.mesh import adams_step, mesh_mode
+
+# Seed: F_s = 450e3 N*mm / r_b2, r_b2 = 125 cos 20 deg; discs of d = 170/250 mm, b = 100 mm.
+RB1, RB2 = 85 * math.cos(math.radians(20)), 125 * math.cos(math.radians(20))
+RHO = 7.85e-9
+J1 = RHO * math.pi * 170**2 / 4 * 100 * 170**2 / 8
+J2 = RHO * math.pi * 250**2 / 4 * 100 * 250**2 / 8
+EPS = 1.56323
+
+
+def test_adams_step():
+    assert adams_step(-1, 0, 0, 1, 5) == 0 and adams_step(2, 0, 0, 1, 5) == 5
+    assert adams_step(0.5, 0, 0, 1, 5) == pytest.approx(2.5)
+    assert adams_step(0.25, 0, 0, 1, 1) == pytest.approx(0.25**2 * (3 - 0.5))
+
+
+def test_seed_mesh_mode_motion_driven_pinion():
+    f = 450e3 / RB2
+    mm = mesh_mode(f, EPS, 1e5, 1.5, 100.0, 0.1, RB1, RB2, J1, J2, pinion_free=False)
+    p = (f / (EPS * 1e5)) ** (1 / 1.5)  # hand calculation
+    k_mesh = EPS * 1.5e5 * math.sqrt(p)
+    m = J2 / RB2**2
+    assert mm.static_force_N == pytest.approx(3831.0, rel=1e-3)
+    assert mm.mesh_stiffness_N_mm == pytest.approx(k_mesh, rel=1e-12)
+    assert mm.natural_frequency_Hz == pytest.approx(math.sqrt(k_mesh / m) / (2 * math.pi))
+    c = EPS * 100 * (p / 0.1) ** 2 * (3 - 2 * p / 0.1)
+    assert mm.damping_ratio == pytest.approx(c / (2 * math.sqrt(k_mesh * m)), rel=1e-12)
+    assert mm.damping_ratio > 1.0  # the seed's c_max gives an overdamped mesh (model.md §4)
+
+
+def test_free_pinion_uses_equivalent_mass():
+    mm = mesh_mode(1000.0, 1.5, 2e5, 1.0, 0.0, 0.1, RB1, RB2, J1, J2, pinion_free=True)
+    k = 1.5 * 2e5
+    f = math.sqrt(k * (RB1**2 / J1 + RB2**2 / J2)) / (2 * math.pi)  # issue 5's closed form
+    assert mm.natural_frequency_Hz == pytest.approx(f, rel=1e-12)
+    assert mm.single_pair_stiffness_N_mm == 2e5 and mm.double_pair_stiffness_N_mm == 4e5
