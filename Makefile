@@ -18,7 +18,8 @@ $(STAMP): pyproject.toml
 	@touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/gearcli geometry $(CASE)
+	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg
+	$(BIN)/gearcli simulate $(CASE) -o $(OUT) --force
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -n $(JOBS) -q

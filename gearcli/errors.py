@@ -58,7 +58,7 @@ class CaseError(GearcliError):
             parts.append(self.file + (f":{self.line}" if self.line is not None else ""))
         if self.path:
             parts.append(self.path)
-        text = ": ".join(parts) + ": "
+        text = ": ".join(parts) + ": " if parts else ""
         if self.has_value:
             text += f"got {format_value(self.value)}; "
         text += self.message

@@ -53,3 +53,35 @@ def _write_log(text: str) -> Path:
 
 def is_terminal() -> bool:
     return sys.stdout.isatty()
+
+
+def numba_cache_setup() -> None:
+    """Point numba's cache to a user folder keyed by the solver's sources (gearcli.numba_cache)."""
+    from gearcli.numba_cache import configure
+
+    configure()
+
+
+class _NoStatus:
+    def __enter__(self):
+        return None
+
+    def __exit__(self, *exc):
+        return False
+
+
+def status_reporter(enabled: bool):
+    """A spinner with elapsed time on a terminal (stderr); nothing in pipelines."""
+    if not enabled or not sys.stderr.isatty():
+        return _NoStatus()
+    from contextlib import contextmanager
+
+    from rich.console import Console
+
+    @contextmanager
+    def spinner():
+        console = Console(stderr=True)
+        with console.status("loading the case") as st:
+            yield lambda text: st.update(text)
+
+    return spinner()

@@ -1,0 +1,91 @@
+"""`gearcli simulate CASE -o DIR`: run the tooth-contact solver, write the results folder."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from gearcli.cli import app
+from gearcli.cli.common import handle_errors, numba_cache_setup, status_reporter
+
+
+@app.command()
+@handle_errors
+def simulate(
+    case: Path = typer.Argument(..., help="Case file (YAML)."),
+    out: str = typer.Option(..., "-o", "--out", help="Results folder, or '-' for CSV on stdout."),
+    set_: list[str] = typer.Option(
+        [], "--set", help="Override a case value: key.path=value (repeatable)."
+    ),
+    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress, no summary table."),
+    as_json: bool = typer.Option(False, "--json", help="Print summary.json to stdout."),
+) -> None:
+    """Integrate the 2-DOF tooth-contact model; write timeseries.csv, summary.json,
+    manifest.json (atomically; never over earlier results without --force)."""
+    numba_cache_setup()
+    import json
+
+    from gearcli.io.outdir import check_target
+    from gearcli.pipeline.outputs import summary_document, write_simulation
+    from gearcli.pipeline.simulate import run_simulation
+
+    to_stdout = out == "-"
+    if not to_stdout:
+        check_target(out, force)  # fail before a long run, not after
+    with status_reporter(enabled=not quiet and not to_stdout and not as_json) as status:
+        result = run_simulation(case, set_, status=status)
+    if to_stdout:
+        from gearcli.io.tables import columns_to_csv
+
+        typer.echo(columns_to_csv(result.columns()), nl=False)
+    else:
+        write_simulation(result, out, force, set_)
+    doc = summary_document(result)
+    if as_json:
+        typer.echo(json.dumps(doc, indent=2))
+    elif not quiet and not to_stdout:
+        _print_summary(doc, out)
+    for w in result.warnings:
+        if not quiet:
+            typer.echo(f"warning: {w}", err=True)
+
+
+def _print_summary(doc: dict, out: str) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    s, sv = doc["scalars"], doc["solver"]
+    w0, w1 = s["window_s"]
+    t = Table(title=f"{doc['case']}: steady window {w0:.3f}-{w1:.3f} s", title_justify="left")
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    t.add_column("unit")
+    rows = [
+        ("mean pinion speed", s["pinion_speed_mean_deg_s"], "deg/s"),
+        ("mean gear speed", s["gear_speed_mean_deg_s"], "deg/s"),
+        ("speed ratio (theory)",
+         f"{s['speed_ratio_mean']:.6f} ({s['speed_ratio_theory']:.6f})", ""),
+        ("mean normal force", s["force_mean_N"], "N"),
+        ("max / min normal force", f"{s['force_max_N']:.1f} / {s['force_min_N']:.1f}", "N"),
+        ("static force T_load / r_b2", s["force_static_N"], "N"),
+        ("dynamic factor", s["dynamic_factor"], ""),
+        ("DTE mean / peak-to-peak",
+         f"{s['dte_mean_mm']:.5f} / {s['dte_peak_to_peak_mm']:.5f}", "mm"),
+        ("mesh stiffness (linearised)", s["mesh_stiffness_N_mm"], "N/mm"),
+        ("mesh mode f_n / damping ratio",
+         f"{s['mesh_natural_frequency_Hz']:.1f} / {s['mesh_damping_ratio']:.3f}", "Hz / -"),
+        ("gear-mesh frequency", s["gear_mesh_frequency_Hz"], "Hz"),
+        ("contact-loss fraction", s["contact_loss_fraction"], ""),
+        ("energy balance (relative residual)", s["energy_balance"]["relative_residual"], ""),
+        ("solver steps / RHS evaluations",
+         f"{sv['accepted_steps']} (+{sv['rejected_steps']} rejected) / "
+         f"{sv['rhs_evaluations']}", ""),
+        ("solver wall time", sv["wall_time_s"], "s"),
+    ]
+    for label, value, unit in rows:
+        t.add_row(label, value if isinstance(value, str) else
+                  ("—" if value is None else f"{value:.6g}"), unit)
+    Console().print(t)
+    typer.echo(f"results written to {out}/")

@@ -1,0 +1,136 @@
+"""Where the right-hand side jumps: a pair slot crossing the end of a gap table while loaded.
+
+A slot is in contact only while its pinion and gear roll positions x1, x2 lie inside the gap
+tables [x_lo, x_hi] (rhs.py). When a table ends where the flanks still overlap (the classic
+`engagement: rigid` model: G = 0 up to the end of the path), the entering or leaving pair's
+force jumps from 0 to k delta^e, the derivative of the state jumps, and an error-controlled
+Runge-Kutta method pays for it with a cascade of rejected steps. The time loop instead ends a
+step just before the crossing predicted here and hops over it (timeloop.py), the standard
+treatment of a discontinuity at a located switching point (Hairer, Norsett & Wanner,
+"Solving ODEs I", §II.6, "discontinuous right-hand sides"). Crossings where the overlap at the
+table end is clearly negative (extended tables that open the gap smoothly) are not events.
+
+Positions move as in rhs.py: on flank sigma (+1 drive, -1 coast) x1 = x_lo + u + j p_b with
+dx1/dt = sigma v1, and x2 = x1 - sigma delta with dx2/dt = sigma (v1 - deltadot).
+"""
+
+import math
+
+from gearcli.core.gaptable import TABLE_G1, TABLE_G1_COAST, TABLE_G2, TABLE_G2_COAST, hermite
+from gearcli.core.jit import jit
+from gearcli.core.layout import D, P
+from gearcli.core.nrt import jit_noalloc
+
+
+@jit
+def time_to_reach(distance, rate, accel):
+    """Smallest tau > 0 with ``rate tau + accel tau^2 / 2 = distance`` [s], ``inf`` if none.
+
+    ``distance`` [mm] has the sign of ``rate`` [mm/s]; ``accel`` [mm/s^2]. Cancellation-free
+    root ``2 d / (r + sign(r) sqrt(r^2 + 2 a d))``.
+    """
+    if rate == 0.0:
+        return math.inf
+    disc = rate * rate + 2.0 * accel * distance
+    if disc < 0.0:
+        return math.inf  # decelerates and turns back before reaching it
+    root = math.sqrt(disc)
+    denom = rate + root if rate > 0.0 else rate - root
+    tau = 2.0 * distance / denom
+    return tau if tau > 0.0 else math.inf
+
+
+@jit
+def _boundary_ahead(x, rate, x_lo, x_hi):
+    """The table end that position ``x`` reaches next moving at ``rate``; NaN if none."""
+    if rate > 0.0:
+        if x < x_lo:
+            return x_lo
+        if x < x_hi:
+            return x_hi
+    elif rate < 0.0:
+        if x > x_hi:
+            return x_hi
+        if x > x_lo:
+            return x_lo
+    return math.nan
+
+
+@jit_noalloc
+def _flank_crossing(sigma, s1, v1, a1, delta, deltadot, deltaddot, phase0, offset, g1, g2,
+                    overlap_max, prm, derived, tables, window, margin):
+    """Earliest loaded table-end crossing of one flank family within ``window`` [s]."""
+    # no pair of the family can touch within the window (rhs.overlap_bound): nothing to find
+    reach = sigma * delta + (abs(deltadot) + 0.5 * abs(deltaddot) * window) * window
+    if reach - offset + overlap_max <= -margin:
+        return math.inf
+    p_b = prm[P.p_b]
+    x_lo = prm[P.x_lo]
+    x_hi = prm[P.x_hi]
+    h_grid = derived[D.grid_step]
+    inv_h = derived[D.inv_grid_step]
+    r = sigma * s1 - phase0
+    u = r - math.floor(r * derived[D.inv_p_b]) * p_b
+    r1 = sigma * v1  # dx1/dt
+    q1 = sigma * a1
+    r2 = sigma * (v1 - deltadot)  # dx2/dt
+    q2 = sigma * (a1 - deltaddot)
+    best = math.inf
+    for j in range(-1, int(prm[P.n_slots]) + 1):
+        x1 = x_lo + u + j * p_b
+        x2 = x1 - sigma * delta
+        for coord in range(2):
+            if coord == 0:
+                x, rate, acc = x1, r1, q1
+            else:
+                x, rate, acc = x2, r2, q2
+            b = _boundary_ahead(x, rate, x_lo, x_hi)
+            if math.isnan(b) or abs(b - x) > (abs(rate) + 0.5 * abs(acc) * window) * window:
+                continue  # none ahead, or out of reach within the window
+            tau = time_to_reach(b - x, rate, acc)
+            if tau > window or tau >= best:
+                continue
+            # both positions at the crossing; the crossing one sits on the table end
+            y1 = b if coord == 0 else x1 + (r1 + 0.5 * q1 * tau) * tau
+            y2 = b if coord == 1 else x2 + (r2 + 0.5 * q2 * tau) * tau
+            if not (x_lo <= y1 <= x_hi and x_lo <= y2 <= x_hi):
+                continue  # the other position is off its table: no contact on either side
+            _, gap1, _ = hermite(tables, g1, x_lo, x_hi, h_grid, inv_h, y1)
+            _, gap2, _ = hermite(tables, g2, x_lo, x_hi, h_grid, inv_h, y2)
+            overlap = sigma * (delta + (deltadot + 0.5 * deltaddot * tau) * tau) - offset \
+                - gap1 - gap2
+            if overlap > -margin:
+                best = tau
+    return best
+
+
+@jit_noalloc
+def next_crossing(s1, v1, a1, delta, deltadot, deltaddot, prm, derived, tables, window, margin):
+    """Time [s] from now to the next loaded table-end crossing, ``inf`` if none in ``window``.
+
+    Parameters
+    ----------
+    s1, v1, a1 : float
+        Pinion roll distance [mm], rate [mm/s], acceleration [mm/s^2].
+    delta, deltadot, deltaddot : float
+        DTE [mm] and its first two derivatives [mm/s, mm/s^2].
+    prm, derived : ndarray
+        Parameter vector (layout.P) and derived constants (layout.D, rhs.derive).
+    tables : ndarray, shape (4, 2, n)
+        Gap tables.
+    window : float
+        Look-ahead [s]; positions are extrapolated quadratically.
+    margin : float
+        A crossing counts when the flank overlap at the table end exceeds ``-margin`` [mm]
+        (covers runout and tooth offsets, which are not evaluated here).
+    """
+    tau = _flank_crossing(1.0, s1, v1, a1, delta, deltadot, deltaddot, prm[P.s1_0], 0.0,
+                          TABLE_G1, TABLE_G2, derived[D.overlap_drive], prm, derived, tables,
+                          window, margin)
+    if prm[P.coast_flanks] != 0.0:
+        tau_c = _flank_crossing(-1.0, s1, v1, a1, delta, deltadot, deltaddot, prm[P.s1c_0],
+                                prm[P.backlash_n], TABLE_G1_COAST, TABLE_G2_COAST,
+                                derived[D.overlap_coast], prm, derived, tables, window, margin)
+        if tau_c < tau:
+            tau = tau_c
+    return tau

@@ -1,0 +1,89 @@
+"""Cubic Hermite lookup of the tabulated flank-gap functions G(x).
+
+The caller tabulates each gap function (value and slope) on one uniform grid of roll positions
+``x_lo + i h``, ``i = 0 .. n-1``, ``h = (x_hi - x_lo)/(n - 1)`` [mm]. Between grid points the
+gap is the cubic Hermite interpolant, and the slope returned is the derivative OF THAT
+INTERPOLANT, so contact forces are exact gradients of the contact potential (energy
+consistent; model.md §3).
+
+References
+----------
+Fritsch & Carlson, "Monotone piecewise cubic interpolation", SIAM J. Numer. Anal. 17 (1980),
+for the Hermite basis h00, h10, h01, h11; any numerical-analysis text (e.g. Burden & Faires,
+§3.4) gives the same.
+"""
+
+import math
+
+from gearcli.core.nrt import jit_noalloc
+
+#: Table rows in ``gap_tables[k, :, :]``.
+TABLE_G1 = 0  # drive flank, function of the pinion roll position
+TABLE_G2 = 1  # drive flank, function of the gear roll position
+TABLE_G1_COAST = 2
+TABLE_G2_COAST = 3
+N_TABLES = 4
+
+
+@jit_noalloc
+def hermite(tables, k, x_lo, x_hi, h, inv_h, x):
+    """Gap value [mm] and slope [mm/mm] of table ``k`` at roll position ``x`` [mm].
+
+    Parameters
+    ----------
+    tables : ndarray, shape (N_TABLES, 2, n)
+        ``tables[k, 0, i]`` gap value [mm], ``tables[k, 1, i]`` slope dG/dx [-] at the grid
+        point ``x_lo + i (x_hi - x_lo)/(n - 1)``; ``n >= 2``.
+    k : int
+        Table index.
+    x_lo, x_hi : float
+        Grid ends [mm].
+    h, inv_h : float
+        Grid spacing ``(x_hi - x_lo) / (n - 1)`` [mm] and its inverse [1/mm].
+    x : float
+        Roll position [mm].
+
+    Returns
+    -------
+    inside : bool
+        Whether ``x_lo <= x <= x_hi`` (outside: the slot is not in contact; value 0).
+    value : float
+        ``G(x) = h00 y0 + h10 h m0 + h01 y1 + h11 h m1`` [mm].
+    slope : float
+        ``dG/dx`` of the same cubic [-].
+    """
+    if not (x >= x_lo and x <= x_hi):
+        return False, 0.0, 0.0
+    n = tables.shape[2]
+    q = (x - x_lo) * inv_h
+    i = int(q)
+    if i > n - 2:
+        i = n - 2
+    t = q - i
+    y0 = tables[k, 0, i]
+    y1 = tables[k, 0, i + 1]
+    m0 = tables[k, 1, i] * h
+    m1 = tables[k, 1, i + 1] * h
+    t2 = t * t
+    t3 = t2 * t
+    value = (2.0 * t3 - 3.0 * t2 + 1.0) * y0 + (t3 - 2.0 * t2 + t) * m0 \
+        + (3.0 * t2 - 2.0 * t3) * y1 + (t3 - t2) * m1
+    slope = ((6.0 * t2 - 6.0 * t) * (y0 - y1) + (3.0 * t2 - 4.0 * t + 1.0) * m0
+             + (3.0 * t2 - 2.0 * t) * m1) * inv_h
+    return True, value, slope
+
+
+@jit_noalloc
+def table_floor(tables, k, h):
+    """Lower bound [mm] of the Hermite interpolant of table ``k`` over its whole grid.
+
+    On each interval ``G = y0 h00 + y1 h01 + h (m0 h10 + m1 h11)`` (slopes m [-], spacing
+    ``h`` [mm]) with ``h00 + h01 = 1``, ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on
+    [0, 1], so ``G >= min(y0, y1) - 4/27 h (|m0| + |m1|)``.
+    """
+    floor = math.inf
+    for i in range(tables.shape[2] - 1):
+        lo = min(tables[k, 0, i], tables[k, 0, i + 1]) \
+            - 4.0 / 27.0 * h * (abs(tables[k, 1, i]) + abs(tables[k, 1, i + 1]))
+        floor = min(floor, lo)
+    return floor

@@ -1,0 +1,162 @@
+"""Python entry point of the simulation kernel: checks shapes, calls the compiled loop.
+
+:func:`simulate` takes the parameter vector of :mod:`gearcli.core.layout` and plain arrays
+(gap tables, time functions, tooth offsets, output times), runs the compiled loop
+:func:`gearcli.core.timeloop.run` and returns a :class:`KernelResult` with named access to
+its arrays. Only structural checks happen here (shapes, sizes, ordering); physical validity
+is the caller's business (pipeline layer), and a physically absurd input comes back as a
+status code, never as an exception.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from gearcli.core.gaptable import N_TABLES
+from gearcli.core.layout import (
+    COLUMN_NAMES,
+    COUNTER_NAMES,
+    DRIVE_SHAFT,
+    DRIVE_SPEED,
+    DRIVE_TORQUE,
+    EXTREMA_NAMES,
+    LAYOUT_KEY,
+    N_PARAMS,
+    SLOT_EXTREMA_NAMES,
+    STATUS_MESSAGES,
+    STATUS_OK,
+    STATUS_STALE_CACHE,
+    P,
+)
+from gearcli.core.timeloop import run
+
+
+class KernelResult(NamedTuple):
+    """Everything :func:`run` returns, with names (internal units, see layout.py)."""
+
+    status: int
+    message: str
+    counters: dict
+    series: np.ndarray  # (n_out, N_COLUMNS), columns layout.COLUMN_NAMES
+    slot_force: np.ndarray  # (n_out, N) drive pair-slot forces [N]
+    slot_force_coast: np.ndarray  # (n_out, N) coast pair-slot forces [N]
+    extrema: np.ndarray  # (N_EXTREMA,), layout.EXTREMA_NAMES
+    slot_extrema: np.ndarray  # (N_SLOT_EXTREMA, N), layout.SLOT_EXTREMA_NAMES
+    n_valid: int  # rows of series filled (all of them when status == OK)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == STATUS_OK
+
+    def column(self, name: str) -> np.ndarray:
+        """One sampled column by name (e.g. ``"delta_mm"``)."""
+        return self.series[:, COLUMN_NAMES.index(name)]
+
+    def extremum(self, name: str) -> float:
+        """One entry of ``extrema`` by name (e.g. ``"force_total_max_N"``)."""
+        return float(self.extrema[EXTREMA_NAMES.index(name)])
+
+    def slot_extremum(self, name: str) -> np.ndarray:
+        """One row of ``slot_extrema`` by name (e.g. ``"force_max_N"``)."""
+        return self.slot_extrema[SLOT_EXTREMA_NAMES.index(name)]
+
+
+def _f64(a, ndim: int, what: str) -> np.ndarray:
+    """C-contiguous, writable float64 copy-if-needed (one compiled signature for all calls)."""
+    out = np.require(np.asarray(a, dtype=np.float64), np.float64, ["C", "W"])
+    if out.ndim != ndim:
+        raise ValueError(f"{what} must have {ndim} dimension(s), got shape {out.shape}")
+    return out
+
+
+def _pp(pp, what: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    breaks, coefs, origins = pp
+    b, c, o = _f64(breaks, 1, what + " breaks"), _f64(coefs, 2, what + " coefs"), \
+        _f64(origins, 1, what + " origins")
+    if c.shape[0] != b.size + 1 or o.size != b.size + 1:
+        raise ValueError(f"{what}: {b.size} breaks need {b.size + 1} pieces and origins")
+    return b, c, o
+
+
+def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=None,
+             tooth_offsets=None) -> KernelResult:
+    """Run the compiled kernel on plain arrays; structural checks only (no physics checks).
+
+    Parameters
+    ----------
+    params : ndarray, shape (N_PARAMS,)
+        From :func:`gearcli.core.layout.make_params` (internal units).
+    gap_tables : ndarray, shape (4, 2, n) or (2, 2, n)
+        Gap tables G1, G2[, G1c, G2c]: ``[k, 0, i]`` gap [mm], ``[k, 1, i]`` slope [-] at
+        ``x_lo + i (x_hi - x_lo)/(n - 1)``. With two tables the coast flanks use the drive
+        tables (symmetric teeth).
+    t_out : ndarray
+        Output times [s], non-decreasing, within [t_start, t_end].
+    drive_pp : (breaks, coefs, origins)
+        Speed and shaft modes: omega(t) [rad/s]; torque mode: T(t) [N*mm]
+        (:meth:`gearcli.model.timefunction.PiecewisePolynomial.to_arrays`).
+    load_pp : (breaks, coefs, origins)
+        Load torque T_load(t) [N*mm] on the gear (positive opposes forward rotation).
+    drive_angle_pp : (breaks, coefs, origins), optional
+        Antiderivative of ``drive_pp`` [rad] (any constant); required in speed and shaft mode.
+    tooth_offsets : ndarray, shape (4 or 2, >= max(z1, z2)), optional
+        Per-tooth flank offsets Ft1, Ft2[, Ft1c, Ft2c] [mm]; default zeros.
+
+    Returns
+    -------
+    KernelResult
+
+    Raises
+    ------
+    ValueError
+        Shapes or layout inconsistent (a programming error of the caller).
+    RuntimeError
+        The compiled kernel comes from a stale cache (layout changed).
+    """
+    prm = _f64(params, 1, "params")
+    if prm.size != N_PARAMS:
+        raise ValueError(f"params has {prm.size} entries, the layout has {N_PARAMS}")
+    mode = int(prm[P.drive_mode])
+    if mode not in (DRIVE_SPEED, DRIVE_SHAFT, DRIVE_TORQUE):
+        raise ValueError(f"drive_mode must be 0, 1 or 2, got {prm[P.drive_mode]}")
+    tables = _f64(gap_tables, 3, "gap_tables")
+    if tables.shape[0] == 2:
+        tables = np.ascontiguousarray(np.concatenate([tables, tables]))
+    if tables.shape[:2] != (N_TABLES, 2) or tables.shape[2] < 2:
+        raise ValueError(f"gap_tables must have shape (4, 2, n >= 2), got {tables.shape}")
+    if not prm[P.x_hi] > prm[P.x_lo]:
+        raise ValueError("x_hi must exceed x_lo")
+    needed = math.ceil((prm[P.x_hi] - prm[P.x_lo]) / prm[P.p_b]) + 1
+    if int(prm[P.n_slots]) < needed:
+        raise ValueError(f"n_slots = {int(prm[P.n_slots])} < ceil((x_hi - x_lo)/p_b) + 1 = "
+                         f"{needed}: pairs would be missed")
+    z_max = max(int(prm[P.z1]), int(prm[P.z2]))
+    if tooth_offsets is None:
+        tooth_offsets = np.zeros((N_TABLES, z_max))
+    offsets = _f64(tooth_offsets, 2, "tooth_offsets")
+    if offsets.shape[0] == 2:
+        offsets = np.ascontiguousarray(np.concatenate([offsets, offsets]))
+    if offsets.shape[0] != N_TABLES or offsets.shape[1] < z_max:
+        raise ValueError(f"tooth_offsets must have shape (4, >= {z_max}), got {offsets.shape}")
+    if (prm[P.mu_s] != 0.0 or prm[P.mu_d] != 0.0) and not 0.0 < prm[P.v_s] < prm[P.v_d]:
+        raise ValueError("friction needs 0 < v_s < v_d")
+    if mode != DRIVE_TORQUE and drive_angle_pp is None:
+        raise ValueError("speed and shaft drives need drive_angle_pp (antiderivative)")
+    times = _f64(t_out, 1, "t_out")
+    if times.size and (np.any(np.diff(times) < 0.0) or times[0] < prm[P.t_start]
+                       or times[-1] > prm[P.t_end]):
+        raise ValueError("t_out must be non-decreasing within [t_start, t_end]")
+    if drive_angle_pp is None:  # torque mode: unused, any valid piecewise polynomial
+        drive_angle_pp = (np.zeros(0), np.zeros((1, 1)), np.zeros(1))
+    angle = _pp(drive_angle_pp, "drive_angle_pp")
+    out = run(prm, tables, offsets, _pp(drive_pp, "drive_pp"), angle, _pp(load_pp, "load_pp"),
+              times, LAYOUT_KEY)
+    status, counters, series, slot_f, slot_fc, extrema, slot_ext, n_valid = out
+    if status == STATUS_STALE_CACHE:
+        raise RuntimeError(STATUS_MESSAGES[STATUS_STALE_CACHE])
+    return KernelResult(int(status), STATUS_MESSAGES[int(status)],
+                        dict(zip(COUNTER_NAMES, (int(c) for c in counters), strict=True)),
+                        series, slot_f, slot_fc, extrema, slot_ext, int(n_valid))

@@ -1,0 +1,385 @@
+"""Right-hand side of the 2-DOF torsional spur-pair model (model.md §1, §3-6).
+
+Coordinates [mm]: roll distances s1 = r_b1 theta1, s2 = r_b2 theta2 and the DTE
+delta = s1 - s2 (> 0 compresses the drive flanks). Integrated state: see layout.STATE_NAMES.
+
+Pair slots (model.md §3). Drive flank, slot j = 0 .. N-1:
+    r = s1 - s1_0,  n = floor(r / p_b),  u = r - n p_b in [0, p_b)
+    x1_j = x_lo + u + j p_b        pinion roll position, measured from A [mm]
+    x2_j = x1_j - delta            gear roll position [mm]
+    p_j = delta - G1(x1_j) - G2(x2_j) - e1 - e2 - Ft1[i1_j] - Ft2[i2_j]
+    i1_j = (k1 + n - j) mod z1,  i2_j = (k2 + n - j) mod z2
+Slot 0 holds the pair that entered last. When u wraps from p_b to 0, n grows by one and the pair
+of slot j moves to slot j + 1 at the same position, so its tooth index must not change:
+(k1 + n - j) is invariant under (n, j) -> (n + 1, j + 1). (With "+ j" every wrap would swap the
+teeth in contact, make the flank offsets jump and break energy conservation.)
+
+Coast flank: the same construction in the mirrored coordinates s' = -s, delta' = -delta (the
+coast flanks are the drive flanks of the reversed motion; the coast LoA is the mirror image of
+the drive LoA about the line of centres):
+    r = -s1 - s1c_0,  x1c_j = x_lo + u + j p_b,  x2c_j = x1c_j + delta
+    pc_j = -delta - j_n - G1c(x1c_j) - G2c(x2c_j) - e1c - e2c - Ft1c[i1c_j] - Ft2c[i2c_j]
+    i1c_j = (k1c - n + j) mod z1, ...
+Both flanks are written once with sigma = +1 (drive) or -1 (coast): x1 moves as sigma s1, x2 as
+sigma s2, and
+    dp/ds1 = sigma (1 - G1'(x1)) - de1/ds1,   dp/ds2 = -sigma (1 + G2'(x2)) - de2/ds2.
+Runout on a flank: e_i = ecc_i sin(theta_i + phase_i) (phase_i_coast on the coast LoA; the
+projection of the same rotating eccentricity on the mirrored LoA differs only in phase).
+
+Forces (model.md §4): F_j = IMPACT(p_j, pdot_j), pdot_j = dp/ds1 v1 + dp/ds2 v2 (chain rule);
+generalized forces Q_s1 = -F dp/ds1, Q_s2 = -F dp/ds2 [N]: the gradient of the potential
+sum k p^(e+1)/(e+1) plus the damping part, so the elastic mesh conserves energy exactly.
+Torques r_b1 Q_s1 on the pinion, r_b2 Q_s2 on the gear [N*mm].
+
+Friction (model.md §5), both flanks: rho1 = T1A + x1_j, rho2 = T1T2 - rho1 [mm],
+v = omega1 rho1 - omega2 rho2 [mm/s], f = mu(v) F [N]; pinion torque += f rho1, gear torque
+-= f rho2. Power f (omega1 rho1 - omega2 rho2) = mu(v) F v <= 0. Coast mirrored: in mirrored
+coordinates v' = -v, mu(v') = -mu(v), f' = -f and the mirrored torques +f' rho1, -f' rho2 map
+back with one more sign change to +f rho1, -f rho2: the same formulas in the real coordinates
+(with the coast contact point's rho1 = T1A + x1c_j; the coast path has the drive path's length
+for the symmetric teeth this assumes). The contact point is taken on the LoA also outside the
+nominal path (extended contact): an approximation of the tip-contact arms of model.md §3.
+
+Equations of motion (model.md §6), M1, M2 the mesh + friction torques:
+    J1 alpha1 = T_drive + M1 - c1 omega1
+    J2 alpha2 = M2 - T_load(t) - cv omega2 - cq omega2 |omega2| - c2 omega2
+    s1'' = r_b1 alpha1,  delta'' = r_b1 alpha1 - r_b2 alpha2.
+Drive (inputs from drive.forcing): speed - theta1(t) = theta1_init + Theta(t) - Theta(t_start)
+with Theta the antiderivative of omega1(t), alpha1 = omega1'(t); T_drive = J1 alpha1 - M1 +
+c1 omega1 is the torque needed (reported). Shaft - the motor angle theta_m(t) is built the same
+way; T_drive = k_s (theta_m - theta1) + c_s (omega_m - omega1). Torque - T_drive = T(t)
+(1 - omega1/omega0), the factor only when omega0 > 0.
+"""
+
+import math
+
+from gearcli.core.contact import impact_force
+from gearcli.core.friction import adams_mu
+from gearcli.core.gaptable import (
+    TABLE_G1,
+    TABLE_G1_COAST,
+    TABLE_G2,
+    TABLE_G2_COAST,
+    hermite,
+    table_floor,
+)
+from gearcli.core.jit import jit
+from gearcli.core.layout import DRIVE_SHAFT, DRIVE_SPEED, A, D, P, S
+from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
+
+
+@jit_noalloc_inline
+def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, offset,
+          k1, k2, t1, t2, g1, g2, overlap_max, prm, derived, tables, tooth_offsets, slot_force):
+    """Forces of all pair slots of one flank family (drive: sigma = +1, coast: sigma = -1).
+
+    Parameters
+    ----------
+    sigma : float
+        +1 drive flanks, -1 coast flanks.
+    s1, v1 : float
+        Pinion roll distance [mm] and rate [mm/s].
+    delta, v2 : float
+        DTE [mm] and gear roll rate [mm/s].
+    omega1, omega2 : float
+        Angular speeds [rad/s] (friction).
+    e1, de1, e2, de2 : float
+        Runout gaps on this flank's LoA [mm] and their derivatives de1/ds1, de2/ds2 [-].
+    phase0 : float
+        s1_0 or s1c_0 [mm].
+    offset : float
+        0 (drive) or the normal backlash j_n (coast) [mm].
+    k1, k2 : int
+        Tooth index offsets; t1, t2 rows of ``tooth_offsets`` (per-tooth flank offsets [mm]).
+    g1, g2 : int
+        Gap tables of the pinion and gear roll positions.
+    overlap_max : float
+        Upper bound of ``-G1 - G2 - e1 - e2 - Ft1 - Ft2`` over all positions [mm]
+        (:func:`overlap_bound`); with ``sigma delta - offset + overlap_max <= 0`` no slot can
+        touch and the slot loop is skipped.
+    prm, derived : ndarray
+        Parameter vector (layout.P) and derived constants (layout.D).
+    tables, tooth_offsets : ndarray
+        See :func:`rhs`.
+    slot_force : ndarray, shape (N,)
+        Written: the force of every slot [N] (0 out of contact).
+
+    Returns
+    -------
+    tuple
+        (Q1, Q2, M1f, M2f, F_sum, n_contact, f_sum, friction_power, damping_power, V, pen_max):
+        generalized mesh forces on s1, s2 [N]; friction torques on pinion, gear [N*mm];
+        sum of normal forces [N]; pairs with F > 0; signed friction force sum [N]; sum f v
+        [N*mm/s] (<= 0); damping dissipation rate [N*mm/s] (>= 0); contact potential [N*mm];
+        largest penetration [mm].
+    """
+    for j in range(slot_force.shape[0]):
+        slot_force[j] = 0.0
+    if sigma * delta - offset + overlap_max <= 0.0:  # no slot can touch
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0
+    p_b = prm[P.p_b]
+    x_lo = prm[P.x_lo]
+    x_hi = prm[P.x_hi]
+    h_grid = derived[D.grid_step]
+    inv_h = derived[D.inv_grid_step]
+    z1 = int(prm[P.z1])
+    z2 = int(prm[P.z2])
+    k = prm[P.k_contact]
+    ex = prm[P.exponent]
+    c_max = prm[P.c_max]
+    d_max = prm[P.d_max]
+    mu_s = prm[P.mu_s]
+    mu_d = prm[P.mu_d]
+    use_friction = mu_s != 0.0 or mu_d != 0.0
+    r = sigma * s1 - phase0
+    nf = math.floor(r * derived[D.inv_p_b])
+    u = r - nf * p_b
+    if u >= p_b:  # rounding of r - floor(r/p) p
+        u -= p_b
+        nf += 1.0
+    elif u < 0.0:
+        u += p_b
+        nf -= 1.0
+    n = int(nf)
+    isig = 1 if sigma > 0.0 else -1
+    q1 = 0.0
+    q2 = 0.0
+    m1f = 0.0
+    m2f = 0.0
+    f_sum = 0.0
+    n_contact = 0
+    ff_sum = 0.0
+    fpow = 0.0
+    pdamp = 0.0
+    pot = 0.0
+    pen_max = 0.0
+    # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (module docstring)
+    i1 = (k1 + isig * n) % z1
+    i2 = (k2 + isig * n) % z2
+    for j in range(slot_force.shape[0]):
+        if j > 0:
+            i1 -= isig
+            i2 -= isig
+            if i1 < 0:
+                i1 += z1
+            elif i1 >= z1:
+                i1 -= z1
+            if i2 < 0:
+                i2 += z2
+            elif i2 >= z2:
+                i2 -= z2
+        x1 = x_lo + u + j * p_b
+        in1, gap1, dgap1 = hermite(tables, g1, x_lo, x_hi, h_grid, inv_h, x1)
+        if not in1:
+            break  # x1 grows with j: every further slot is beyond the table too
+        x2 = x1 - sigma * delta
+        in2, gap2, dgap2 = hermite(tables, g2, x_lo, x_hi, h_grid, inv_h, x2)
+        if not in2:
+            continue
+        pen = (sigma * delta - offset - gap1 - gap2 - e1 - e2
+               - tooth_offsets[t1, i1] - tooth_offsets[t2, i2])
+        if pen <= 0.0:
+            continue
+        if pen > pen_max:
+            pen_max = pen
+        dp1 = sigma * (1.0 - dgap1) - de1  # dp/ds1 [-]
+        dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
+        pdot = dp1 * v1 + dp2 * v2
+        force, fel = impact_force(pen, pdot, k, ex, c_max, d_max)
+        pot += fel * pen / (ex + 1.0)  # k p^(e+1)/(e+1), contact.impact_potential
+        # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0
+        pdamp += (force - fel) * pdot
+        if force <= 0.0:
+            continue
+        slot_force[j] = force
+        f_sum += force
+        n_contact += 1
+        q1 -= force * dp1
+        q2 -= force * dp2
+        if use_friction:
+            rho1 = prm[P.T1A] + x1
+            rho2 = prm[P.T1T2] - rho1
+            vs = omega1 * rho1 - omega2 * rho2
+            f = adams_mu(vs, mu_s, mu_d, prm[P.v_s], prm[P.v_d]) * force
+            m1f += f * rho1
+            m2f -= f * rho2
+            ff_sum += f
+            fpow += f * vs
+    return q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot, pen_max
+
+
+@jit_noalloc
+def error_bound(prm, tooth_offsets, t1, t2):
+    """Largest overlap [mm] runout and tooth offsets can add on one flank family.
+
+    ``|ecc1| + |ecc2| + max_i(-Ft1[i]) + max_i(-Ft2[i])`` (rows ``t1``, ``t2`` of the offsets).
+    """
+    bound = abs(prm[P.ecc1]) + abs(prm[P.ecc2])
+    for row, z in ((t1, int(prm[P.z1])), (t2, int(prm[P.z2]))):
+        worst = -math.inf
+        for i in range(z):
+            worst = max(worst, -tooth_offsets[row, i])
+        bound += worst
+    return bound
+
+
+@jit_noalloc
+def overlap_bound(prm, tables, tooth_offsets, g1, g2, t1, t2):
+    """Upper bound [mm] of ``-G1(x1) - G2(x2) - e1 - e2 - Ft1 - Ft2`` of one flank family.
+
+    A pair of the family can only touch when ``sigma delta - offset`` exceeds minus this.
+    """
+    h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
+    return -table_floor(tables, g1, h) - table_floor(tables, g2, h) \
+        + error_bound(prm, tooth_offsets, t1, t2)
+
+
+@jit_noalloc
+def derive(prm, tables, tooth_offsets, derived):
+    """Fill ``derived`` (layout.D) with the constants of a run: overlap bounds, grid step and
+    reciprocals of the geometry and inertia parameters."""
+    h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
+    derived[D.overlap_drive] = overlap_bound(prm, tables, tooth_offsets, TABLE_G1, TABLE_G2, 0, 1)
+    derived[D.overlap_coast] = overlap_bound(prm, tables, tooth_offsets, TABLE_G1_COAST,
+                                             TABLE_G2_COAST, 2, 3)
+    derived[D.error_bound] = max(error_bound(prm, tooth_offsets, 0, 1),
+                                 error_bound(prm, tooth_offsets, 2, 3))
+    derived[D.grid_step] = h
+    derived[D.inv_grid_step] = 1.0 / h
+    derived[D.inv_p_b] = 1.0 / prm[P.p_b]
+    derived[D.inv_r_b1] = 1.0 / prm[P.r_b1]
+    derived[D.inv_r_b2] = 1.0 / prm[P.r_b2]
+    derived[D.inv_J1] = 1.0 / prm[P.J1]
+    derived[D.inv_J2] = 1.0 / prm[P.J2]
+
+
+@jit
+def runout(ecc, phase, theta, inv_r_b):
+    """Runout gap ``ecc sin(theta + phase)`` [mm] and its derivative by the roll distance,
+    ``ecc cos(theta + phase) / r_b`` [-] (``inv_r_b = 1/r_b`` [1/mm])."""
+    if ecc == 0.0:
+        return 0.0, 0.0
+    return ecc * math.sin(theta + phase), ecc * math.cos(theta + phase) * inv_r_b
+
+
+@jit_noalloc_inline
+def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth_offsets,
+        drive_angle, drive_value, drive_rate, load_torque):
+    """Time derivative of the state and auxiliary results at time ``t`` [s].
+
+    Parameters
+    ----------
+    t : float
+        Time [s] (only through the inputs below; kept for clarity of the call sites).
+    y : ndarray, shape (N_STATE,)
+        State (layout.S); in speed mode ``y[S.s1]``, ``y[S.v1]`` are ignored.
+    dy : ndarray, shape (N_STATE,)
+        Written: dy/dt.
+    aux : ndarray, shape (N_AUX,)
+        Written: auxiliary results (layout.A).
+    slot_force, slot_force_coast : ndarray, shape (N,)
+        Written: force per drive / coast slot [N].
+    prm : ndarray
+        Parameter vector (layout.P).
+    derived : ndarray, shape (N_DERIVED,)
+        Constants from :func:`derive` (layout.D).
+    tables : ndarray, shape (4, 2, n)
+        Gap tables (gaptable.py).
+    tooth_offsets : ndarray, shape (4, max(z1, z2))
+        Rows Ft1, Ft2, Ft1c, Ft2c: flank offset of each tooth [mm], positive = material missing.
+    drive_angle, drive_value, drive_rate, load_torque : float
+        From :func:`gearcli.core.drive.forcing` at ``t``: prescribed angle [rad], drive speed
+        [rad/s] or torque [N*mm], its rate [rad/s^2], load torque [N*mm].
+    """
+    mode = int(prm[P.drive_mode])
+    r_b1 = prm[P.r_b1]
+    r_b2 = prm[P.r_b2]
+    J1 = prm[P.J1]
+    inv_r_b1 = derived[D.inv_r_b1]
+    inv_r_b2 = derived[D.inv_r_b2]
+    a1 = 0.0
+    if mode == DRIVE_SPEED:
+        s1 = r_b1 * drive_angle
+        v1 = r_b1 * drive_value
+        a1 = r_b1 * drive_rate
+    else:
+        s1 = y[S.s1]
+        v1 = y[S.v1]
+    delta = y[S.delta]
+    deltadot = y[S.deltadot]
+    v2 = v1 - deltadot
+    theta1 = s1 * inv_r_b1
+    theta2 = (s1 - delta) * inv_r_b2
+    omega1 = v1 * inv_r_b1
+    omega2 = v2 * inv_r_b2
+
+    e1, de1 = runout(prm[P.ecc1], prm[P.phase1], theta1, inv_r_b1)
+    e2, de2 = runout(prm[P.ecc2], prm[P.phase2], theta2, inv_r_b2)
+    q1, q2, m1f, m2f, fd, nd, ffd, fpd, pdd, potd, pend = flank(
+        1.0, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, prm[P.s1_0], 0.0,
+        int(prm[P.tooth_k1]), int(prm[P.tooth_k2]), 0, 1, TABLE_G1, TABLE_G2,
+        derived[D.overlap_drive], prm, derived, tables, tooth_offsets, slot_force)
+    fc = 0.0
+    nc = 0
+    if prm[P.coast_flanks] != 0.0:
+        e1, de1 = runout(prm[P.ecc1], prm[P.phase1_coast], theta1, inv_r_b1)
+        e2, de2 = runout(prm[P.ecc2], prm[P.phase2_coast], theta2, inv_r_b2)
+        q1c, q2c, m1c, m2c, fc, nc, ffc, fpc, pdc, potc, penc = flank(
+            -1.0, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, prm[P.s1c_0],
+            prm[P.backlash_n], int(prm[P.tooth_k1_coast]), int(prm[P.tooth_k2_coast]), 2, 3,
+            TABLE_G1_COAST, TABLE_G2_COAST, derived[D.overlap_coast], prm, derived, tables,
+            tooth_offsets, slot_force_coast)
+        q1 += q1c
+        q2 += q2c
+        m1f += m1c
+        m2f += m2c
+        ffd += ffc
+        fpd += fpc
+        pdd += pdc
+        potd += potc
+        if penc > pend:
+            pend = penc
+    else:
+        for j in range(slot_force_coast.shape[0]):
+            slot_force_coast[j] = 0.0
+
+    m1 = r_b1 * q1 + m1f  # mesh + friction torque on the pinion [N*mm]
+    m2 = r_b2 * q2 + m2f  # on the gear
+    t_load = load_torque
+    c1w = prm[P.c1] * omega1
+    gear_loss = (prm[P.load_cv] + prm[P.c2] + prm[P.load_cq] * abs(omega2)) * omega2
+    alpha2 = (m2 - t_load - gear_loss) * derived[D.inv_J2]
+    if mode == DRIVE_SPEED:
+        t_drive = J1 * a1 * inv_r_b1 - m1 + c1w
+    else:
+        if mode == DRIVE_SHAFT:
+            t_drive = prm[P.shaft_k] * (drive_angle - theta1) \
+                + prm[P.shaft_c] * (drive_value - omega1)
+        else:
+            t_drive = drive_value
+            if prm[P.motor_omega0] > 0.0:
+                t_drive *= 1.0 - omega1 / prm[P.motor_omega0]
+        a1 = r_b1 * (t_drive + m1 - c1w) * derived[D.inv_J1]
+
+    dy[S.s1] = v1
+    dy[S.v1] = a1
+    dy[S.delta] = deltadot
+    dy[S.deltadot] = a1 - r_b2 * alpha2
+    dy[S.work_in] = t_drive * omega1
+    dy[S.work_load] = t_load * omega2
+    dy[S.loss_bearing] = c1w * omega1 + gear_loss * omega2
+    dy[S.loss_damping] = pdd
+    dy[S.loss_friction] = -fpd
+
+    aux[A.s1] = s1
+    aux[A.v1] = v1
+    aux[A.force_drive] = fd
+    aux[A.force_coast] = fc
+    aux[A.n_drive] = nd
+    aux[A.n_coast] = nc
+    aux[A.friction_force] = ffd
+    aux[A.friction_power] = fpd
+    aux[A.drive_torque] = t_drive
+    aux[A.load_torque] = t_load
+    aux[A.contact_energy] = potd
+    aux[A.max_penetration] = pend

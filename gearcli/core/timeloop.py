@@ -1,0 +1,399 @@
+"""The compiled time loop of ``gearcli simulate`` (called through :mod:`gearcli.core.integrate`).
+
+:func:`run` integrates the model of :mod:`gearcli.core.rhs` from ``t_start`` to ``t_end`` with
+Dormand-Prince 5(4) (:mod:`gearcli.core.dopri5`) in one compiled function: adaptive steps, dense
+output exactly at the requested output times, extrema of the forces at every accepted step
+(true extrema, not only at the samples), counters and a status code (layout.STATUS_*). On an
+error status the rows not reached stay NaN and ``n_valid`` says how many rows are filled.
+
+Error control (HNW II.4): RMS norm of the local error scaled by ``atol_i + rtol max(|y|, |y_new|)``
+over (s1, v1, delta, deltadot) with atol ``atol_delta`` [mm] for s1 and delta and
+``atol_deltadot`` [mm/s] for v1 and deltadot. ``atol_delta`` is the absolute accuracy of the
+small relative coordinate; s1 and v1 grow large and are effectively controlled relatively
+(rtol). In speed mode s1 and v1 are prescribed and only (delta, deltadot) are controlled. The
+energy quadratures are integrated with the same stages but not error controlled.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearcli.core.dopri5 import (
+    MIN_FACTOR,
+    N_STAGES,
+    dense,
+    error_norm,
+    scaled_rms,
+    solution,
+    stage_state,
+    step_factor,
+    store_row,
+)
+from gearcli.core.dopri5 import (
+    C as C_STAGE,
+)
+from gearcli.core.drive import forcing
+from gearcli.core.events import next_crossing
+from gearcli.core.jit import jit
+from gearcli.core.layout import (
+    DRIVE_SPEED,
+    DRIVE_TORQUE,
+    LAYOUT_KEY,
+    N_AUX,
+    N_COLUMNS,
+    N_COUNTERS,
+    N_DERIVED,
+    N_EXTREMA,
+    N_SLOT_EXTREMA,
+    N_STATE,
+    STATUS_MAX_STEPS,
+    STATUS_NAN,
+    STATUS_OK,
+    STATUS_RUNAWAY_PENETRATION,
+    STATUS_STALE_CACHE,
+    STATUS_STEP_TOO_SMALL,
+    A,
+    D,
+    P,
+    S,
+    X,
+)
+from gearcli.core.nrt import jit_noalloc
+from gearcli.core.records import (
+    finish_extrema,
+    init_extrema,
+    kinetic_energy,
+    update_extrema,
+    write_row,
+)
+from gearcli.core.rhs import derive, rhs
+from gearcli.core.timefunc import pp_eval
+
+#: Landing point of a step cut short by a predicted discontinuity: this fraction of the step
+#: before the predicted crossing (absorbs the error of the quadratic prediction).
+EVENT_LANDING = 1e-3
+#: A crossing closer than this many landing gaps is hopped over with one Euler step.
+EVENT_HOP = 2.0
+#: The hop ends this fraction of its length (at least EVENT_MIN_OVERSHOOT) past the crossing.
+EVENT_OVERSHOOT = 1e-3
+EVENT_MIN_OVERSHOOT = 1e-12  # [s]
+#: After a hop the next step is this fraction of the last one: the force jump starts a new
+#: transient (measured on the seed case: entry needs ~0.4, exit ~0.15 of the step before).
+EVENT_RESTART = 0.25
+
+
+@jit_noalloc
+def _all_finite(y):
+    for i in range(y.shape[0]):
+        if not math.isfinite(y[i]):
+            return False
+    return True
+
+
+@jit_noalloc
+def _row_finite(K, s):
+    for i in range(K.shape[1]):
+        if not math.isfinite(K[s, i]):
+            return False
+    return True
+
+
+@jit_noalloc
+def _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode, theta_offset,
+              drive_pp, angle_pp, load_pp):
+    """One RHS evaluation at ``t`` with the time functions evaluated there (off the hot path:
+    start, hops, output samples)."""
+    ang, val, rate, load = forcing(t, mode, theta_offset, drive_pp, angle_pp, load_pp)
+    rhs(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate, load)
+
+
+@jit_noalloc
+def _attempt(t, h, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets,
+             mode, theta_offset, drive_pp, angle_pp, load_pp, atol, rtol, first, count):
+    """One Dormand-Prince step attempt from (t, y) with K[0] = f(t, y): stages 2..6, the
+    solution ``y_new`` at ``t_new = t + h``, the FSAL stage K[6] = f(t_new, y_new) (its ``aux``,
+    ``sf``, ``sfc`` stay in the work arrays) and the scaled error norm (dopri5.error_norm).
+
+    The hot path of the kernel: forcing and rhs are inlined here (nrt.jit_noalloc_inline).
+    """
+    for s in range(1, N_STAGES + 1):
+        if s < N_STAGES:
+            stage_state(y, K, s, h, ys)
+            ts = t + C_STAGE[s] * h
+        else:
+            solution(y, K, h, ys)
+            ts = t_new
+        ang, val, rate, load = forcing(ts, mode, theta_offset, drive_pp, angle_pp, load_pp)
+        # writes straight into the row of K (a view costs nothing without reference counts)
+        rhs(ts, ys, K[s], aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate,
+            load)
+    for i in range(y.shape[0]):
+        y_new[i] = ys[i]
+    return error_norm(y, y_new, K, h, first, count, atol, rtol)
+
+
+@jit_noalloc
+def _starting_step(t, y, f0, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
+                   theta_offset, drive_pp, angle_pp, load_pp, atol, rtol, first, count, span):
+    """Starting step size [s] (HNW II.4, "starting step size"; scipy select_initial_step).
+
+    Uses the controlled components only and one extra RHS evaluation (written into ``dy``,
+    ``aux``, ``sf``, ``sfc``, which are scratch here).
+    """
+    d0 = scaled_rms(y, y, first, count, atol, rtol)
+    d1 = scaled_rms(f0, y, first, count, atol, rtol)
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    h0 = min(h0, span)
+    for i in range(y.shape[0]):
+        ys[i] = y[i] + h0 * f0[i]
+    _evaluate(t + h0, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
+              theta_offset, drive_pp, angle_pp, load_pp)
+    for i in range(y.shape[0]):
+        dy[i] -= f0[i]
+    d2 = scaled_rms(dy, y, first, count, atol, rtol) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / 5.0)
+    h = min(100.0 * h0, h1, span)
+    return h if math.isfinite(h) and h > 0.0 else 1e-6
+
+
+@jit
+def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_key):
+    """Integrate from ``prm[P.t_start]`` to ``prm[P.t_end]``; see the module docstring.
+
+    Parameters
+    ----------
+    prm : ndarray, shape (N_PARAMS,)
+        Parameter vector (layout.P), internal units.
+    tables : ndarray, shape (4, 2, n)
+        Gap tables G1, G2, G1c, G2c (value [mm], slope [-]) on the uniform grid x_lo..x_hi.
+    tooth_offsets : ndarray, shape (4, >= max(z1, z2))
+        Per-tooth flank offsets Ft1, Ft2, Ft1c, Ft2c [mm].
+    drive_pp, angle_pp, load_pp : tuple of (breaks, coefs, origins)
+        Piecewise polynomials (timefunc.py): drive (omega [rad/s] or torque [N*mm]), its
+        antiderivative [rad] (speed/shaft modes), load torque [N*mm].
+    t_out : ndarray, shape (n_out,)
+        Non-decreasing output times in [t_start, t_end] [s].
+    layout_key : int
+        layout.LAYOUT_KEY as seen by the caller (stale-cache guard).
+
+    Returns
+    -------
+    status : int
+    counters : ndarray of int64, shape (N_COUNTERS,)
+    series : ndarray, shape (n_out, N_COLUMNS)
+    slot_out, slot_out_coast : ndarray, shape (n_out, N)
+        Force of every drive / coast pair slot at the samples [N].
+    extrema : ndarray, shape (N_EXTREMA,)
+    slot_extrema : ndarray, shape (N_SLOT_EXTREMA, N)
+    n_valid : int
+        Number of filled output rows.
+    """
+    n_out = t_out.shape[0]
+    n_slots = int(prm[P.n_slots])
+    series = np.full((n_out, N_COLUMNS), np.nan)
+    slot_out = np.full((n_out, n_slots), np.nan)
+    slot_out_coast = np.full((n_out, n_slots), np.nan)
+    extrema = np.full(N_EXTREMA, np.nan)
+    slot_extrema = np.full((N_SLOT_EXTREMA, n_slots), np.nan)
+    counters = np.zeros(N_COUNTERS, dtype=np.int64)
+    if layout_key != LAYOUT_KEY:
+        return STATUS_STALE_CACHE, counters, series, slot_out, slot_out_coast, extrema, \
+            slot_extrema, 0
+    init_extrema(extrema, slot_extrema)
+
+    mode = int(prm[P.drive_mode])
+    speed_mode = mode == DRIVE_SPEED
+    t = prm[P.t_start]
+    t_end = prm[P.t_end]
+    rtol = prm[P.rtol]
+    max_step = prm[P.max_step]
+    max_steps = prm[P.max_steps]
+    ext_start = prm[P.extrema_t_start]
+    pen_limit = prm[P.penetration_limit]
+    theta_offset = prm[P.theta1_init]
+    if mode != DRIVE_TORQUE:
+        theta_offset -= pp_eval(angle_pp[0], angle_pp[1], angle_pp[2], t)
+    derived = np.empty(N_DERIVED)
+    derive(prm, tables, tooth_offsets, derived)
+    # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
+    err_bound = derived[D.error_bound] + 10.0 * prm[P.atol_delta]
+
+    atol = np.zeros(N_STATE)
+    atol[S.s1] = prm[P.atol_delta]
+    atol[S.v1] = prm[P.atol_deltadot]
+    atol[S.delta] = prm[P.atol_delta]
+    atol[S.deltadot] = prm[P.atol_deltadot]
+    first = S.delta if speed_mode else S.s1  # controlled components: first .. S.deltadot
+    count = S.deltadot + 1 - first
+
+    # Work vectors and the rows of K in one block, each starting on its own 128-byte boundary.
+    # Allocated one by one (or K packed with 72-byte rows) the same code ran 1.3-1.5 times
+    # slower depending on the build (measured on the seed case; cache-line/aliasing effects).
+    vec = 16 * ((max(N_STATE, N_AUX, n_slots) + 15) // 16)
+    work = np.zeros((7 + N_STAGES + 1) * vec)
+    y = work[0:N_STATE]
+    dy = work[vec:vec + N_STATE]
+    ys = work[2 * vec:2 * vec + N_STATE]
+    y_new = work[3 * vec:3 * vec + N_STATE]
+    aux = work[4 * vec:4 * vec + N_AUX]
+    sf = work[5 * vec:5 * vec + n_slots]
+    sfc = work[6 * vec:6 * vec + n_slots]
+    K = work[7 * vec:].reshape((N_STAGES + 1, vec))[:, :N_STATE]  # K[0] = f(t, y) (FSAL)
+    y[S.s1] = prm[P.r_b1] * prm[P.theta1_init]
+    y[S.v1] = prm[P.r_b1] * prm[P.omega1_init]
+    y[S.delta] = prm[P.delta_init]
+    y[S.deltadot] = prm[P.deltadot_init]
+
+    _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
+              theta_offset, drive_pp, angle_pp, load_pp)
+    store_row(K, 0, dy)
+    counters[2] += 1
+    if speed_mode:  # prescribed: keep the (uncontrolled) integrated copies exact
+        y[S.s1] = aux[A.s1]
+        y[S.v1] = aux[A.v1]
+    extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y[S.deltadot]) \
+        + aux[A.contact_energy]
+    extrema[X.t_reached_s] = t
+    if not (_all_finite(y) and _all_finite(dy) and _all_finite(aux)):
+        finish_extrema(extrema, slot_extrema)
+        return STATUS_NAN, counters, series, slot_out, slot_out_coast, extrema, \
+            slot_extrema, 0
+    if t >= ext_start:
+        update_extrema(extrema, slot_extrema, t, y, aux, sf)
+    i_out = 0
+    while i_out < n_out and t_out[i_out] <= t:
+        write_row(series, slot_out, slot_out_coast, i_out, t_out[i_out], y, aux, sf, sfc, prm)
+        i_out += 1
+
+    span = t_end - t
+    h = prm[P.first_step]
+    if h <= 0.0 and span > 0.0:
+        h = _starting_step(t, y, K[0], ys, dy, aux, sf, sfc, prm, derived, tables,
+                           tooth_offsets, mode, theta_offset, drive_pp, angle_pp, load_pp, atol,
+                           rtol, first, count, span)
+        counters[2] += 1
+
+    status = STATUS_OK
+    rejected_before = False
+    nonfinite_last = False
+    predict = True  # predict the next discontinuity before the next step
+    t_event = math.inf
+    hop_limit = 0.0  # a crossing closer than this [s] is hopped over
+    h_cut = math.inf  # size of the last step cut short by a crossing [s]
+    while t < t_end:
+        if counters[0] + counters[1] >= max_steps:
+            status = STATUS_MAX_STEPS
+            break
+        h = min(h, max_step, t_end - t)
+        h_min = 10.0 * (np.nextafter(t, math.inf) - t)
+        if h < h_min and t + h < t_end:
+            status = STATUS_NAN if nonfinite_last else STATUS_STEP_TOO_SMALL
+            break
+        if predict:
+            predict = False
+            tau = next_crossing(y[S.s1], y[S.v1], K[0, S.v1], y[S.delta], y[S.deltadot],
+                                K[0, S.deltadot], prm, derived, tables, max(h, hop_limit),
+                                err_bound + 0.1 * abs(y[S.delta]))
+            t_event = t + tau
+            if tau <= max(hop_limit, 100.0 * h_min):
+                # Hop over the discontinuity with one Euler step ending just past it.
+                hop = tau + max(EVENT_OVERSHOOT * tau, EVENT_MIN_OVERSHOOT, 4.0 * h_min)
+                t_hop = t + hop
+                while i_out < n_out and t_out[i_out] <= t_hop:
+                    ts = t_out[i_out]
+                    for i in range(N_STATE):
+                        ys[i] = y[i] + (ts - t) * K[0, i]
+                    _evaluate(ts, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
+                              theta_offset, drive_pp, angle_pp, load_pp)
+                    counters[3] += 1
+                    write_row(series, slot_out, slot_out_coast, i_out, ts, ys, aux, sf, sfc,
+                              prm)
+                    if ts >= ext_start:
+                        update_extrema(extrema, slot_extrema, ts, ys, aux, sf)
+                    i_out += 1
+                for i in range(N_STATE):
+                    y[i] += hop * K[0, i]
+                t = t_hop
+                _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
+                          theta_offset, drive_pp, angle_pp, load_pp)
+                counters[2] += 1
+                store_row(K, 0, dy)
+                if speed_mode:
+                    y[S.s1] = aux[A.s1]
+                    y[S.v1] = aux[A.v1]
+                if t >= ext_start:
+                    update_extrema(extrema, slot_extrema, t, y, aux, sf)
+                # the jump starts a new transient: restart below the last step size
+                h = EVENT_RESTART * min(h, h_cut)
+                hop_limit = 0.0
+                predict = True
+                rejected_before = False
+                continue
+        hop_limit = 0.0
+        h_step = h
+        cut = t + h > t_event
+        if cut:  # end the step just before the predicted crossing
+            h_step = (t_event - t) * (1.0 - EVENT_LANDING)
+        t_new = t + h_step
+        if t_new > t_end - h_min:
+            t_new = t_end
+            h_step = t_end - t
+        err = _attempt(t, h_step, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, tables,
+                       tooth_offsets, mode, theta_offset, drive_pp, angle_pp, load_pp,
+                       atol, rtol, first, count)
+        counters[2] += N_STAGES
+        if not (math.isfinite(err) and _all_finite(y_new) and _row_finite(K, N_STAGES)):
+            counters[1] += 1
+            h = h_step * MIN_FACTOR
+            rejected_before = True
+            nonfinite_last = True
+            continue
+        nonfinite_last = False
+        if err >= 1.0:
+            counters[1] += 1
+            h = h_step * step_factor(err, rejected_before)
+            rejected_before = True
+            continue
+
+        # Accepted. Extrema from the FSAL evaluation at (t_new, y_new), before sampling.
+        counters[0] += 1
+        if speed_mode:
+            y_new[S.s1] = aux[A.s1]
+            y_new[S.v1] = aux[A.v1]
+        if t_new >= ext_start:
+            update_extrema(extrema, slot_extrema, t_new, y_new, aux, sf)
+        runaway = aux[A.max_penetration] > pen_limit
+        while i_out < n_out and t_out[i_out] <= t_new:
+            ts = t_out[i_out]
+            dense(y, K, h_step, (ts - t) / h_step, ys)
+            _evaluate(ts, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
+                      theta_offset, drive_pp, angle_pp, load_pp)
+            counters[3] += 1
+            write_row(series, slot_out, slot_out_coast, i_out, ts, ys, aux, sf, sfc, prm)
+            if ts >= ext_start:  # samples are points of the solution too
+                update_extrema(extrema, slot_extrema, ts, ys, aux, sf)
+            i_out += 1
+        factor = step_factor(err, rejected_before)
+        rejected_before = False
+        t = t_new
+        for i in range(N_STATE):
+            y[i] = y_new[i]
+            K[0, i] = K[N_STAGES, i]
+        if runaway:
+            status = STATUS_RUNAWAY_PENETRATION
+            break
+        predict = True
+        if cut:  # keep the step size of the undisturbed solution; hop next
+            hop_limit = EVENT_HOP * EVENT_LANDING * h_step / (1.0 - EVENT_LANDING)
+            h_cut = h_step
+        else:
+            h = h_step * factor
+
+    extrema[X.t_reached_s] = t
+    finish_extrema(extrema, slot_extrema)
+    return status, counters, series, slot_out, slot_out_coast, extrema, slot_extrema, i_out

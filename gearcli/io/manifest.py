@@ -1,0 +1,36 @@
+"""Provenance of a results folder: versions, case hash, resolved case, command line."""
+
+from __future__ import annotations
+
+import hashlib
+import platform
+import sys
+from importlib import metadata
+
+
+def versions() -> dict[str, str]:
+    out = {"python": platform.python_version(), "platform": platform.platform()}
+    for dist in ("gearcli", "numpy", "numba", "scipy", "pydantic", "pint"):
+        try:
+            out[dist] = metadata.version(dist)
+        except metadata.PackageNotFoundError:
+            out[dist] = "not installed"
+    return out
+
+
+def sha256_of(path) -> str:
+    with open(path, "rb") as fh:
+        return hashlib.sha256(fh.read()).hexdigest()
+
+
+def manifest(case_path, resolved_case: dict, overrides: list[str] | None) -> dict:
+    return {
+        "gearcli_manifest": 1,
+        "versions": versions(),
+        "case_file": str(case_path),
+        "case_sha256": sha256_of(case_path),
+        "overrides": list(overrides or []),
+        "command_line": sys.argv,
+        "resolved_case": resolved_case,
+        "units": "internal: mm, N, s, t (tonne), rad; CSV column names carry units",
+    }

@@ -1,0 +1,194 @@
+"""Case -> the compiled kernel's plain inputs (parameter vector, tables, time functions).
+
+Conventions (model.md §1, §3; core/rhs.py): θ1 = 0 is the instant a drive tooth pair touches
+at the pitch point C; the pinion turns counter-clockwise, the gear clockwise; roll positions x
+are measured from A along the line of action.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearcli.case.schema import Case, PitchDeviation
+from gearcli.case.schema import Relief as CaseRelief
+from gearcli.core import layout
+from gearcli.model.gap import GapTables, Modifications, Relief, coast_phase_mm, gap_tables
+from gearcli.model.mesh import MeshMode, mesh_mode
+from gearcli.pipeline.geometry import GeometryResult
+
+#: Output sampling: the analysed band reaches 10 mesh harmonics (issue 3); 2.56 samples per
+#: period of the highest one is the usual anti-aliasing margin of vibration analysers.
+HARMONICS_RESOLVED = 10
+SAMPLES_PER_PERIOD = 2.56
+
+
+@dataclass(frozen=True)
+class KernelInput:
+    """Everything the kernel needs, plus the derived quantities the outputs report."""
+
+    params: np.ndarray
+    tables: GapTables
+    tooth_offsets: np.ndarray
+    drive_pp: tuple
+    drive_angle_pp: tuple | None
+    load_pp: tuple
+    t_out: np.ndarray
+    mesh: MeshMode
+    gear_mesh_frequency_Hz: float | None
+    output_rate_Hz: float
+
+
+def _relief(r: CaseRelief | None) -> Relief | None:
+    if r is None:
+        return None
+    return Relief(r.amount, r.length, r.start_diameter, r.shape)
+
+
+def modifications(case: Case) -> Modifications:
+    m = case.modifications
+    return Modifications(
+        pinion_tip=_relief(m.tip_relief.pinion),
+        gear_tip=_relief(m.tip_relief.gear),
+        pinion_root=_relief(m.root_relief.pinion),
+        gear_root=_relief(m.root_relief.gear),
+    )
+
+
+def iso1328_single_pitch_tolerance_um(grade: int, d_mm: float, m_mm: float) -> float:
+    """Single pitch tolerance f_pT [µm], ISO 1328-1:2013 eq. (4):
+    f_pT = (0.001 d + 0.4 m_n + 5) · √2^(A − 5), A the flank tolerance class."""
+    return (0.001 * d_mm + 0.4 * m_mm + 5.0) * math.sqrt(2.0) ** (grade - 5)
+
+
+def cumulative_pitch_positions(dev: PitchDeviation | None, z: int, d_mm: float, m_mm: float):
+    """Flank positions [mm] of the z teeth from single pitch deviations (zero mean).
+
+    Values given: the single pitch deviations f_pt,i, mean removed (they close around the gear,
+    ISO 1328-1), then summed. ISO grade: f_pt,i drawn from a normal law with σ = f_pT/3 (so
+    nearly all lie within the tolerance) with the case's seed, then the same.
+    """
+    if dev is None:
+        return np.zeros(z)
+    if dev.values is not None:
+        fpt = np.asarray(dev.values, float)
+    else:
+        tol_mm = iso1328_single_pitch_tolerance_um(dev.iso1328_grade, d_mm, m_mm) * 1e-3
+        fpt = np.random.default_rng(dev.seed).normal(0.0, tol_mm / 3.0, z)
+    fpt = fpt - fpt.mean()
+    pos = np.cumsum(fpt)
+    return pos - pos.mean()
+
+
+def output_times(case: Case, f_z: float | None) -> tuple[np.ndarray, float]:
+    """Sample times [s] and rate [Hz]: the case's steps/rate, or enough for 10 harmonics."""
+    run = case.run
+    t_end = run.end_time
+    if run.output_steps is not None:
+        n = run.output_steps
+    else:
+        if run.output_rate is not None:
+            rate = run.output_rate
+        elif f_z is not None and f_z > 0.0:
+            rate = SAMPLES_PER_PERIOD * HARMONICS_RESOLVED * f_z
+        else:
+            rate = 10_000.0
+        n = max(int(math.ceil(t_end * rate)), 10)
+    t = np.linspace(0.0, t_end, n + 1)
+    return t, n / t_end
+
+
+def static_force_N(case: Case, geo: GeometryResult) -> float:
+    """F_n,static = T_load / r_b2 at the end of the load ramps (model.md §7)."""
+    final = case.load.torque.pp.final_value()
+    torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
+    return abs(torque) / geo.geometry.gear.r_b_mm
+
+
+def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
+    """Assemble the kernel's inputs from a validated case and its checked geometry."""
+    g = geo.geometry
+    rb1, rb2 = g.pinion.r_b_mm, g.gear.r_b_mm
+    J1, J2 = geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2
+    ct, fr, dr = case.contact, case.friction, case.drive
+    k = float(ct.stiffness)
+    mode = {"speed": layout.DRIVE_SPEED, "shaft": layout.DRIVE_SHAFT,
+            "torque": layout.DRIVE_TORQUE}[dr.type]
+    mesh = mesh_mode(static_force_N(case, geo), g.eps_alpha, k, ct.exponent, ct.max_damping,
+                     ct.penetration_depth, rb1, rb2, J1, J2, pinion_free=mode != layout.DRIVE_SPEED)
+    # Tip gaps are tabulated up to well beyond the deflections the run can reach.
+    cap = max(0.05 * g.module_mm, 20.0 * mesh.static_deflection_mm)
+    tables = gap_tables(g, modifications(case), ct.engagement, cap_mm=cap)
+    x_c = g.C_mm - g.A_mm  # pitch point, from A
+    n_slots = math.ceil((tables.x_hi - tables.x_lo) / g.p_b_mm) + 1
+    s1_0 = (-(x_c - tables.x_lo)) % g.p_b_mm  # slot at x_C when s1 = 0 (θ1 = 0: pair at C)
+    s1c_0 = (-coast_phase_mm(g) - (x_c - tables.x_lo)) % g.p_b_mm
+
+    speed = geo.pinion_speed_rad_s
+    f_z = g.pinion.teeth * speed / (2.0 * math.pi) if speed else None
+    t_out, rate = output_times(case, f_z)
+
+    alpha_w = g.alpha_w_rad
+    ro = case.errors.runout
+    ecc1, phi1 = (ro.pinion.eccentricity, ro.pinion.phase) if ro.pinion else (0.0, 0.0)
+    ecc2, phi2 = (ro.gear.eccentricity, ro.gear.phase) if ro.gear else (0.0, 0.0)
+    pd = case.errors.pitch_deviation
+    pos1 = cumulative_pitch_positions(pd.pinion, g.pinion.teeth, g.pinion.d_mm, g.module_mm)
+    pos2 = cumulative_pitch_positions(pd.gear, g.gear.teeth, g.gear.d_mm, g.module_mm)
+    z_max = max(g.pinion.teeth, g.gear.teeth)
+    offsets = np.zeros((4, z_max))
+    # A tooth displaced forward (in its rotation) by F: the pinion's drive flank closes on the
+    # gear (-F), the gear's drive flank (its trailing side) opens (+F); coast flanks opposite.
+    offsets[0, : g.pinion.teeth] = -pos1
+    offsets[1, : g.gear.teeth] = pos2
+    offsets[2, : g.pinion.teeth] = pos1
+    offsets[3, : g.gear.teeth] = -pos2
+
+    bearing = case.bearings
+    params = layout.make_params(
+        t_start=0.0,
+        t_end=case.run.end_time,
+        theta1_init=0.0,
+        omega1_init=dr.initial_speed,
+        r_b1=rb1, r_b2=rb2, J1=J1, J2=J2,
+        z1=g.pinion.teeth, z2=g.gear.teeth,
+        p_b=g.p_b_mm, T1A=g.A_mm, T1T2=g.T1T2_mm,
+        x_lo=tables.x_lo, x_hi=tables.x_hi, n_slots=n_slots,
+        s1_0=s1_0, s1c_0=s1c_0, backlash_n=g.j_n_mm,
+        # Runout e sin(ψ), ψ the eccentricity's angle from the line of centres in the gear's
+        # sense of rotation at θ = 0, projected on each line of action (signs: rhs.py).
+        ecc1=ecc1, phase1=phi1 + alpha_w + math.pi, phase1_coast=phi1 - alpha_w,
+        ecc2=ecc2, phase2=math.pi - phi2 - alpha_w, phase2_coast=alpha_w - phi2,
+        k_contact=k, exponent=ct.exponent, c_max=ct.max_damping, d_max=ct.penetration_depth,
+        mu_s=fr.static_coefficient if fr.enabled else 0.0,
+        mu_d=fr.dynamic_coefficient if fr.enabled else 0.0,
+        v_s=fr.stiction_velocity, v_d=fr.transition_velocity,
+        drive_mode=mode,
+        shaft_k=dr.shaft.stiffness if dr.shaft else 0.0,
+        shaft_c=dr.shaft.damping if dr.shaft else 0.0,
+        motor_omega0=dr.motor_curve.no_load_speed if dr.motor_curve else 0.0,
+        c1=bearing.pinion.damping, c2=bearing.gear.damping,
+        load_cv=case.load.viscous, load_cq=case.load.quadratic,
+        rtol=case.run.rtol,
+        atol_delta=case.run.atol,
+        atol_deltadot=case.run.atol * 2.0 * math.pi * max(mesh.natural_frequency_Hz, 1.0),
+        max_step=case.run.max_step if case.run.max_step is not None else math.inf,
+        # A penetration beyond the tabulated tip gaps means the model left its validity.
+        penetration_limit=cap,
+    )
+    drive_fn = dr.torque if mode == layout.DRIVE_TORQUE else dr.speed
+    angle = None if mode == layout.DRIVE_TORQUE else drive_fn.pp.antiderivative().to_arrays()
+    return KernelInput(
+        params=params,
+        tables=tables,
+        tooth_offsets=offsets,
+        drive_pp=drive_fn.pp.to_arrays(),
+        drive_angle_pp=angle,
+        load_pp=case.load.torque.pp.to_arrays(),
+        t_out=t_out,
+        mesh=mesh,
+        gear_mesh_frequency_Hz=f_z,
+        output_rate_Hz=rate,
+    )

@@ -1,0 +1,40 @@
+"""Write a simulation's results folder: timeseries.csv, summary.json, manifest.json."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from gearcli.io.manifest import manifest
+from gearcli.io.outdir import atomic_dir
+from gearcli.io.tables import columns_to_csv
+from gearcli.pipeline.simulate import SimulationResult
+
+
+def summary_document(res: SimulationResult) -> dict:
+    k = res.kernel
+    return {
+        "case": res.name,
+        "status": "ok",
+        "solver": {
+            "message": k.message,
+            **k.counters,
+            "wall_time_s": res.wall_time_s,
+            "engagement": res.loaded.case.contact.engagement,
+            "drive": res.loaded.case.drive.type,
+        },
+        "warnings": res.warnings,
+        "scalars": res.summary,
+    }
+
+
+def write_simulation(res: SimulationResult, target: str | Path, force: bool,
+                     overrides: list[str] | None = None) -> Path:
+    """Write the three files atomically into ``target`` (see io.outdir)."""
+    case_json = json.loads(res.loaded.case.model_dump_json())
+    with atomic_dir(target, force) as tmp:
+        (tmp / "timeseries.csv").write_text(columns_to_csv(res.columns()))
+        (tmp / "summary.json").write_text(json.dumps(summary_document(res), indent=2) + "\n")
+        doc = manifest(res.loaded.source.file, case_json, overrides)
+        (tmp / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
+    return Path(target)

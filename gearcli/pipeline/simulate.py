@@ -1,0 +1,209 @@
+"""`gearcli simulate`: case -> compiled kernel -> a checked result with summary and warnings."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.case.load import LoadedCase, load_case
+from gearcli.errors import SolverError
+from gearcli.pipeline.geometry import GeometryResult, run_geometry
+from gearcli.pipeline.kernel_input import HARMONICS_RESOLVED, KernelInput, build_kernel_input
+from gearcli.pipeline.window import Window, steady_window
+
+
+@dataclass
+class SimulationResult:
+    """One finished run: inputs, sampled series, true extrema, counters, summary, warnings."""
+
+    loaded: LoadedCase
+    geometry: GeometryResult
+    kernel_input: KernelInput
+    kernel: object  # core.integrate.KernelResult
+    wall_time_s: float
+    window: Window
+    summary: dict = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def name(self) -> str:
+        return self.loaded.name
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Output columns in file order; names carry units."""
+        from gearcli.core.layout import COLUMN_NAMES
+
+        k = self.kernel
+        cols = {name: k.series[:, i] for i, name in enumerate(COLUMN_NAMES)}
+        out = {n: cols[n] for n in COLUMN_NAMES if not n.endswith("_mJ")
+               and n not in ("friction_power_mW",)}
+        for j in range(k.slot_force.shape[1]):
+            out[f"force_slot{j}_N"] = k.slot_force[:, j]
+        for n in COLUMN_NAMES:
+            if n.endswith("_mJ") or n == "friction_power_mW":
+                out[n] = cols[n]
+        return out
+
+
+def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None = None,
+                   status=None) -> SimulationResult:
+    """Load the case, check its geometry, run the kernel; failed runs raise SolverError.
+
+    ``status`` is an optional callable(str) told what is happening (compiling, integrating).
+    """
+    from gearcli.numba_cache import configure
+
+    configure()
+    from gearcli.core.integrate import simulate
+
+    loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
+    case = loaded.case
+    _refuse_unsupported(loaded)
+    geo = run_geometry(loaded)
+    ki = build_kernel_input(case, geo)
+    last_ramp = max(case.drive.speed.pp.last_breakpoint if case.drive.speed else 0.0,
+                    case.drive.torque.pp.last_breakpoint if case.drive.torque else 0.0,
+                    case.load.torque.pp.last_breakpoint, 0.0)
+    window = steady_window(case.run.end_time, last_ramp, ki.mesh.natural_frequency_Hz,
+                           ki.mesh.damping_ratio, ki.gear_mesh_frequency_Hz)
+    from gearcli.core.layout import P
+
+    params = ki.params.copy()
+    params[P.extrema_t_start] = window.t0_s
+    if status:
+        status("integrating (the first run compiles the solver, ~30 s)")
+    t0 = time.perf_counter()
+    kr = simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
+                  load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
+                  tooth_offsets=ki.tooth_offsets)
+    wall = time.perf_counter() - t0
+    if not kr.ok:
+        t_reached = kr.extremum("t_reached_s")
+        raise SolverError(
+            f"{loaded.source.file}: the solver failed at t = {t_reached:.6g} s: {kr.message} "
+            f"({kr.counters['accepted_steps']} steps); nothing was written. Check the contact "
+            "stiffness/damping, the load and the run tolerances"
+        )
+    result = SimulationResult(loaded, geo, ki, kr, wall, window)
+    result.summary = summarize(result)
+    result.warnings = collect_warnings(result)
+    return result
+
+
+def _refuse_unsupported(loaded: LoadedCase) -> None:
+    case = loaded.case
+    if case.contact.stiffness == "derived":
+        raise loaded.error(("contact", "stiffness"), "the ISO 6336 'derived' stiffness is not "
+                           "implemented yet; give k in N/mm^e", "derived", True)
+    if case.load.applied_to == "pinion":
+        raise loaded.error(("load", "applied_to"), "a load on the pinion is not supported by "
+                           "the solver yet; apply it to the gear", "pinion", True)
+
+
+def alias_frequency(f_Hz: float, rate_Hz: float) -> float:
+    """Where a line at f appears when sampled at ``rate`` (folding about multiples of it)."""
+    return abs(f_Hz - round(f_Hz / rate_Hz) * rate_Hz)
+
+
+def summarize(res: SimulationResult) -> dict:
+    """Key scalars over the steady window (internal units; names carry them)."""
+    k, ki, g = res.kernel, res.kernel_input, res.geometry.geometry
+    t = k.column("t_s")
+    w = t >= res.window.t0_s
+    force = k.column("force_total_N")[w]
+    delta = k.column("delta_mm")[w]
+    omega1 = k.column("omega1_rad_s")[w]
+    omega2 = k.column("omega2_rad_s")[w]
+    mm = ki.mesh
+    return {
+        "window_s": [res.window.t0_s, res.window.t1_s],
+        "window_reason": res.window.reason,
+        "samples_in_window": int(w.sum()),
+        "output_rate_Hz": ki.output_rate_Hz,
+        "gear_mesh_frequency_Hz": ki.gear_mesh_frequency_Hz,
+        "pinion_speed_mean_deg_s": math.degrees(float(omega1.mean())),
+        "gear_speed_mean_deg_s": math.degrees(float(omega2.mean())),
+        "speed_ratio_mean": float(omega1.mean() / omega2.mean()),
+        "speed_ratio_theory": g.ratio,
+        "force_mean_N": float(force.mean()),
+        "force_rms_N": float(np.sqrt(np.mean(force**2))),
+        "force_max_N": k.extremum("force_total_max_N"),
+        "force_max_t_s": k.extremum("force_total_max_t_s"),
+        "force_min_N": k.extremum("force_total_min_N"),
+        "force_static_N": mm.static_force_N,
+        "dynamic_factor": k.extremum("force_total_max_N") / mm.static_force_N
+        if mm.static_force_N > 0 else None,
+        "dte_mean_mm": float(delta.mean()),
+        "dte_peak_to_peak_mm": float(np.ptp(delta)),
+        "dte_rms_mm": float(np.sqrt(np.mean((delta - delta.mean()) ** 2))),
+        "pairs_in_contact_mean": float(k.column("pairs_in_contact")[w].mean()),
+        "contact_loss_fraction": float(np.mean(force <= 0.0)),
+        "coast_force_max_N": float(np.nanmax(k.column("force_coast_N")[w])),
+        "mesh_stiffness_N_mm": mm.mesh_stiffness_N_mm,
+        "single_pair_stiffness_N_mm": mm.single_pair_stiffness_N_mm,
+        "double_pair_stiffness_N_mm": mm.double_pair_stiffness_N_mm,
+        "static_deflection_mm": mm.static_deflection_mm,
+        "mesh_natural_frequency_Hz": mm.natural_frequency_Hz,
+        "mesh_damping_ratio": mm.damping_ratio,
+        "energy_balance": energy_balance(k),
+    }
+
+
+def energy_balance(k) -> dict:
+    """ΔE_kin + ΔV_contact against the net work in, over the run [N·mm = mJ].
+
+    residual = (ΔE_kin + ΔV) − (W_in − W_load − losses); relative to the largest term.
+    """
+    col = k.column
+    d_kin = col("kinetic_energy_mJ")[-1] - col("kinetic_energy_mJ")[0]
+    d_pot = col("contact_energy_mJ")[-1] - col("contact_energy_mJ")[0]
+    terms = {
+        "work_in_mJ": col("work_in_mJ")[-1],
+        "work_load_mJ": col("work_load_mJ")[-1],
+        "loss_bearing_mJ": col("loss_bearing_mJ")[-1],
+        "loss_damping_mJ": col("loss_damping_mJ")[-1],
+        "loss_friction_mJ": col("loss_friction_mJ")[-1],
+    }
+    net = terms["work_in_mJ"] - terms["work_load_mJ"] - terms["loss_bearing_mJ"] \
+        - terms["loss_damping_mJ"] - terms["loss_friction_mJ"]
+    residual = d_kin + d_pot - net
+    scale = max(abs(v) for v in (*terms.values(), d_kin, d_pot, 1e-300))
+    return {**{k_: float(v) for k_, v in terms.items()},
+            "delta_kinetic_mJ": float(d_kin), "delta_contact_mJ": float(d_pot),
+            "residual_mJ": float(residual), "relative_residual": float(abs(residual) / scale)}
+
+
+def collect_warnings(res: SimulationResult) -> list[str]:
+    """Warnings the terminal and the summary show (model.md §4, §7)."""
+    s, ki = res.summary, res.kernel_input
+    out = []
+    if ki.mesh.damping_ratio > 1.0:
+        out.append(f"overdamped mesh: damping ratio {ki.mesh.damping_ratio:.2f} > 1 "
+                   f"(c_max {res.loaded.case.contact.max_damping:g} N*s/mm); measured gear "
+                   "meshes have 0.03-0.1")
+    if s["contact_loss_fraction"] > 0.0:
+        out.append(f"contact loss: no drive-flank contact during "
+                   f"{100 * s['contact_loss_fraction']:.2f} % of the steady window "
+                   "(tooth separation)")
+    if s["coast_force_max_N"] > 0.0:
+        out.append(f"coast-flank impacts: coast force up to {s['coast_force_max_N']:.0f} N "
+                   "in the steady window")
+    f_z, rate = ki.gear_mesh_frequency_Hz, ki.output_rate_Hz
+    if f_z:
+        harmonics = res.loaded.case.checks.harmonics
+        nyquist = rate / 2.0
+        if f_z >= nyquist:
+            out.append(f"output aliasing: {rate:g} Hz sampling is below 2 x f_z; the "
+                       f"{f_z:.2f} Hz mesh line aliases to {alias_frequency(f_z, rate):.2f} Hz")
+        elif harmonics * f_z >= nyquist:
+            n_ok = int(nyquist // f_z)
+            out.append(f"output aliasing: {rate:g} Hz sampling resolves only {n_ok} of the "
+                       f"{harmonics} analysed mesh harmonics (default rate resolves "
+                       f"{HARMONICS_RESOLVED})")
+    if res.window.reason.startswith("the second half"):
+        out.append("no steady state: the run ends before the ramps have settled")
+    return out

@@ -1,0 +1,57 @@
+"""The steady-state window of a run: after every ramp plus the mesh mode's settling time."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+#: Settling = this many time constants of the slowest decaying mesh-mode pole (e^-5 < 1 %).
+SETTLING_TIME_CONSTANTS = 5.0
+#: The window must hold at least this many mesh cycles.
+MIN_MESH_CYCLES = 20
+
+
+@dataclass(frozen=True)
+class Window:
+    t0_s: float
+    t1_s: float
+    reason: str
+
+    @property
+    def length_s(self) -> float:
+        return self.t1_s - self.t0_s
+
+
+def settling_time_s(natural_frequency_Hz: float, damping_ratio: float) -> float:
+    """Time for the mesh mode's free response to decay by e^-5.
+
+    Slowest pole of m ẍ + c ẋ + k x = 0 (any textbook on vibrations, e.g. Rao, Mechanical
+    Vibrations §2.6): underdamped −ζω_n; overdamped −ω_n (ζ − √(ζ² − 1)).
+    """
+    wn = 2.0 * math.pi * natural_frequency_Hz
+    z = damping_ratio
+    if z <= 0.0 or wn <= 0.0:
+        return math.inf
+    rate = z * wn if z < 1.0 else wn * (z - math.sqrt(z * z - 1.0))
+    return SETTLING_TIME_CONSTANTS / rate
+
+
+def steady_window(
+    t_end_s: float,
+    last_ramp_s: float,
+    natural_frequency_Hz: float,
+    damping_ratio: float,
+    gear_mesh_frequency_Hz: float | None,
+) -> Window:
+    """Automatic window [t0, t_end]: t0 = end of ramps + settling, keeping ≥ 20 mesh cycles."""
+    t0 = max(last_ramp_s, 0.0) + settling_time_s(natural_frequency_Hz, damping_ratio)
+    reason = "after the ramps and the mesh mode's settling time"
+    if gear_mesh_frequency_Hz:
+        latest = t_end_s - MIN_MESH_CYCLES / gear_mesh_frequency_Hz
+        if not t0 <= latest:
+            t0 = max(latest, 0.0)
+            reason = f"the last {MIN_MESH_CYCLES} mesh cycles (the run is short for settling)"
+    if not t0 < t_end_s:
+        t0 = 0.5 * t_end_s
+        reason = "the second half of the run (no steady state is reached)"
+    return Window(t0, t_end_s, reason)

@@ -1,0 +1,44 @@
+"""Helpers for simulation tests: run the seed case with overrides, spectra, slot positions."""
+
+import math
+
+import numpy as np
+
+from gearcli.core.layout import P
+from gearcli.pipeline.simulate import run_simulation
+from tests.conftest import SEED
+
+# Shorter ramps than the article's 1 s keep the physics tests fast; the steady state is the
+# same (speed and load reach the seed's values).
+FAST = ["drive.speed=STEP(time, 0, 0, 0.2, 3000)", "load.torque=STEP(time, 0, 0, 0.2, 4.5e5)",
+        "run.end_time=0.6"]
+
+
+def run(*overrides):
+    return run_simulation(SEED, [*FAST, *overrides])
+
+
+def window(res):
+    t = res.kernel.column("t_s")
+    return t >= res.window.t0_s
+
+
+def amplitude_spectrum(signal, rate):
+    """Hann-windowed, amplitude-correct one-sided spectrum of a zero-mean signal."""
+    x = np.asarray(signal, float) - np.mean(signal)
+    w = np.hanning(x.size)
+    spec = np.abs(np.fft.rfft(x * w)) * 2.0 / w.sum()
+    return np.fft.rfftfreq(x.size, 1.0 / rate), spec
+
+
+def slot_positions(res):
+    """Pinion roll position x (from A) of every drive slot at every sample [mm]."""
+    prm, g = res.kernel_input.params, res.geometry.geometry
+    s1 = res.kernel.column("theta1_rad") * g.pinion.r_b_mm
+    u = np.mod(s1 - prm[P.s1_0], g.p_b_mm)
+    n = res.kernel.slot_force.shape[1]
+    return prm[P.x_lo] + u[:, None] + g.p_b_mm * np.arange(n)[None, :]
+
+
+def deg(x):
+    return math.degrees(x)
