@@ -18,6 +18,7 @@ $(STAMP): pyproject.toml
 	@touch $(STAMP)
 
 demo: $(STAMP)
+	@mkdir -p $(dir $(OUT))
 	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg
 	$(BIN)/gearcli simulate $(CASE) -o $(OUT) --force
 
