@@ -22,4 +22,10 @@ def configure() -> None:
         digest.update(src.name.encode())
         digest.update(src.read_bytes())
     base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
-    os.environ["NUMBA_CACHE_DIR"] = str(base / "gearcli" / "numba" / digest.hexdigest()[:16])
+    folder = base / "gearcli" / "numba" / digest.hexdigest()[:16]
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return  # no writable user cache: numba's default locators decide
+    if os.access(folder, os.W_OK):
+        os.environ["NUMBA_CACHE_DIR"] = str(folder)
