@@ -80,7 +80,7 @@ def test_extended_no_friction_torque_balance():
 @pytest.mark.slow
 def test_convergence_under_tolerance_refinement():
     base = run("friction.enabled=false")
-    fine = run("friction.enabled=false", "run.rtol=1e-7", "run.atol=1e-9")
+    fine = run("friction.enabled=false", "run.rtol=1e-7", "run.atol=1e-7")  # 10x both
     for key in ("force_mean_N", "force_max_N", "dte_mean_mm", "dte_peak_to_peak_mm",
                 "gear_speed_mean_deg_s"):
         assert fine.summary[key] == pytest.approx(base.summary[key], rel=5e-3), key
