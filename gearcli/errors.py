@@ -75,6 +75,10 @@ class OutputError(GearcliError):
     """An output location is unusable (exists without --force, not writable, ...)."""
 
 
+class ResultsError(GearcliError):
+    """A results folder is missing, foreign, truncated or inconsistent."""
+
+
 class SolverError(GearcliError):
     """The solver failed (divergence, NaN, runaway penetration); nothing is written as results."""
 

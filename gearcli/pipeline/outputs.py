@@ -23,6 +23,8 @@ def summary_document(res: SimulationResult) -> dict:
             "engagement": res.loaded.case.contact.engagement,
             "drive": res.loaded.case.drive.type,
         },
+        "rows": int(k.series.shape[0]),
+        "slots": int(k.slot_force.shape[1]),
         "warnings": res.warnings,
         "scalars": res.summary,
     }

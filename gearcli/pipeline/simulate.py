@@ -13,6 +13,7 @@ from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import SolverError
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import HARMONICS_RESOLVED, KernelInput, build_kernel_input
+from gearcli.pipeline.spectrum import alias_frequency
 from gearcli.pipeline.window import Window, steady_window
 
 
@@ -102,11 +103,6 @@ def _refuse_unsupported(loaded: LoadedCase) -> None:
     if case.load.applied_to == "pinion":
         raise loaded.error(("load", "applied_to"), "a load on the pinion is not supported by "
                            "the solver yet; apply it to the gear", "pinion", True)
-
-
-def alias_frequency(f_Hz: float, rate_Hz: float) -> float:
-    """Where a line at f appears when sampled at ``rate`` (folding about multiples of it)."""
-    return abs(f_Hz - round(f_Hz / rate_Hz) * rate_Hz)
 
 
 def summarize(res: SimulationResult) -> dict:

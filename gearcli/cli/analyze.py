@@ -1,0 +1,84 @@
+"""`gearcli analyze DIR`: metrics, spectra, mesh lines and checks with exit codes."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from gearcli.cli import app
+from gearcli.cli.common import handle_errors
+
+
+@app.command()
+@handle_errors
+def analyze(
+    folder: Path = typer.Argument(..., help="Results folder written by gearcli simulate."),
+    window: tuple[float, float] | None = typer.Option(
+        None, "--window", help="Analysis window T0 T1 [s] (default: automatic steady state)."
+    ),
+    as_json: bool = typer.Option(False, "--json", help="Print analysis.json to stdout."),
+    strict: bool = typer.Option(False, "--strict", help="Warnings count as failed checks."),
+) -> None:
+    """Check a run: speed ratio, mesh-frequency lines, aliasing, resonance margin, energy.
+
+    Exit codes: 0 every check passed, 4 a check failed, 1 bad input.
+    """
+    import json
+
+    from gearcli.errors import CheckFailed
+    from gearcli.pipeline.analysis_io import write_analysis
+    from gearcli.pipeline.analyze import analyze as run_analysis
+
+    result = run_analysis(folder, window, strict)
+    doc = write_analysis(result)
+    if as_json:
+        typer.echo(json.dumps(doc, indent=2))
+    else:
+        print_checks(doc)
+    if not result.passed:
+        failed = [c.name for c in result.checks if not c.passed]
+        raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
+
+
+def print_checks(doc: dict) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    m = doc["metrics"]
+    console = Console()
+    t = Table(title=f"{doc['case']}: window {m['window_s'][0]:.3f}-{m['window_s'][1]:.3f} s "
+              f"({m['window_reason']})", title_justify="left")
+    for col, just in (("quantity", "left"), ("value", "right"), ("unit", "left")):
+        t.add_column(col, justify=just)
+    rows = [
+        ("mean gear speed", m["gear_speed_mean_deg_s"], "deg/s"),
+        ("speed ratio error", m["speed_ratio_error_percent"], "%"),
+        ("gear speed fluctuation (p-p)", m["gear_speed_fluctuation_percent"], "%"),
+        ("mean / RMS normal force", f"{m['force_mean_N']:.1f} / {m['force_rms_N']:.1f}", "N"),
+        (f"max normal force ({m['force_max_source']})", m["force_max_N"], "N"),
+        ("static force T_load / r_b2", m["force_static_N"], "N"),
+        ("dynamic factor", m["dynamic_factor"], ""),
+        ("DTE peak-to-peak / RMS",
+         f"{m['dte_peak_to_peak_mm']:.5f} / {m['dte_rms_mm']:.5f}", "mm"),
+        ("contact-loss fraction", m["contact_loss_fraction"], ""),
+        ("coast-flank impacts", m["coast_impacts"], ""),
+        ("friction loss / mesh efficiency",
+         f"{m['friction_loss_W']:.1f} W / {m['mesh_efficiency'] or float('nan'):.4f}", ""),
+        ("gear-mesh frequency f_z", m["gear_mesh_frequency_Hz"], "Hz"),
+        ("mesh mode f_n / damping ratio",
+         f"{m['mesh_natural_frequency_Hz']:.1f} / {m['mesh_damping_ratio']:.3f}", "Hz / -"),
+    ]
+    for label, value, unit in rows:
+        t.add_row(label, value if isinstance(value, str) else
+                  ("—" if value is None else f"{value:.6g}"), unit)
+    console.print(t)
+    c = Table(title="Checks", title_justify="left")
+    for col in ("check", "value", "limit", "result", "note"):
+        c.add_column(col)
+    for ck in doc["checks"]:
+        v = ck["value"]
+        c.add_row(ck["name"], v if isinstance(v, str) or v is None and False else
+                  ("—" if v is None else f"{v:.6g}"), ck["limit"],
+                  "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]", ck["note"])
+    console.print(c)

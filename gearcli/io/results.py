@@ -1,0 +1,77 @@
+"""Read a gearcli results folder back (for analyze and report), refusing bad folders."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.errors import ResultsError
+
+FILES = ("manifest.json", "summary.json", "timeseries.csv")
+
+
+@dataclass(frozen=True)
+class StoredRun:
+    folder: Path
+    manifest: dict
+    summary: dict
+    columns: dict[str, np.ndarray]
+
+    def column(self, name: str) -> np.ndarray:
+        return self.columns[name]
+
+
+def read_run(folder: str | Path) -> StoredRun:
+    """Load manifest, summary and time series; every problem is a one-line ResultsError."""
+    p = Path(folder)
+    if not p.exists():
+        raise ResultsError(f"{p}: not found; expected a results folder from gearcli simulate")
+    if not p.is_dir():
+        raise ResultsError(f"{p}: not a folder; expected a results folder from gearcli simulate")
+    missing = [f for f in FILES if not (p / f).is_file()]
+    if missing:
+        raise ResultsError(f"{p}: missing {', '.join(missing)}; expected a folder written by "
+                           "gearcli simulate")
+    manifest = _json(p / "manifest.json")
+    if not isinstance(manifest, dict) or manifest.get("gearcli_manifest") != 1:
+        raise ResultsError(f"{p / 'manifest.json'}: not a gearcli manifest; expected a folder "
+                           "written by gearcli simulate")
+    summary = _json(p / "summary.json")
+    if not isinstance(summary, dict) or summary.get("status") != "ok" or "rows" not in summary:
+        raise ResultsError(f"{p / 'summary.json'}: incomplete summary; expected a finished "
+                           "gearcli simulate run")
+    columns = _csv(p / "timeseries.csv", int(summary["rows"]))
+    return StoredRun(p, manifest, summary, columns)
+
+
+def _json(path: Path):
+    try:
+        return json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ResultsError(f"{path}: unreadable JSON ({exc}); expected gearcli output") from None
+
+
+def _csv(path: Path, rows: int) -> dict[str, np.ndarray]:
+    try:
+        text = path.read_text()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ResultsError(f"{path}: unreadable ({exc})") from None
+    lines = text.splitlines()
+    if not lines:
+        raise ResultsError(f"{path}: empty; expected the time series of a run")
+    names = lines[0].split(",")
+    if "t_s" not in names:
+        raise ResultsError(f"{path}: no t_s column; expected gearcli's time series")
+    if len(lines) - 1 != rows or not text.endswith("\n"):
+        raise ResultsError(f"{path}: {len(lines) - 1} rows, summary.json says {rows}; the file "
+                           "is truncated or was edited")
+    try:
+        data = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
+    except ValueError as exc:
+        raise ResultsError(f"{path}: malformed row ({exc}); expected numbers") from None
+    if data.shape[1] != len(names) or not np.all(np.isfinite(data)):
+        raise ResultsError(f"{path}: malformed rows (wrong column count or non-finite values)")
+    return {n: data[:, i] for i, n in enumerate(names)}

@@ -1,0 +1,65 @@
+"""Write analyze's outputs into the results folder: analysis.json, spectrum.csv, harmonics.csv."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+
+from gearcli.io.files import write_atomic
+from gearcli.io.tables import columns_to_csv
+from gearcli.pipeline.analyze import SIGNALS, Analysis
+
+
+def _clean(value):
+    """JSON-safe: NaN/inf -> None, numpy scalars -> Python."""
+    if isinstance(value, dict):
+        return {k: _clean(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_clean(v) for v in value]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def analysis_document(res: Analysis) -> dict:
+    return _clean({
+        "case": res.run.summary.get("case"),
+        "passed": res.passed,
+        "window_s": [res.window.t0_s, res.window.t1_s],
+        "window_reason": res.window.reason,
+        "metrics": res.metrics,
+        "checks": [c.__dict__ for c in res.checks],
+        "warnings": res.warnings,
+        "lines": {sig: {label: ln.__dict__ for label, ln in lines}
+                  for sig, lines in res.lines.items()},
+    })
+
+
+def spectrum_columns(res: Analysis) -> dict[str, np.ndarray]:
+    freq = res.spectra["force"][0]
+    cols = {"frequency_Hz": freq}
+    for name, _, unit in SIGNALS:
+        cols[f"{name}_amplitude_{unit.replace('/', '_')}"] = res.spectra[name][1]
+    return cols
+
+
+def harmonics_csv(res: Analysis) -> str:
+    rows = ["signal,line,expected_Hz,measured_Hz,amplitude,bin_error,resolvable"]
+    for sig, lines in res.lines.items():
+        for label, ln in lines:
+            rows.append(f"{sig},{label},{ln.expected_Hz:.10g},{ln.measured_Hz:.10g},"
+                        f"{ln.amplitude:.10g},{ln.bin_error:.6g},{int(ln.resolvable)}")
+    return "\n".join(rows) + "\n"
+
+
+def write_analysis(res: Analysis) -> dict:
+    doc = analysis_document(res)
+    folder = res.run.folder
+    write_atomic(folder / "analysis.json", json.dumps(doc, indent=2) + "\n")
+    write_atomic(folder / "spectrum.csv", columns_to_csv(spectrum_columns(res)))
+    write_atomic(folder / "harmonics.csv", harmonics_csv(res))
+    return doc

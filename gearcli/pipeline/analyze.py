@@ -1,0 +1,214 @@
+"""`gearcli analyze DIR`: steady-state metrics, spectra, mesh lines and checks of a finished run.
+
+Physics references: model.md §6 (mesh mode), §7 (static force, dynamic factor, spectra,
+aliasing). Deterministic: the same folder gives the same analysis.json byte for byte.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.case.load import load_case_text
+from gearcli.errors import ResultsError
+from gearcli.io.results import StoredRun, read_run
+from gearcli.pipeline.geometry import run_geometry
+from gearcli.pipeline.spectrum import (
+    Line,
+    alias_frequency,
+    amplitude_spectrum,
+    measure_line,
+    mesh_lines,
+)
+from gearcli.pipeline.window import MIN_MESH_CYCLES, Window
+
+#: A line counts as present when it stands this far above the spectrum's median floor.
+LINE_PROMINENCE = 10.0
+#: Spectra analysed: (name in the files, column, unit).
+SIGNALS = (("gear_speed", "omega2_rad_s", "rad/s"), ("dte", "delta_mm", "mm"),
+           ("force", "force_total_N", "N"))
+
+
+@dataclass
+class Check:
+    name: str
+    value: float | str | None
+    limit: str
+    passed: bool
+    note: str = ""
+
+
+@dataclass
+class Analysis:
+    run: StoredRun
+    window: Window
+    metrics: dict
+    spectra: dict[str, tuple[np.ndarray, np.ndarray]]
+    lines: dict[str, list[tuple[str, Line]]]
+    checks: list[Check] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.checks)
+
+
+def analyze(folder: str | Path, window: tuple[float, float] | None = None,
+            strict: bool = False) -> Analysis:
+    """Analyse a results folder; bad input raises ResultsError (exit 1)."""
+    run = read_run(folder)
+    loaded = load_case_text(json.dumps(run.manifest["resolved_case"]),
+                            str(Path(folder) / "manifest.json"))
+    case = loaded.case
+    geo = run_geometry(loaded).geometry
+    s = run.summary["scalars"]
+    t = run.column("t_s")
+    rate = s["output_rate_Hz"]
+    f_z = s["gear_mesh_frequency_Hz"]
+    win = _window(t, s, window, f_z, geo)
+    sel = (t >= win.t0_s - 1e-12) & (t <= win.t1_s + 1e-12)
+    metrics = _metrics(run, sel, win, geo, s)
+    n1 = metrics["pinion_speed_mean_deg_s"] / 360.0
+    n2 = metrics["gear_speed_mean_deg_s"] / 360.0
+    f_z_measured = geo.pinion.teeth * n1
+    spectra = {name: amplitude_spectrum(run.column(col)[sel], rate) for name, col, _ in SIGNALS}
+    expected = mesh_lines(f_z_measured, {"n1": n1, "n2": n2}, case.checks.harmonics)
+    lines = {name: [(label, measure_line(f, a, fe)) for label, fe in expected]
+             for name, (f, a) in spectra.items()}
+    result = Analysis(run, win, metrics, spectra, lines)
+    result.metrics.update(gear_mesh_frequency_Hz=f_z_measured, pinion_shaft_Hz=n1,
+                          gear_shaft_Hz=n2, output_rate_Hz=rate,
+                          frequency_resolution_Hz=spectra["force"][0][1])
+    result.checks = _checks(result, case, s)
+    result.warnings = list(run.summary.get("warnings", []))
+    if strict:
+        result.checks.append(Check("no_warnings", len(result.warnings), "0 (--strict)",
+                                   not result.warnings, "; ".join(result.warnings)))
+    return result
+
+
+def _window(t, s, given, f_z, geo) -> Window:
+    t_end = float(t[-1])
+    if given is None:
+        t0, t1 = s["window_s"]
+        return Window(t0, t1, s["window_reason"])
+    t0, t1 = map(float, given)
+    if not (t[0] <= t0 < t1 <= t_end + 1e-9):
+        raise ResultsError(f"--window {t0:g} {t1:g}: outside the run or empty; expected "
+                           f"{t[0]:g} <= T0 < T1 <= {t_end:g} s")
+    # the sidebands k f_z +- n2 must fall in separate bins: resolution <= n2 / 2
+    n2 = f_z / geo.ratio / geo.pinion.teeth if f_z else None
+    need = max(2.0 / n2 if n2 else 0.0, MIN_MESH_CYCLES / f_z if f_z else 0.0)
+    if t1 - t0 < need:
+        raise ResultsError(f"--window {t0:g} {t1:g}: {t1 - t0:g} s is too short; the "
+                           f"spectra need >= {need:.3g} s (bins <= half the gear shaft "
+                           f"frequency, >= {MIN_MESH_CYCLES} mesh cycles)")
+    return Window(t0, t1, "given (--window)")
+
+
+def _true_extremum(stored: float, t_at: float, win: Window, sampled: float, larger: bool):
+    """The solver's true extremum when it lies in the window, else the sampled one."""
+    if stored is not None and win.t0_s <= t_at <= win.t1_s:
+        return (max if larger else min)(stored, sampled), "solver steps"
+    return sampled, "samples"
+
+
+def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
+    c = run.column
+    force = c("force_total_N")[sel]
+    delta = c("delta_mm")[sel]
+    w1, w2 = c("omega1_rad_s")[sel], c("omega2_rad_s")[sel]
+    fmax, fmax_src = _true_extremum(s["force_max_N"], s["force_max_t_s"], win, force.max(), True)
+    fmin = float(force.min())
+    static = s["force_static_N"]
+    ratio = float(w1.mean() / w2.mean())
+    coast = c("force_coast_N")[sel] > 0.0
+    # powers: N*mm/s = mW; friction power is never positive (it is a loss)
+    p_fric_W = -float(c("friction_power_mW")[sel].mean()) * 1e-3
+    p_in_W = float(np.mean(c("drive_torque_Nmm")[sel] * w1)) * 1e-3
+    torque = c("drive_torque_Nmm")[sel]
+    return {
+        "window_s": [win.t0_s, win.t1_s],
+        "window_reason": win.reason,
+        "samples": int(sel.sum()),
+        "pinion_speed_mean_deg_s": math.degrees(float(w1.mean())),
+        "gear_speed_mean_deg_s": math.degrees(float(w2.mean())),
+        "speed_ratio": ratio,
+        "speed_ratio_theory": geo.ratio,
+        "speed_ratio_error_percent": 100.0 * (ratio - geo.ratio) / geo.ratio,
+        "gear_speed_fluctuation_percent": 100.0 * float(np.ptp(w2) / w2.mean()),
+        "force_mean_N": float(force.mean()),
+        "force_rms_N": float(np.sqrt(np.mean(force**2))),
+        "force_max_N": float(fmax),
+        "force_max_source": fmax_src,
+        "force_min_N": fmin,
+        "force_static_N": static,
+        "dynamic_factor": float(fmax / static) if static > 0 else None,
+        "dte_mean_mm": float(delta.mean()),
+        "dte_peak_to_peak_mm": float(np.ptp(delta)),
+        "dte_rms_mm": float(np.std(delta)),
+        "contact_loss_fraction": float(np.mean(force <= 0.0)),
+        "coast_impacts": int(np.count_nonzero(coast[1:] & ~coast[:-1]) + int(coast[0])),
+        "friction_loss_W": p_fric_W,
+        "input_power_W": p_in_W,
+        "mesh_efficiency": 1.0 - p_fric_W / p_in_W if p_in_W > 0 else None,
+        "drive_torque_mean_Nmm": float(torque.mean()),
+        "drive_torque_ripple_Nmm": float(np.ptp(torque)),
+        "mesh_natural_frequency_Hz": s["mesh_natural_frequency_Hz"],
+        "mesh_damping_ratio": s["mesh_damping_ratio"],
+    }
+
+
+def _checks(res: Analysis, case, s) -> list[Check]:
+    m, ck = res.metrics, case.checks
+    f_z, rate = m["gear_mesh_frequency_Hz"], m["output_rate_Hz"]
+    out = [
+        Check("solver_status", "ok", "ok", True),
+        Check("speed_ratio_error_percent", m["speed_ratio_error_percent"],
+              f"|e| <= {ck.speed_ratio_error_percent:g} %",
+              abs(m["speed_ratio_error_percent"]) <= ck.speed_ratio_error_percent),
+    ]
+    top = ck.harmonics * f_z
+    ok = top < rate / 2.0
+    note = "" if ok else (f"sampling at {rate:g} Hz: the {f_z:.2f} Hz mesh line folds to "
+                          f"{alias_frequency(f_z, rate):.2f} Hz" if f_z >= rate / 2.0 else
+                          f"sampling at {rate:g} Hz resolves only {int(rate / 2 // f_z)} of "
+                          f"{ck.harmonics} harmonics")
+    out.append(Check("no_aliasing", top, f"{ck.harmonics} x f_z < fs/2 = {rate / 2:g} Hz", ok,
+                     note))
+    gmf = dict(res.lines["gear_speed"])["1fz"]
+    freq, amp = res.spectra["gear_speed"]
+    floor = float(np.median(amp[1:])) if amp.size > 1 else 0.0
+    present = (gmf.resolvable and abs(gmf.bin_error) <= 1.0
+               and gmf.amplitude > LINE_PROMINENCE * floor)
+    out.append(Check("gmf_line_present", gmf.measured_Hz if gmf.resolvable else None,
+                     f"line at f_z = {f_z:.3f} Hz +- 1 bin, > {LINE_PROMINENCE:g} x floor",
+                     bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"))
+    f_n, zeta = m["mesh_natural_frequency_Hz"], m["mesh_damping_ratio"]
+    margins = [abs(k * f_z - f_n) / f_n * 100.0 for k in range(1, ck.harmonics + 1)]
+    k_min = int(np.argmin(margins)) + 1
+    m["resonance_margins_percent"] = margins
+    note = f"nearest: {k_min} x f_z = {k_min * f_z:.1f} Hz vs mesh mode {f_n:.1f} Hz"
+    # A mode with zeta >= 1/sqrt(2) has no resonant peak: |H(f)| <= 1 at every frequency
+    # (base-excited single-DOF oscillator; e.g. Rao, Mechanical Vibrations, §3.4).
+    no_peak = zeta >= 1.0 / math.sqrt(2.0)
+    if no_peak:
+        note += f"; the mode has no resonant peak (damping ratio {zeta:.2f} >= 0.707)"
+    out.append(Check("resonance_margin_percent", min(margins),
+                     f">= {ck.resonance_margin_percent:g} %",
+                     no_peak or min(margins) >= ck.resonance_margin_percent, note))
+    if ck.dynamic_factor_max is not None and m["dynamic_factor"] is not None:
+        out.append(Check("dynamic_factor", m["dynamic_factor"], f"<= {ck.dynamic_factor_max:g}",
+                         m["dynamic_factor"] <= ck.dynamic_factor_max))
+    if ck.dte_peak_to_peak_max is not None:
+        out.append(Check("dte_peak_to_peak_mm", m["dte_peak_to_peak_mm"],
+                         f"<= {ck.dte_peak_to_peak_max:g} mm",
+                         m["dte_peak_to_peak_mm"] <= ck.dte_peak_to_peak_max))
+    eb = s["energy_balance"]["relative_residual"]
+    out.append(Check("energy_balance", eb, f"<= {ck.energy_balance_tolerance:g}",
+                     eb <= ck.energy_balance_tolerance))
+    return out

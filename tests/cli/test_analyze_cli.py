@@ -1,0 +1,98 @@
+"""`gearcli analyze`: the seed case's checks, aliasing failure, determinism, bad input."""
+
+import json
+import shutil
+
+import pytest
+from typer.testing import CliRunner
+
+from gearcli.cli import app
+from gearcli.errors import ExitCode
+from gearcli.pipeline.outputs import write_simulation
+from gearcli.pipeline.simulate import run_simulation
+from tests.conftest import SEED
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def seed_dir(tmp_path_factory):
+    """The seed case as written (5 s, default output rate)."""
+    folder = tmp_path_factory.mktemp("seed") / "run"
+    write_simulation(run_simulation(SEED), folder, force=False)
+    return folder
+
+
+def _analyze(folder, *args):
+    return runner.invoke(app, ["analyze", str(folder), "--json", *args])
+
+
+def test_seed_passes_every_check(seed_dir):
+    result = _analyze(seed_dir)
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.stdout)
+    m = doc["metrics"]
+    assert abs(m["speed_ratio_error_percent"]) < 0.01
+    assert doc["lines"]["gear_speed"]["1fz"]["measured_Hz"] == pytest.approx(141.667, abs=0.25)
+    checks = {c["name"]: c for c in doc["checks"]}
+    assert checks["no_aliasing"]["passed"] and checks["gmf_line_present"]["passed"]
+    for name in ("spectrum.csv", "harmonics.csv", "analysis.json"):
+        assert (seed_dir / name).is_file()
+
+
+def test_analysis_is_deterministic(seed_dir):
+    first = _analyze(seed_dir).stdout
+    files = {n: (seed_dir / n).read_bytes() for n in ("analysis.json", "harmonics.csv")}
+    second = _analyze(seed_dir).stdout
+    assert first == second
+    for n, data in files.items():
+        assert (seed_dir / n).read_bytes() == data
+
+
+def test_seed_1000_steps_aliases(tmp_path):
+    # The article's 1000 output steps: 200 Hz sampling, below 2 f_z (model.md §9 slip 4).
+    folder = tmp_path / "run"
+    write_simulation(run_simulation(SEED, ["run.output_steps=1000"]), folder, force=False)
+    result = _analyze(folder)
+    assert result.exit_code == ExitCode.CHECK_FAILED
+    checks = {c["name"]: c for c in json.loads(result.stdout)["checks"]}
+    assert not checks["no_aliasing"]["passed"]
+    assert "folds to 58.33 Hz" in checks["no_aliasing"]["note"]
+    assert "no_aliasing" in result.stderr
+
+
+def test_window_option(seed_dir):
+    result = _analyze(seed_dir, "--window", "2", "4")
+    assert result.exit_code == 0
+    assert json.loads(result.stdout)["window_s"] == [2.0, 4.0]
+
+
+@pytest.mark.parametrize("window, fragment", [(("4", "9"), "outside the run"),
+                                              (("2", "2.1"), "too short")])
+def test_bad_window(seed_dir, window, fragment):
+    result = _analyze(seed_dir, "--window", *window)
+    assert result.exit_code == 1 and fragment in result.stderr
+
+
+def test_bad_folders(tmp_path, seed_dir):
+    cases = {}
+    cases["missing"] = tmp_path / "nope"
+    (tmp_path / "file").write_text("x")
+    cases["a file"] = tmp_path / "file"
+    foreign = tmp_path / "foreign"
+    foreign.mkdir()
+    (foreign / "data.txt").write_text("x")
+    cases["foreign"] = foreign
+    corrupt = tmp_path / "corrupt"
+    shutil.copytree(seed_dir, corrupt)
+    (corrupt / "manifest.json").write_text("{not json")
+    cases["corrupt manifest"] = corrupt
+    truncated = tmp_path / "truncated"
+    shutil.copytree(seed_dir, truncated)
+    text = (truncated / "timeseries.csv").read_text()
+    (truncated / "timeseries.csv").write_text(text[: len(text) // 2])
+    cases["truncated"] = truncated
+    for what, folder in cases.items():
+        result = _analyze(folder)
+        assert result.exit_code == 1, what
+        assert result.stderr.startswith("error: ") and "Traceback" not in result.output, what
