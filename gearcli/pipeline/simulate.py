@@ -44,10 +44,30 @@ class SimulationResult:
                and n not in ("friction_power_mW",)}
         for j in range(k.slot_force.shape[1]):
             out[f"force_slot{j}_N"] = k.slot_force[:, j]
+        cycle, x = self.slot_positions()
+        out["mesh_cycle"] = cycle
+        for j in range(x.shape[1]):
+            out[f"x_slot{j}_mm"] = x[:, j]
         for n in COLUMN_NAMES:
             if n.endswith("_mJ") or n == "friction_power_mW":
                 out[n] = cols[n]
         return out
+
+
+    def slot_positions(self) -> tuple[np.ndarray, np.ndarray]:
+        """Mesh cycle n and each drive slot's pinion roll position x from A [mm] per sample.
+
+        x_j = x_lo + ((s1 - s1_0) mod p_b) + j p_b with n = floor((s1 - s1_0)/p_b) (core/rhs.py);
+        the pair in slot j has pinion tooth (n - j) mod z1 and gear tooth (n - j) mod z2.
+        """
+        from gearcli.core.layout import P
+
+        prm, g = self.kernel_input.params, self.geometry.geometry
+        r = self.kernel.column("theta1_rad") * g.pinion.r_b_mm - prm[P.s1_0]
+        n = np.floor(r / g.p_b_mm)
+        u = r - n * g.p_b_mm
+        slots = np.arange(self.kernel.slot_force.shape[1])
+        return n, prm[P.x_lo] + u[:, None] + g.p_b_mm * slots[None, :]
 
 
 def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None = None,

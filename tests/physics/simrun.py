@@ -4,7 +4,6 @@ import math
 
 import numpy as np
 
-from gearcli.core.layout import P
 from gearcli.pipeline.simulate import run_simulation
 from tests.conftest import SEED
 
@@ -33,11 +32,7 @@ def amplitude_spectrum(signal, rate):
 
 def slot_positions(res):
     """Pinion roll position x (from A) of every drive slot at every sample [mm]."""
-    prm, g = res.kernel_input.params, res.geometry.geometry
-    s1 = res.kernel.column("theta1_rad") * g.pinion.r_b_mm
-    u = np.mod(s1 - prm[P.s1_0], g.p_b_mm)
-    n = res.kernel.slot_force.shape[1]
-    return prm[P.x_lo] + u[:, None] + g.p_b_mm * np.arange(n)[None, :]
+    return res.slot_positions()[1]
 
 
 def deg(x):
