@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli import app
-from gearcli.cli.common import handle_errors
+from gearcli.cli.common import format_value, handle_errors, print_quantity_table
 
 
 @app.command()
@@ -46,11 +46,6 @@ def print_checks(doc: dict) -> None:
     from rich.table import Table
 
     m = doc["metrics"]
-    console = Console()
-    t = Table(title=f"{doc['case']}: window {m['window_s'][0]:.3f}-{m['window_s'][1]:.3f} s "
-              f"({m['window_reason']})", title_justify="left")
-    for col, just in (("quantity", "left"), ("value", "right"), ("unit", "left")):
-        t.add_column(col, justify=just)
     rows = [
         ("mean gear speed", m["gear_speed_mean_deg_s"], "deg/s"),
         ("speed ratio error", m["speed_ratio_error_percent"], "%"),
@@ -69,16 +64,14 @@ def print_checks(doc: dict) -> None:
         ("mesh mode f_n / damping ratio",
          f"{m['mesh_natural_frequency_Hz']:.1f} / {m['mesh_damping_ratio']:.3f}", "Hz / -"),
     ]
-    for label, value, unit in rows:
-        t.add_row(label, value if isinstance(value, str) else
-                  ("—" if value is None else f"{value:.6g}"), unit)
-    console.print(t)
+    w0, w1 = m["window_s"]
+    print_quantity_table(f"{doc['case']}: window {w0:.3f}-{w1:.3f} s ({m['window_reason']})",
+                         rows)
+    console = Console()
     c = Table(title="Checks", title_justify="left")
     for col in ("check", "value", "limit", "result", "note"):
         c.add_column(col)
     for ck in doc["checks"]:
-        v = ck["value"]
-        c.add_row(ck["name"], v if isinstance(v, str) or v is None and False else
-                  ("—" if v is None else f"{v:.6g}"), ck["limit"],
+        c.add_row(ck["name"], format_value(ck["value"]), ck["limit"],
                   "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]", ck["note"])
     console.print(c)

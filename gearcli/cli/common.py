@@ -85,3 +85,30 @@ def status_reporter(enabled: bool):
             yield lambda text: st.update(text)
 
     return spinner()
+
+
+def format_value(value) -> str:
+    """A table cell: strings as they are, None as a dash, numbers to 6 significant digits."""
+    if isinstance(value, str):
+        return value
+    if value is None:
+        return "—"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    return f"{value:.6g}"
+
+
+def print_quantity_table(title: str, rows) -> None:
+    """A (quantity, value, unit) table on the terminal (rich)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    t = Table(title=title, title_justify="left")
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    t.add_column("unit")
+    for label, value, unit in rows:
+        t.add_row(label, format_value(value), unit)
+    Console().print(t)

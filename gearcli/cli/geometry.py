@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli import app
-from gearcli.cli.common import handle_errors
+from gearcli.cli.common import format_value, handle_errors
 
 # (label, json key, unit) rows of the per-gear and per-pair tables.
 GEAR_ROWS = [
@@ -101,7 +101,8 @@ def _print_tables(data: dict) -> None:
     t.add_column("gear", justify="right")
     t.add_column("unit")
     for label, key, unit in GEAR_ROWS:
-        t.add_row(label, _fmt(data["pinion"].get(key)), _fmt(data["gear"].get(key)), unit)
+        pinion, gear = data["pinion"].get(key), data["gear"].get(key)
+        t.add_row(label, format_value(pinion), format_value(gear), unit)
     console.print(t)
     p = Table(title="Pair", title_justify="left")
     p.add_column("quantity")
@@ -109,15 +110,5 @@ def _print_tables(data: dict) -> None:
     p.add_column("unit")
     for label, key, unit in PAIR_ROWS:
         if data["pair"].get(key) is not None:
-            p.add_row(label, _fmt(data["pair"][key]), unit)
+            p.add_row(label, format_value(data["pair"][key]), unit)
     console.print(p)
-
-
-def _fmt(v) -> str:
-    if v is None:
-        return "—"
-    if isinstance(v, bool):
-        return "yes" if v else "no"
-    if isinstance(v, int):
-        return str(v)
-    return f"{v:.6g}" if abs(v) >= 1e-3 or v == 0 else f"{v:.4e}"

@@ -7,7 +7,12 @@ from pathlib import Path
 import typer
 
 from gearcli.cli import app
-from gearcli.cli.common import handle_errors, numba_cache_setup, status_reporter
+from gearcli.cli.common import (
+    handle_errors,
+    numba_cache_setup,
+    print_quantity_table,
+    status_reporter,
+)
 
 
 @app.command()
@@ -53,15 +58,8 @@ def simulate(
 
 
 def _print_summary(doc: dict, out: str) -> None:
-    from rich.console import Console
-    from rich.table import Table
-
     s, sv = doc["scalars"], doc["solver"]
     w0, w1 = s["window_s"]
-    t = Table(title=f"{doc['case']}: steady window {w0:.3f}-{w1:.3f} s", title_justify="left")
-    t.add_column("quantity")
-    t.add_column("value", justify="right")
-    t.add_column("unit")
     rows = [
         ("mean pinion speed", s["pinion_speed_mean_deg_s"], "deg/s"),
         ("mean gear speed", s["gear_speed_mean_deg_s"], "deg/s"),
@@ -84,8 +82,5 @@ def _print_summary(doc: dict, out: str) -> None:
          f"{sv['rhs_evaluations']}", ""),
         ("solver wall time", sv["wall_time_s"], "s"),
     ]
-    for label, value, unit in rows:
-        t.add_row(label, value if isinstance(value, str) else
-                  ("—" if value is None else f"{value:.6g}"), unit)
-    Console().print(t)
+    print_quantity_table(f"{doc['case']}: steady window {w0:.3f}-{w1:.3f} s", rows)
     typer.echo(f"results written to {out}/")

@@ -18,15 +18,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-
-def adams_step(x: float, x0: float, h0: float, x1: float, h1: float) -> float:
-    """Adams STEP: cubic blend h0 → h1 over [x0, x1] (MSC Adams Solver function STEP)."""
-    if x <= x0:
-        return h0
-    if x >= x1:
-        return h1
-    d = (x - x0) / (x1 - x0)
-    return h0 + (h1 - h0) * d * d * (3.0 - 2.0 * d)
+from gearcli.core.stepfunc import step as adams_step  # Adams STEP (one implementation)
 
 
 @dataclass(frozen=True)
