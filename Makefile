@@ -20,7 +20,7 @@ $(STAMP): pyproject.toml
 demo: $(STAMP)
 	@mkdir -p $(dir $(OUT))
 	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg
-	$(BIN)/gearcli simulate $(CASE) -o $(OUT) --force
+	$(BIN)/gearcli run $(CASE) -o $(OUT) --force
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -n $(JOBS) -q

@@ -40,7 +40,7 @@ def _root(
 
 
 # Registering the commands (each module imports only typer at import time).
-from gearcli.cli import analyze, casefile, geometry, simulate  # noqa: E402,F401
+from gearcli.cli import analyze, casefile, geometry, report, simulate, stress  # noqa: E402,F401
 
 
 def main() -> None:

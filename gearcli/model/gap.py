@@ -90,7 +90,7 @@ class GapTables:
 
 
 # --- kinematics of the tooth pair that is in contact at the pitch point C when Δs = 0 --------
-def _tooth_angles(geo: PairGeometry, x_mm):
+def tooth_angles(geo: PairGeometry, x_mm):
     """Polar angles of the centrelines of the pinion tooth (about O1 = (0, 0)) and the gear
     tooth (about O2 = (a_w, 0)) of one pair at rigid-kinematic roll position x [mm].
 
@@ -126,7 +126,7 @@ def _flank_gap(mate: GearGeometry, centre, mate_beta, px, py, rounding_mm: float
 def approach_gap(geo: PairGeometry, x_mm):
     """Gap of the gear's tip (corner or rounding) to the pinion flank at roll x ≤ 0 [mm]."""
     tip = profile.tip_corner(geo.gear)
-    beta1, beta2 = _tooth_angles(geo, x_mm)
+    beta1, beta2 = tooth_angles(geo, x_mm)
     ang = beta2 + tip.angle_rad  # gear drive flank: +ψ side of its tooth
     px = geo.a_w_mm + tip.radius_mm * np.cos(ang)
     py = tip.radius_mm * np.sin(ang)
@@ -136,7 +136,7 @@ def approach_gap(geo: PairGeometry, x_mm):
 def recess_gap(geo: PairGeometry, x_mm):
     """Gap of the pinion's tip (corner or rounding) to the gear flank at roll x ≥ g_α [mm]."""
     tip = profile.tip_corner(geo.pinion)
-    beta1, beta2 = _tooth_angles(geo, x_mm)
+    beta1, beta2 = tooth_angles(geo, x_mm)
     ang = beta1 + tip.angle_rad
     px = tip.radius_mm * np.cos(ang)
     py = tip.radius_mm * np.sin(ang)

@@ -144,6 +144,8 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
         "force_mean_N": float(force.mean()),
         "force_rms_N": float(np.sqrt(np.mean(force**2))),
         "force_max_N": float(fmax),
+        "force_max_t_s": float(s["force_max_t_s"]) if fmax_src == "solver steps"
+        else float(c("t_s")[sel][int(np.argmax(force))]),
         "force_max_source": fmax_src,
         "force_min_N": fmin,
         "force_static_N": static,

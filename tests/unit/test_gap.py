@@ -43,9 +43,9 @@ def test_approach_gap_is_euclidean_distance_to_pinion_flank(x):
     # the rigid-kinematic roll x and measure the shortest Euclidean distance. For an involute,
     # the normal through a point is the base tangent, so both measures agree exactly; the
     # tolerance covers the polyline chord error (spacing ~0.01 mm -> ~1e-6 mm).
-    from gearcli.model.gap import _tooth_angles
+    from gearcli.model.gap import tooth_angles
 
-    beta1, beta2 = _tooth_angles(SEED, x)
+    beta1, beta2 = tooth_angles(SEED, x)
     tip = profile.tip_corner(SEED.gear)
     q = np.array([SEED.a_w_mm + tip.radius_mm * math.cos(beta2 + tip.angle_rad),
                   tip.radius_mm * math.sin(beta2 + tip.angle_rad)])

@@ -19,7 +19,7 @@ ALLOWED = {
     "io": set(),
     "plotting": {"model"},
     "pipeline": {"core", "model", "case", "io", "plotting", "report"},
-    "report": {"model", "io", "plotting"},
+    "report": {"model", "case", "io", "plotting"},
     "cli": set(LAYERS),
 }
 STDLIB_OK_IN_CORE = {"math", "functools", "numpy", "numba", "__future__", "typing", "gearcli"}

@@ -1,0 +1,69 @@
+"""`gearcli report DIR` and `gearcli run CASE -o DIR` (simulate + analyze + report)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from gearcli.cli import app
+from gearcli.cli.common import handle_errors, numba_cache_setup, status_reporter
+
+
+@app.command()
+@handle_errors
+def report(
+    folder: Path = typer.Argument(..., help="Results folder (after gearcli analyze)."),
+    fmt: str = typer.Option("html", "--format", help="html (one self-contained file) or md."),
+    out: Path | None = typer.Option(
+        None, "-o", "--out", help="Report file (default DIR/report.*)."
+    ),
+) -> None:
+    """Figures (PNG + SVG) and a report: case tables, geometry, results, checks, manifest."""
+    from gearcli.errors import OutputError
+    from gearcli.report import build_report
+
+    if fmt not in ("html", "md"):
+        raise OutputError(f"--format {fmt}: expected html or md")
+    path = build_report(folder, fmt, out)
+    typer.echo(f"report written to {path}")
+
+
+@app.command()
+@handle_errors
+def run(
+    case: Path = typer.Argument(..., help="Case file (YAML)."),
+    out: Path = typer.Option(..., "-o", "--out", help="Results folder."),
+    set_: list[str] = typer.Option([], "--set", help="Override a case value: key.path=value."),
+    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder."),
+    fmt: str = typer.Option("html", "--format", help="Report format: html or md."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors and the report path."),
+) -> None:
+    """simulate + analyze + report in one go; the exit code is analyze's (4: a check failed)."""
+    numba_cache_setup()
+    from gearcli.cli.analyze import print_checks
+    from gearcli.errors import CheckFailed
+    from gearcli.io.outdir import check_target
+    from gearcli.pipeline.analysis_io import write_analysis
+    from gearcli.pipeline.analyze import analyze as run_analysis
+    from gearcli.pipeline.outputs import write_simulation
+    from gearcli.pipeline.simulate import run_simulation
+    from gearcli.report import build_report
+
+    check_target(out, force)
+    with status_reporter(enabled=not quiet) as status:
+        result = run_simulation(case, set_, status=status)
+        write_simulation(result, out, force, set_)
+        if status:
+            status("analysing and writing the report")
+        analysis = run_analysis(out)
+        doc = write_analysis(analysis)
+        path = build_report(out, fmt, None)
+    if not quiet:
+        print_checks(doc)
+        for w in result.warnings:
+            typer.echo(f"warning: {w}", err=True)
+    typer.echo(f"report written to {path}")
+    if not analysis.passed:
+        failed = [c.name for c in analysis.checks if not c.passed]
+        raise CheckFailed(f"{out}: check(s) failed: {', '.join(failed)}")

@@ -1,0 +1,102 @@
+"""`gearcli stress DIR`: contact and root stress histories, per-tooth maxima, ISO references."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from gearcli.cli import app
+from gearcli.cli.common import handle_errors
+
+
+@app.command()
+@handle_errors
+def stress(
+    folder: Path = typer.Argument(..., help="Results folder written by gearcli simulate."),
+    as_json: bool = typer.Option(False, "--json", help="Print stress.json to stdout."),
+    plot: Path | None = typer.Option(
+        None, "--plot", help="Plot σ_H and σ_F over a few mesh cycles and along the path "
+        "of contact to FILE (.png, .svg or .pdf)."
+    ),
+    window: tuple[float, float] | None = typer.Option(
+        None, "--window", help="Window T0 T1 [s] for the maxima (default: the run's steady "
+        "window)."
+    ),
+    safety: bool = typer.Option(
+        False, "--safety", help="Require safety factors: error when the case lacks "
+        "contact_fatigue_limit / bending_fatigue_limit."
+    ),
+) -> None:
+    """Hertz contact stress and ISO 6336-3 root stress of every tooth pair from the simulated
+    forces; writes DIR/stress.csv (histories) and DIR/stress.json (maxima, ISO static values,
+    ratios, safety factors). Stresses in MPa."""
+    import json
+
+    from gearcli.errors import OutputError
+    from gearcli.pipeline.stress import compute_stress, save_stress_plot, write_stress
+
+    if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
+        raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
+    result = compute_stress(folder, window, require_limits=safety)
+    doc = write_stress(result)
+    if plot is not None:
+        save_stress_plot(result, plot)
+    if as_json:
+        typer.echo(json.dumps(doc, indent=2))
+    else:
+        print_tables(doc)
+
+
+def _f(value, fmt: str = ".4g") -> str:
+    return "—" if value is None else f"{value:{fmt}}"
+
+
+def print_tables(doc: dict) -> None:
+    """One table per gear: ISO static values, dynamic peaks, ratios, safety factors."""
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    st = doc["static"]
+    w = doc["window_s"]
+    console.print(f"{doc['case']}: static load F_n = {st['force_normal_N']:.6g} N "
+                  f"(F_t = {st['force_tangential_N']:.6g} N), σ_H0 (pitch point, Z_H Z_E) = "
+                  f"{st['sigma_H0_MPa']:.4g} MPa; window {w[0]:.4g}-{w[1]:.4g} s "
+                  f"({doc['window_reason']})")
+    for which, point, z_name in (("pinion", "B", "Z_B"), ("gear", "D", "Z_D")):
+        g, s = doc[which], st[which]
+        t = Table(title=f"{which} (z = {g['teeth']})", title_justify="left")
+        for col, just in (("quantity", "left"), ("value", "right"), ("unit", "left")):
+            t.add_column(col, justify=just)
+        ph, pf = g["peak_sigma_H"], g["peak_sigma_F"]
+        per_h = [v for v in g["sigma_H_max_per_tooth_MPa"] if v is not None]
+        per_f = [v for v in g["sigma_F_max_per_tooth_MPa"] if v is not None]
+        rows = [
+            (f"ISO static σ_H ({z_name} σ_H0, single contact at {point})",
+             _f(s["sigma_H_iso_MPa"]), "MPa"),
+            ("ISO Y_F / Y_S (Method B, outer single contact)",
+             f"{s['Y_F']:.4f} / {s['Y_S']:.4f}", ""),
+            ("ISO static σ_F0 = F_t/(b m) Y_F Y_S", _f(s["sigma_F0_MPa"]), "MPa"),
+            ("peak dynamic σ_H", _f(ph["MPa"]), "MPa"),
+            ("  at", f"t = {_f(ph.get('t_s'), '.5g')} s, tooth {ph.get('tooth', '—')}, "
+             f"{ph.get('zone', '')}", ""),
+            ("peak dynamic σ_F", _f(pf["MPa"]), "MPa"),
+            ("  at", f"t = {_f(pf.get('t_s'), '.5g')} s, tooth {pf.get('tooth', '—')}, "
+             f"{pf.get('zone', '')}", ""),
+            ("σ_H max per tooth (min … max over teeth)",
+             f"{min(per_h):.4g} … {max(per_h):.4g}" if per_h else "—", "MPa"),
+            ("σ_F max per tooth (min … max over teeth)",
+             f"{min(per_f):.4g} … {max(per_f):.4g}" if per_f else "—", "MPa"),
+            ("dynamic / static σ_H", _f(g["ratio_sigma_H_to_static"]), ""),
+            ("dynamic / static σ_F", _f(g["ratio_sigma_F_to_static"]), ""),
+        ]
+        sf = g["safety"]
+        if sf is not None:
+            rows += [("safety S_H = σ_Hlim / σ_H,max", _f(sf["S_H"], ".3f"), ""),
+                     ("safety S_F = σ_Flim Y_ST / σ_F,max", _f(sf["S_F"], ".3f"), "")]
+        for row in rows:
+            t.add_row(*row)
+        console.print(t)
+    for text in doc["warnings"]:
+        console.print(f"[yellow]warning:[/yellow] {text}")

@@ -1,0 +1,396 @@
+"""Figures of a finished run: speeds, mesh force, load sharing, DTE, spectra, errors and relief.
+
+Every function takes plain arrays and dicts (internal units: s, rad, mm, N; spectra in the units
+of analysis' spectrum.csv) and returns one matplotlib Figure (Agg canvas, never shown). The title
+of each figure states what the reader should see; the numbers in it come from the arrays given.
+matplotlib is imported inside the functions so that importing this module stays cheap.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["plot_speeds", "plot_force", "plot_mesh_cycles", "plot_dte", "plot_spectra",
+           "plot_modifications", "mesh_cycle_mean"]
+
+PINION, GEAR, KIN, FORCE = "#1f5fa8", "#d9771e", "#222222", "#4a4a4a"
+STATIC, PEAK = "#2e7d32", "#c62828"
+HARMONIC, SIDEBAND, ALIAS = "#c62828", "#8c8c8c", "#7b2d8e"
+_WINDOW_FILL = "#eef3ea"
+
+
+def _figure(rows: int, height: float = 3.1, ratios=None) -> tuple[Figure, list[Axes]]:
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(10.0, 0.9 + height * rows), layout="constrained")
+    axes = fig.subplots(rows, 1, squeeze=False, height_ratios=ratios)[:, 0]
+    for ax in axes:
+        ax.grid(True, linewidth=0.4, alpha=0.5)
+    return fig, list(axes)
+
+
+def _shade_window(ax: Axes, window_s) -> None:
+    if window_s is not None:
+        ax.axvspan(window_s[0], window_s[1], color=_WINDOW_FILL, zorder=0, label="steady window")
+
+
+def _in(t: np.ndarray, span) -> np.ndarray:
+    return (t >= span[0]) & (t <= span[1])
+
+
+def _zoom_axis(ax: Axes, t0: float, what: str = "time") -> None:
+    ax.set_xlabel(f"{what} − {t0:.4f} s [ms]")
+
+
+def _note_coarse(ax: Axes, n_samples: int, cycles: float) -> None:
+    """Say so on the plot when the output is too coarse to show a mesh cycle."""
+    if cycles > 0 and n_samples / cycles < 8:
+        ax.text(0.5, 0.5, f"only {n_samples} samples in {cycles:g} mesh cycles:\n"
+                "the output rate cannot resolve the mesh (raise run.output_rate)",
+                transform=ax.transAxes, ha="center", va="center", color=PEAK, fontsize=10,
+                bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": PEAK})
+
+
+def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_s=None,
+                zoom_s=None, f_z_Hz: float | None = None) -> Figure:
+    """Pinion and gear speed [deg/s] over the run, and the gear speed against its kinematic
+    value ω1·z1/z2 over a short stretch ``zoom_s`` = (t0, t1) [s] of the steady window."""
+    t = np.asarray(t_s, float)
+    w1, w2 = np.degrees(omega1_rad_s), np.degrees(omega2_rad_s)
+    kin = w1 * teeth[0] / teeth[1]
+    fig, (ax, zx) = _figure(2)
+    _shade_window(ax, window_s)
+    ax.plot(t, w1, color=PINION, lw=1.0, label=f"pinion ω1 (z1 = {teeth[0]})")
+    ax.plot(t, w2, color=GEAR, lw=0.6, label=f"gear ω2 (z2 = {teeth[1]})")
+    ax.plot(t, kin, color=KIN, lw=0.9, ls="--", label="kinematic gear speed ω1·z1/z2")
+    ax.set(xlabel="time [s]", ylabel="speed [deg/s]", xlim=(t[0], t[-1]))
+    ax.legend(loc="lower right", fontsize=8)
+    sel = _in(t, window_s) if window_s is not None else np.ones(t.size, bool)
+    k_mean = float(np.mean(kin[sel]))
+    half = 0.5 * float(np.ptp(w2[sel] - kin[sel]))
+    if zoom_s is not None:
+        z = _in(t, zoom_s)
+        ms = (t[z] - zoom_s[0]) * 1e3
+        zx.plot(ms, w2[z], color=GEAR, lw=1.0, marker=".", ms=3, label="gear ω2 (output samples)")
+        zx.plot(ms, kin[z], color=KIN, lw=0.9, ls="--", label="kinematic ω1·z1/z2")
+        _zoom_axis(zx, zoom_s[0])
+        zx.set_ylabel("gear speed [deg/s]")
+        cycles = (zoom_s[1] - zoom_s[0]) * f_z_Hz if f_z_Hz else 0.0
+        zx.set_title(f"zoom on {cycles:.0f} mesh cycles" if cycles else "zoom", fontsize=9)
+        zx.legend(loc="best", fontsize=8)
+        _note_coarse(zx, int(z.sum()), cycles)
+    else:
+        zx.set_visible(False)
+    fig.suptitle(f"Gear speed fluctuates around the kinematic {k_mean:.0f} deg/s "
+                 f"(±{half:.0f} deg/s in the steady window)")
+    return fig
+
+
+def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, window_s=None,
+               zoom_s=None, f_z_Hz: float | None = None) -> Figure:
+    """Normal mesh force [N] with the static force T_load/r_b2 (scalar or per sample) and the
+    true maximum from the solver steps, over the run and zoomed (``zoom_s``) around it."""
+    t, f = np.asarray(t_s, float), np.asarray(force_N, float)
+    stat = np.broadcast_to(np.asarray(static_N, float), t.shape)
+    fig, (ax, zx) = _figure(2)
+    _shade_window(ax, window_s)
+    ax.plot(t, f / 1e3, color=FORCE, lw=0.35, label="total normal force (output samples)")
+    ax.plot(t, stat / 1e3, color=STATIC, lw=1.2, ls="--", label="static force T_load / r_b2")
+    has_max = force_max_N is not None and force_max_t_s is not None
+    if has_max:
+        ax.plot(force_max_t_s, force_max_N / 1e3, "*", color=PEAK, ms=11, mec="white", mew=0.6,
+                label=f"true maximum {force_max_N / 1e3:.2f} kN at t = {force_max_t_s:.4f} s")
+    top = max(float(f.max(initial=0.0)), force_max_N or 0.0) / 1e3
+    ax.set(xlabel="time [s]", ylabel="normal force [kN]", xlim=(t[0], t[-1]),
+           ylim=(min(0.0, float(f.min(initial=0.0)) / 1e3), 1.3 * top or 1.0))
+    ax.legend(loc="upper left", fontsize=8, ncol=2, framealpha=0.95)
+    if zoom_s is not None:
+        z = _in(t, zoom_s)
+        ms = (t[z] - zoom_s[0]) * 1e3
+        zx.plot(ms, f[z] / 1e3, color=FORCE, lw=0.9, marker=".", ms=4, label="output samples")
+        zx.plot(ms, stat[z] / 1e3, color=STATIC, lw=1.2, ls="--", label="static force")
+        if has_max and zoom_s[0] <= force_max_t_s <= zoom_s[1]:
+            zx.plot((force_max_t_s - zoom_s[0]) * 1e3, force_max_N / 1e3, "*", color=PEAK,
+                    ms=12, mec="white", mew=0.6, label="true maximum (solver steps)")
+        _zoom_axis(zx, zoom_s[0])
+        zx.set_ylabel("normal force [kN]")
+        zx.set_title("zoom around the maximum", fontsize=9)
+        zx.legend(loc="upper left", fontsize=8)
+        _note_coarse(zx, int(z.sum()), (zoom_s[1] - zoom_s[0]) * f_z_Hz if f_z_Hz else 0.0)
+    else:
+        zx.set_visible(False)
+    if force_max_N is not None:
+        t_ref = force_max_t_s if force_max_t_s is not None else t[-1]
+        s_ref = float(np.interp(t_ref, t, stat))
+        fig.suptitle(f"Mesh force peaks at {force_max_N / 1e3:.2f} kN, "
+                     f"{force_max_N / s_ref:.2f} × the static {s_ref / 1e3:.2f} kN")
+    else:
+        fig.suptitle("Mesh force against the static force T_load / r_b2")
+    return fig
+
+
+def plot_mesh_cycles(t_s, force_N, slot_forces: dict[str, np.ndarray], pairs, zoom_s,
+                     f_z_Hz: float) -> Figure:
+    """Total force and the force of each pair slot [N] over a few mesh cycles ``zoom_s``, with
+    the number of tooth pairs in contact on a twin axis."""
+    t = np.asarray(t_s, float)
+    z = _in(t, zoom_s)
+    ms = (t[z] - zoom_s[0]) * 1e3
+    cycles = (zoom_s[1] - zoom_s[0]) * f_z_Hz
+    fig, (ax,) = _figure(1, height=4.6)
+    nz = np.asarray(pairs, float)[z]
+    tw = ax.twinx()
+    tw.fill_between(ms, nz, step="mid", color="#9fb7d6", alpha=0.25, lw=0)
+    tw.plot(ms, nz, drawstyle="steps-mid", color="#5b7fae", lw=1.0, label="pairs in contact")
+    tw.set_ylim(0, max(3.0, float(nz.max(initial=0)) + 1.0))
+    tw.set_yticks(range(int(tw.get_ylim()[1]) + 1))
+    tw.set_ylabel("pairs in contact [-]", color="#5b7fae")
+    ax.set_zorder(tw.get_zorder() + 1)
+    ax.patch.set_visible(False)
+    ax.plot(ms, np.asarray(force_N, float)[z] / 1e3, color=KIN, lw=2.2, alpha=0.6,
+            label="total force")
+    colours = ("#1f5fa8", "#d9771e", "#2e7d32", "#7b2d8e", "#8c564b", "#17becf")
+    for k, (label, values) in enumerate(slot_forces.items()):
+        v = np.asarray(values, float)[z]
+        if np.any(v != 0.0):
+            ax.plot(ms, v / 1e3, color=colours[k % len(colours)], lw=1.0, marker=".", ms=3,
+                    label=label)
+    _zoom_axis(ax, zoom_s[0])
+    ax.set_ylabel("normal force [kN]")
+    handles = ax.get_legend_handles_labels()
+    th = tw.get_legend_handles_labels()
+    ax.legend(handles[0] + th[0], handles[1] + th[1], loc="upper left", fontsize=8, ncol=3)
+    ax.set_ylim(bottom=0.0, top=ax.get_ylim()[1] * 1.18)
+    _note_coarse(ax, int(z.sum()), cycles)
+    counts = sorted({int(round(v)) for v in nz} - {0})
+    span = "-".join(str(n) for n in counts) if counts else "no"
+    loss = ", with brief contact loss" if np.any(nz == 0) and counts else ""
+    fig.suptitle(f"{cycles:.0f} mesh cycles of {1e3 / f_z_Hz:.2f} ms: {span} tooth pairs "
+                 f"share the load in turn{loss}")
+    return fig
+
+
+def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = None) -> Figure:
+    """Dynamic transmission error δ [µm] over the run (mean of the steady window marked) and
+    zoomed on a few mesh cycles ``zoom_s``."""
+    t, d = np.asarray(t_s, float), np.asarray(dte_mm, float) * 1e3
+    fig, (ax, zx) = _figure(2)
+    _shade_window(ax, window_s)
+    ax.plot(t, d, color=PINION, lw=0.4, label="DTE δ (output samples)")
+    sel = _in(t, window_s) if window_s is not None else np.ones(t.size, bool)
+    mean, pp = float(np.mean(d[sel])), float(np.ptp(d[sel]))
+    if window_s is not None:
+        ax.hlines(mean, window_s[0], window_s[1], color=KIN, ls="--", lw=1.0,
+                  label=f"mean {mean:.1f} µm")
+    ax.set(xlabel="time [s]", ylabel="DTE δ [µm]", xlim=(t[0], t[-1]))
+    ax.legend(loc="lower right", fontsize=8)
+    if zoom_s is not None:
+        z = _in(t, zoom_s)
+        ms = (t[z] - zoom_s[0]) * 1e3
+        zx.plot(ms, d[z], color=PINION, lw=1.0, marker=".", ms=3)
+        zx.axhline(mean, color=KIN, ls="--", lw=1.0)
+        _zoom_axis(zx, zoom_s[0])
+        zx.set_ylabel("DTE δ [µm]")
+        cycles = (zoom_s[1] - zoom_s[0]) * f_z_Hz if f_z_Hz else 0.0
+        zx.set_title(f"zoom on {cycles:.0f} mesh cycles" if cycles else "zoom", fontsize=9)
+        _note_coarse(zx, int(z.sum()), cycles)
+    else:
+        zx.set_visible(False)
+    fig.suptitle(f"DTE settles at a mean of {mean:.1f} µm (mesh deflection) and swings "
+                 f"{pp:.1f} µm peak to peak in the steady window")
+    return fig
+
+
+def _decade(value: float, _pos=None) -> str:
+    """Log-axis tick label: 1e-3, 0.01, 0.1, 1, 10, 100, 1e3."""
+    if value <= 0.0:
+        return ""
+    e = round(math.log10(value))
+    return f"{value:g}" if -2 <= e <= 2 else f"1e{e}"
+
+
+def _alias(f: float, fs: float) -> float:
+    return abs(f - fs * round(f / fs))
+
+
+def _folds(f_z: float, fs: float, x_max: float, first: int) -> np.ndarray:
+    """Where the mesh harmonics from ``first`` (and above f_s/2) up to 2 f_s land after
+    sampling (aliases) [Hz]."""
+    k = np.arange(max(math.floor(0.5 * fs / f_z) + 1, first), math.floor(2.0 * fs / f_z) + 1)
+    f = k * f_z
+    a = np.abs(f - fs * np.round(f / fs))
+    return np.unique(np.round(a[(a > 0.0) & (a <= x_max)], 3))
+
+
+def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
+                 lines: dict[str, dict[str, dict]], f_z_Hz: float, harmonics: int,
+                 sample_rate_Hz: float) -> Figure:
+    """Amplitude spectra (log scale), one panel per signal, with the mesh harmonics k·f_z and
+    their shaft-frequency sidebands marked.
+
+    ``spectra`` maps a signal key to (title, unit, amplitudes); ``lines`` maps the same key to
+    analysis.json's lines ({label: {expected_Hz, measured_Hz, amplitude, resolvable}}).
+    Harmonics above the Nyquist frequency are drawn where they fold to (aliases).
+    """
+    from matplotlib.ticker import FuncFormatter, NullLocator
+
+    freq = np.asarray(freq_Hz, float)
+    nyq = 0.5 * sample_rate_Hz
+    aliased = f_z_Hz >= nyq
+    x_max = min((harmonics + 0.5) * f_z_Hz, nyq)
+    fig, axes = _figure(len(spectra), height=2.5)
+    drawn: set[str] = set()
+    sel = (freq > 0.0) & (freq <= x_max)
+    for i, (key, (title, unit, amp)) in enumerate(spectra.items()):
+        ax = axes[i]
+        a = np.asarray(amp, float)[sel]
+        ax.semilogy(freq[sel], a, color=FORCE, lw=0.7)
+        top = float(a.max(initial=0.0)) or 1.0
+        positive = a[a > 0]
+        bottom = max(float(positive.min()) if positive.size else top * 1e-8, top * 1e-7)
+        ax.set_ylim(bottom, top * 30.0)
+        for label, ln in lines.get(key, {}).items():
+            f = ln.get("expected_Hz")
+            if f is None:
+                continue
+            side = "+" in label or "-" in label
+            if f > nyq:
+                if not side:
+                    ax.axvline(_alias(f, sample_rate_Hz), color=ALIAS, ls="-.", lw=0.9)
+                    drawn.add("alias")
+                    if i == 0:
+                        ax.text(_alias(f, sample_rate_Hz), 1.01,
+                                label.replace("fz", " f_z") + " alias", color=ALIAS,
+                                fontsize=7, ha="center", va="bottom",
+                                transform=ax.get_xaxis_transform())
+                continue
+            if f > x_max:
+                continue
+            if side:
+                ax.axvline(f, color=SIDEBAND, ls=":", lw=0.6, zorder=1)
+                drawn.add("side")
+                continue
+            ax.axvline(f, color=HARMONIC, ls="--", lw=0.8, alpha=0.7, zorder=1)
+            drawn.add("harm")
+            if i == 0:
+                ax.text(f, 1.01, label.replace("fz", " f_z"), color=HARMONIC, fontsize=8,
+                        ha="center", va="bottom", transform=ax.get_xaxis_transform())
+            if ln.get("resolvable") and ln.get("amplitude"):
+                ax.plot(ln["measured_Hz"], ln["amplitude"], "o", mfc="none", color=HARMONIC,
+                        ms=6)
+                drawn.add("meas")
+        folds = _folds(f_z_Hz, sample_rate_Hz, x_max, harmonics + 1)
+        if folds.size:
+            drawn.add("fold")
+            ax.plot(folds, np.full(folds.size, 0.985), ls="", marker=7, ms=5, color=ALIAS,
+                    alpha=0.8, transform=ax.get_xaxis_transform(), clip_on=False)
+        ax.set_xlim(0.0, x_max)
+        ax.yaxis.set_minor_locator(NullLocator())  # log minor ticks: clutter and slow layout
+        ax.yaxis.set_major_formatter(FuncFormatter(_decade))  # plain text, no mathtext
+        ax.set_ylabel(f"amplitude [{unit}]")
+        ax.text(0.995, 0.96, title, transform=ax.transAxes, ha="right", va="top", fontsize=9,
+                bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none"})
+    axes[-1].set_xlabel("frequency [Hz]")
+    from matplotlib.lines import Line2D
+
+    legend = {
+        "harm": Line2D([], [], color=HARMONIC, ls="--", label="mesh harmonics k·f_z"),
+        "side": Line2D([], [], color=SIDEBAND, ls=":", label="sidebands k·f_z ± n1, n2"),
+        "meas": Line2D([], [], color=HARMONIC, marker="o", mfc="none", ls="",
+                       label="measured line amplitude"),
+        "alias": Line2D([], [], color=ALIAS, ls="-.", label="alias of k·f_z (k analysed)"),
+        "fold": Line2D([], [], color=ALIAS, marker=7, ls="",
+                       label="where higher harmonics above f_s/2 fold (aliases)"),
+    }
+    handles = [h for key, h in legend.items() if key in drawn]
+    if aliased:
+        fig.suptitle(f"f_z = {f_z_Hz:.1f} Hz is above the Nyquist frequency {nyq:.0f} Hz: "
+                     "the output cannot show the mesh lines, only their aliases")
+    else:
+        fig.suptitle(f"Spectra of the steady window: lines at the mesh frequency "
+                     f"f_z = {f_z_Hz:.2f} Hz and its harmonics")
+    fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8,
+               frameon=False)
+    return fig
+
+
+def plot_modifications(errors: dict | None = None, relief: dict | None = None) -> Figure:
+    """What the case's manufacturing errors and profile reliefs do.
+
+    errors : {"t_s", "dte_mm", "cycle_t_s", "cycle_mean_mm", "reference_mm" (expected half
+        swing or None), "label"} — DTE over a few revolutions with its mean over each mesh
+        cycle, which shows the once-per-revolution error apart from the mesh-frequency ripple.
+    relief : {"x_mm", "curves" {label: relief [mm]}, "points" {A..E: x [mm]},
+        "dte_mean_mm", "label"} — the relief along the path of contact (x from A), with the
+        single-pair zone B–D and the mean mesh deflection for scale.
+    """
+    panels = [p for p in (errors, relief) if p is not None]
+    if not panels:
+        raise ValueError("nothing to draw: the case has no errors and no profile relief")
+    fig, axes = _figure(len(panels), height=3.4)
+    if errors is not None:
+        ax = axes[0]
+        t = np.asarray(errors["t_s"], float)
+        d = np.asarray(errors["dte_mm"], float) * 1e3
+        m = np.asarray(errors["cycle_mean_mm"], float) * 1e3
+        ax.plot(t, d, color=PINION, lw=0.3, alpha=0.5, label="DTE δ (output samples)")
+        ax.plot(errors["cycle_t_s"], m, color=PEAK, lw=1.6,
+                label=f"DTE mean over each mesh cycle: {np.ptp(m):.1f} µm peak to peak")
+        ref = errors.get("reference_mm")
+        if ref:
+            c = 0.5 * (m.max() + m.min())
+            ax.axhspan(c - ref * 1e3, c + ref * 1e3, color="#f4d9d9", alpha=0.6, zorder=0,
+                       label=f"expected swing ±{ref * 1e3:.1f} µm (± the eccentricity)")
+        ax.set(xlabel="time [s]", ylabel="DTE δ [µm]", xlim=(t[0], t[-1]))
+        ax.set_title(errors["label"], fontsize=9)
+        ax.legend(loc="lower right", fontsize=8, framealpha=0.95)
+    if relief is not None:
+        ax = axes[-1]
+        pts = relief["points"]
+        ax.axvspan(pts["B"], pts["D"], color=_WINDOW_FILL, zorder=0, label="single-pair zone B–D")
+        for k, (label, values) in enumerate(relief["curves"].items()):
+            ax.plot(relief["x_mm"], np.asarray(values, float) * 1e3, lw=1.6,
+                    color=(PINION, GEAR, "#2e7d32", "#7b2d8e")[k % 4], label=label)
+        if relief.get("dte_mean_mm"):
+            ax.axhline(relief["dte_mean_mm"] * 1e3, color=KIN, ls="--", lw=0.9,
+                       label="mean DTE (mesh deflection under load)")
+        for name, x in pts.items():
+            ax.axvline(x, color=SIDEBAND, lw=0.6)
+            ax.text(x, 0.03, name, ha="center", va="bottom", fontsize=9,
+                    transform=ax.get_xaxis_transform(),
+                    bbox={"facecolor": "white", "edgecolor": "none", "pad": 1.0})
+        ax.set(xlabel="position on the path of contact from A [mm]",
+               ylabel="profile relief [µm]", xlim=(pts["A"] - 1.0, pts["E"] + 1.0))
+        ax.set_ylim(bottom=0.0, top=ax.get_ylim()[1] * 1.15)
+        x = np.asarray(relief["x_mm"], float)
+        relieved = np.zeros(x.size, bool)
+        for values in relief["curves"].values():
+            relieved |= np.asarray(values, float) > 0.0
+        inside = relieved & (x > pts["B"] + 1e-9) & (x < pts["D"] - 1e-9)
+        where = ("it reaches into the single-pair zone B–D" if inside.any()
+                 else "it acts only where two pairs share the load (A–B, D–E)")
+        ax.set_title(f"{relief['label']}: {where}", fontsize=9)
+        ax.legend(loc="upper left", fontsize=8, framealpha=0.95)
+    what = " and ".join(w for w, p in (("errors", errors), ("profile relief", relief)) if p)
+    fig.suptitle(f"What the case's {what} change")
+    return fig
+
+
+def mesh_cycle_mean(t_s, values, samples_per_cycle: float) -> tuple[np.ndarray, np.ndarray]:
+    """Mean over each run of one mesh cycle of samples: (centre times [s], means).
+
+    Only complete cycles are averaged, so the ends carry no partial-cycle bias.
+    """
+    t, v = np.asarray(t_s, float), np.asarray(values, float)
+    n = max(int(math.floor(samples_per_cycle + 0.5)), 1)
+    if n <= 1 or v.size < n:
+        return t.copy(), v.copy()
+    kernel = np.ones(n) / n
+    return np.convolve(t, kernel, mode="valid"), np.convolve(v, kernel, mode="valid")

@@ -1,0 +1,88 @@
+"""Figure of the tooth stresses of a run: σ_H and σ_F through a few mesh cycles and along the path.
+
+Takes plain arrays (samples × pair slots; stresses in MPa, roll positions in mm from A, time in
+s) and returns one matplotlib Figure (Agg canvas, never shown). matplotlib is imported inside
+the function so that importing this module stays cheap.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = ["plot_stress"]
+
+_SLOT_COLOURS = ("#1f5fa8", "#d9771e", "#2e7d32", "#7b2d8e", "#8c564b", "#e377c2")
+_PINION, _GEAR, _STATIC, _MARK = "#1f5fa8", "#d9771e", "#c62828", "#555555"
+
+
+def _marks(ax, marks_mm: dict[str, float]) -> None:
+    for label, x in marks_mm.items():
+        ax.axvline(x, color=_MARK, lw=0.6, ls=":")
+        ax.text(x, 1.0, f" {label}", transform=ax.get_xaxis_transform(), va="bottom",
+                ha="center", fontsize=8, color=_MARK)
+
+
+def plot_stress(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, window_s,
+                zoom_s, marks_mm: dict[str, float], single_pair_x_mm, single_pair_sigma_H,
+                static_MPa: dict[str, float], title: str) -> Figure:
+    """Four panels: σ_H per slot and σ_F (pinion, gear) per slot over ``zoom_s`` = (t0, t1) [s];
+    σ_H and σ_F against the roll position x from A [mm] for every loaded sample of the window.
+
+    ``single_pair_sigma_H`` (on ``single_pair_x_mm``) is the Hertz stress of one pair carrying
+    the whole static load, drawn as the quasi-static reference; ``static_MPa`` holds the ISO
+    values ``sigma_H_B``, ``sigma_H_D``, ``sigma_F0_pinion``, ``sigma_F0_gear`` [MPa];
+    ``marks_mm`` the points A…E [mm from A].
+    """
+    from matplotlib.figure import Figure
+
+    t = np.asarray(t_s, float)
+    x = np.asarray(x_mm, float)
+    loaded = np.asarray(force_N, float) > 0.0
+    fig = Figure(figsize=(10.0, 12.0), layout="constrained")
+    ax_h, ax_f, px_h, px_f = fig.subplots(4, 1)
+    fig.suptitle(title)
+    zoom = (t >= zoom_s[0]) & (t <= zoom_s[1])
+    ms = (t[zoom] - zoom_s[0]) * 1e3
+    for j in range(x.shape[1]):
+        colour = _SLOT_COLOURS[j % len(_SLOT_COLOURS)]
+        ax_h.plot(ms, np.asarray(sigma_H)[zoom, j], color=colour, lw=1.0, label=f"slot {j}")
+        ax_f.plot(ms, np.asarray(sigma_F_pinion)[zoom, j], color=colour, lw=1.0,
+                  label=f"pinion, slot {j}")
+        ax_f.plot(ms, np.asarray(sigma_F_gear)[zoom, j], color=colour, lw=1.0, ls="--",
+                  label=f"gear, slot {j}")
+    ax_h.axhline(static_MPa["sigma_H_B"], color=_STATIC, lw=0.9, ls="-.",
+                 label="ISO static at B (Z_B σ_H0)")
+    ax_f.axhline(static_MPa["sigma_F0_pinion"], color=_PINION, lw=0.9, ls="-.",
+                 label="ISO σ_F0 pinion")
+    ax_f.axhline(static_MPa["sigma_F0_gear"], color=_GEAR, lw=0.9, ls=":",
+                 label="ISO σ_F0 gear")
+    for ax, what in ((ax_h, "contact stress σ_H [MPa]"), (ax_f, "root stress σ_F [MPa]")):
+        ax.set(xlabel=f"time − {zoom_s[0]:.4f} s [ms]", ylabel=what)
+        ax.grid(True, lw=0.4, alpha=0.5)
+        ax.legend(fontsize=7, ncol=3, loc="upper right")
+    ax_h.set_title("through the last mesh cycles of the window", fontsize=9)
+
+    win = (t >= window_s[0]) & (t <= window_s[1])
+    sel = win[:, None] & loaded
+    px_h.plot(x[sel], np.asarray(sigma_H)[sel], ".", ms=1.5, color=_PINION,
+              label="dynamic σ_H (samples in the window)")
+    px_h.plot(single_pair_x_mm, single_pair_sigma_H, color=_STATIC, lw=1.0,
+              label="one pair, full static load")
+    px_f.plot(x[sel], np.asarray(sigma_F_pinion)[sel], ".", ms=1.5, color=_PINION,
+              label="pinion σ_F")
+    px_f.plot(x[sel], np.asarray(sigma_F_gear)[sel], ".", ms=1.5, color=_GEAR, label="gear σ_F")
+    px_f.axhline(static_MPa["sigma_F0_pinion"], color=_PINION, lw=0.9, ls="-.",
+                 label="ISO σ_F0 pinion (load at D)")
+    px_f.axhline(static_MPa["sigma_F0_gear"], color=_GEAR, lw=0.9, ls=":",
+                 label="ISO σ_F0 gear (load at B)")
+    for ax, what in ((px_h, "σ_H [MPa]"), (px_f, "σ_F [MPa]")):
+        ax.set(xlabel="pinion roll position from A along the line of action [mm]", ylabel=what)
+        ax.grid(True, lw=0.4, alpha=0.5)
+        ax.legend(fontsize=7, loc="upper right")
+        _marks(ax, marks_mm)
+    return fig

@@ -1,0 +1,54 @@
+"""`build_report`: figures, then one self-contained HTML or a Markdown file, of a results folder."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from gearcli.errors import OutputError
+from gearcli.io.files import write_atomic
+from gearcli.report.data import load_report_data
+from gearcli.report.document import build_document
+from gearcli.report.figures import build_figures
+from gearcli.report.html import render_html
+from gearcli.report.markdown import render_markdown
+
+FORMATS = ("html", "md")
+
+
+def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | None = None) -> Path:
+    """Write the report of a results folder that ``gearcli analyze`` has processed.
+
+    Parameters
+    ----------
+    folder : results folder (manifest.json, summary.json, timeseries.csv, analysis.json,
+        spectrum.csv)
+    fmt : "html" (one self-contained file: inline CSS, figures embedded as PNG data URIs) or
+        "md" (Markdown linking the PNG files in ``folder/figures``)
+    out_file : report path; default ``folder/report.html`` or ``folder/report.md``
+
+    Returns
+    -------
+    Path of the report. The figures are always written to ``folder/figures/`` as PNG and SVG;
+    every file is written atomically and replaces an older report.
+
+    Raises
+    ------
+    ResultsError
+        Not a finished results folder, or no analysis.json ("run gearcli analyze first").
+    OutputError
+        The report's folder does not exist or cannot be written.
+    ValueError
+        ``fmt`` is not "html" or "md".
+    """
+    if fmt not in FORMATS:
+        raise ValueError(f"report format must be one of {', '.join(FORMATS)}; got {fmt!r}")
+    data = load_report_data(folder)
+    out = Path(out_file) if out_file is not None else data.folder / f"report.{fmt}"
+    if not out.parent.is_dir():
+        raise OutputError(f"{out}: folder {out.parent} does not exist; expected an existing "
+                          "folder")
+    figures = build_figures(data, data.folder / "figures")
+    doc = build_document(data, figures)
+    text = render_html(doc) if fmt == "html" else render_markdown(doc, out.parent)
+    write_atomic(out, text)
+    return out

@@ -1,0 +1,128 @@
+"""Everything a report shows, read back from a results folder (simulate + analyze outputs)."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.case.build import pair_spec
+from gearcli.case.load import load_case_text
+from gearcli.errors import GearcliError, ResultsError
+from gearcli.io.results import StoredRun, read_run
+from gearcli.model.geometry import PairGeometry, compute_pair_geometry
+
+
+@dataclass(frozen=True)
+class ReportData:
+    """A results folder as the report sees it (internal units: mm, N, s, rad)."""
+
+    run: StoredRun
+    analysis: dict
+    spectrum: dict[str, np.ndarray]
+    geometry: PairGeometry | None  #: None when the stored case's geometry cannot be rebuilt
+    geometry_error: str = ""
+
+    @property
+    def folder(self) -> Path:
+        return self.run.folder
+
+    @property
+    def case(self) -> dict:
+        return self.run.manifest["resolved_case"]
+
+    @property
+    def metrics(self) -> dict:
+        return self.analysis.get("metrics", {})
+
+    @property
+    def scalars(self) -> dict:
+        return self.run.summary.get("scalars", {})
+
+    @property
+    def warnings(self) -> list[str]:
+        """Warnings of simulate and analyze, each once, in order."""
+        out: list[str] = []
+        both = list(self.run.summary.get("warnings", [])) + list(self.analysis.get("warnings", []))
+        for w in both:
+            if w not in out:
+                out.append(str(w))
+        return out
+
+    @property
+    def f_z_Hz(self) -> float:
+        return float(self.metrics.get("gear_mesh_frequency_Hz")
+                     or self.scalars["gear_mesh_frequency_Hz"])
+
+    @property
+    def window_s(self) -> tuple[float, float]:
+        w = self.analysis.get("window_s") or self.scalars["window_s"]
+        return float(w[0]), float(w[1])
+
+    def has_errors_or_relief(self) -> bool:
+        c = self.case
+        groups = [c.get("modifications") or {}, c.get("errors") or {}]
+        return any(v is not None for g in groups for pair in g.values() if isinstance(pair, dict)
+                   for v in pair.values())
+
+
+def load_report_data(folder: str | Path) -> ReportData:
+    """Read manifest, summary, time series (validated by read_run), analysis.json, spectrum.csv.
+
+    Raises
+    ------
+    ResultsError
+        The folder is not a finished run, or ``gearcli analyze`` has not been run on it.
+    """
+    run = read_run(folder)
+    path = run.folder / "analysis.json"
+    if not path.is_file():
+        raise ResultsError(f"{run.folder}: no analysis.json; run gearcli analyze {run.folder} "
+                           "first")
+    try:
+        analysis = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ResultsError(f"{path}: unreadable JSON ({exc}); run gearcli analyze again") from None
+    if not isinstance(analysis, dict) or "checks" not in analysis or "metrics" not in analysis:
+        raise ResultsError(f"{path}: not an analysis of gearcli analyze; run it again")
+    spectrum = _spectrum(run.folder / "spectrum.csv")
+    try:
+        loaded = load_case_text(json.dumps(run.manifest["resolved_case"]),
+                                str(run.folder / "manifest.json"))
+        geometry, error = compute_pair_geometry(pair_spec(loaded.case)), ""
+    except (GearcliError, KeyError, TypeError, ValueError) as exc:
+        geometry, error = None, f"{type(exc).__name__}: {exc}"
+    return ReportData(run, analysis, spectrum, geometry, error)
+
+
+def _spectrum(path: Path) -> dict[str, np.ndarray]:
+    if not path.is_file():
+        raise ResultsError(f"{path.parent}: no spectrum.csv; run gearcli analyze first")
+    try:
+        with path.open() as fh:
+            names = fh.readline().strip().split(",")
+            data = np.loadtxt(fh, delimiter=",", ndmin=2)
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        raise ResultsError(f"{path}: unreadable ({exc}); run gearcli analyze again") from None
+    if data.shape[1] != len(names) or "frequency_Hz" not in names:
+        raise ResultsError(f"{path}: malformed spectrum; run gearcli analyze again")
+    return {n: data[:, i] for i, n in enumerate(names)}
+
+
+# --- the stored case for display: values are "number unit" strings in internal units -------
+def number(value) -> float:
+    """The number of a stored value: 10.0, "10.0 mm" -> 10.0; None -> nan."""
+    if value is None:
+        return math.nan
+    if isinstance(value, int | float):
+        return float(value)
+    return float(str(value).split()[0])
+
+
+def unit_of(value) -> str:
+    """The unit of a stored value: "10.0 mm" -> "mm", 10.0 -> ""."""
+    parts = str(value).split(maxsplit=1)
+    return parts[1] if isinstance(value, str) and len(parts) == 2 else ""

@@ -1,0 +1,97 @@
+"""The report as a format-free document: sections of paragraphs, lists, tables and figures."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from gearcli.report import tables as tb
+from gearcli.report.data import ReportData
+from gearcli.report.figures import FigureFile
+
+
+@dataclass(frozen=True)
+class Paragraph:
+    text: str
+    kind: str = ""  #: "pass" / "fail" for the verdict
+
+
+@dataclass(frozen=True)
+class Bullets:
+    items: tuple[str, ...]
+    kind: str = ""  #: "warn" for warnings
+
+
+@dataclass(frozen=True)
+class NumberedTable:
+    number: int
+    table: tb.Table
+
+
+@dataclass(frozen=True)
+class NumberedFigure:
+    number: int
+    figure: FigureFile
+
+
+@dataclass
+class Section:
+    title: str
+    anchor: str
+    blocks: list = field(default_factory=list)
+
+
+@dataclass
+class Document:
+    title: str
+    description: str
+    sections: list[Section]
+
+
+def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
+    """Assemble every section of the report from the folder's data and the saved figures."""
+    counter = iter(range(1, 100))
+
+    def tables(*items: tb.Table | None) -> list[NumberedTable]:
+        return [NumberedTable(next(counter), t) for t in items if t is not None]
+
+    checks = data.analysis.get("checks", [])
+    failed = [c.get("name", "?") for c in checks if not c.get("passed")]
+    verdict = (Paragraph(f"Analysis passed: all {len(checks)} checks pass.", "pass") if not failed
+               else Paragraph(f"Analysis FAILED: {len(failed)} of {len(checks)} checks fail "
+                              f"({', '.join(map(str, failed))}).", "fail"))
+    m = data.metrics
+    headline = [f"{label}: {tb.fmt(m[key] * scale)} {unit}".rstrip()
+                for key, label, unit, scale in (
+                    ("gear_mesh_frequency_Hz", "gear-mesh frequency f_z", "Hz", 1.0),
+                    ("force_max_N", "maximum normal force", "N", 1.0),
+                    ("dynamic_factor", "dynamic factor", "", 1.0),
+                    ("dte_peak_to_peak_mm", "DTE peak to peak", "µm", 1e3),
+                    ("mesh_efficiency", "mesh efficiency", "", 1.0))
+                if isinstance(m.get(key), int | float)]
+    warnings = data.warnings
+    overrides = [str(o) for o in data.run.manifest.get("overrides") or []]
+    summary = [verdict]
+    if overrides:
+        summary.append(Paragraph("Case file values changed on the command line (the tables "
+                                 "show the values used): " + "; ".join(overrides)))
+    summary.append(Bullets(tuple(headline)))
+    if warnings:
+        summary.append(Paragraph(f"{len(warnings)} warning(s): see Warnings."))
+    geometry_note = ([Paragraph(f"Geometry not recomputed: {data.geometry_error}")]
+                     if data.geometry is None else [])
+    sections = [
+        Section("Summary", "summary", summary),
+        Section("Case", "case", geometry_note + tables(
+            tb.gears_table(data), tb.geometry_table(data), tb.contact_table(data),
+            tb.drive_table(data), tb.modifications_table(data))),
+        Section("Results", "results", tables(tb.results_table(data), tb.lines_table(data))),
+        Section("Checks", "checks", tables(tb.checks_table(data))),
+        Section("Warnings", "warnings",
+                [Bullets(tuple(warnings), "warn")] if warnings else [Paragraph("None.")]),
+        Section("Figures", "figures",
+                [NumberedFigure(k, f) for k, f in enumerate(figures, start=1)]),
+        Section("Provenance", "provenance", tables(tb.provenance_table(data))),
+    ]
+    name = str(data.case.get("name") or data.run.summary.get("case") or data.folder.name)
+    return Document(f"gearcli report: {name}", str(data.case.get("description") or "").strip(),
+                    sections)

@@ -1,0 +1,211 @@
+"""The report's figures: choose what to zoom on, draw with gearcli.plotting, save PNG and SVG."""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.io.files import write_atomic
+from gearcli.model.gap import Modifications, Relief, modification_gaps
+from gearcli.plotting import results as plots
+from gearcli.report.data import ReportData, number
+
+#: Resolution of the PNG files (the HTML embeds them) [dots per inch].
+PNG_DPI = 110
+#: Mesh cycles shown by the zooms.
+ZOOM_CYCLES = 3
+#: Spectrum signals: key in analysis.json lines -> (panel title, spectrum.csv column, unit).
+SPECTRA = {
+    "gear_speed": ("gear speed ω2", "gear_speed_amplitude_rad_s", "rad/s"),
+    "dte": ("DTE δ", "dte_amplitude_mm", "mm"),
+    "force": ("total normal force", "force_amplitude_N", "N"),
+}
+
+
+@dataclass(frozen=True)
+class FigureFile:
+    """One saved figure: a short name, its caption and the files written."""
+
+    name: str
+    caption: str
+    png: Path
+    svg: Path
+
+
+def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
+    """Draw every figure of the report into ``out_dir`` (created) as PNG and SVG."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    c = data.run.columns
+    t = c["t_s"]
+    f_z = data.f_z_Hz
+    period = 1.0 / f_z
+    window = data.window_s
+    start = _cycle_start(t, c["pairs_in_contact"], window, period)
+    mesh_zoom = (start, start + ZOOM_CYCLES * period)
+    teeth = (int(data.case["gears"]["pinion"]["teeth"]), int(data.case["gears"]["gear"]["teeth"]))
+    s, m = data.scalars, data.metrics
+    f_max = m.get("force_max_N", s.get("force_max_N"))
+    t_max = m.get("force_max_t_s",
+                  s.get("force_max_t_s") if f_max == s.get("force_max_N") else None)
+    force_zoom = None if t_max is None else (t_max - 1.5 * period, t_max + 1.5 * period)
+    r_b2 = data.geometry.gear.r_b_mm if data.geometry else None
+    static = c["load_torque_Nmm"] / r_b2 if r_b2 else m.get("force_static_N", s["force_static_N"])
+    slots = {f"slot {k[len('force_slot'):-2]}": v for k, v in c.items()
+             if k.startswith("force_slot") and k.endswith("_N")}
+    jobs = [
+        ("speeds", "Pinion and gear speed over the run (shaded: the steady window analysed) and "
+         "the gear speed against its kinematic value ω1·z1/z2 over 6 mesh cycles.",
+         lambda: plots.plot_speeds(t, c["omega1_rad_s"], c["omega2_rad_s"], teeth, window,
+                                   (start, start + 6 * period), f_z)),
+        ("force", "Total normal mesh force with the static force T_load/r_b2; the marker is the "
+         "true maximum taken from the solver's own steps (the output samples may miss it).",
+         lambda: plots.plot_force(t, c["force_total_N"], static, f_max, t_max, window,
+                                  force_zoom, f_z)),
+        ("mesh_cycles", f"{ZOOM_CYCLES} mesh cycles in the steady window: the force carried in "
+         "each pair slot (a slot is one base pitch of the line of action; a tooth pair moves "
+         "through the slots as the gears turn), their sum, and the number of pairs in contact.",
+         lambda: plots.plot_mesh_cycles(t, c["force_total_N"], slots, c["pairs_in_contact"],
+                                        mesh_zoom, f_z)),
+        ("dte", "Dynamic transmission error δ = r_b1·θ1 − r_b2·θ2 (deflection of the mesh "
+         f"along the line of action) over the run and over {ZOOM_CYCLES} mesh cycles.",
+         lambda: plots.plot_dte(t, c["delta_mm"], window, mesh_zoom, f_z)),
+        ("spectra", "Hann-windowed amplitude spectra of the steady window (spectrum.csv): mesh "
+         "harmonics k·f_z (dashed, measured amplitude circled) and shaft sidebands (dotted). "
+         "Triangles on the top edge mark where harmonics above the Nyquist frequency f_s/2 "
+         "fold to: peaks there can be sampling aliases of the impulsive force rather than "
+         "physical lines.",
+         lambda: _spectra(data)),
+    ]
+    if data.has_errors_or_relief():
+        jobs.append(("modifications", "What the case's manufacturing errors and profile "
+                     "modifications change: the once-per-revolution DTE they add (mean over each "
+                     "mesh cycle) and the relief along the path of contact.",
+                     lambda: _modifications(data, period)))
+    return [_save(name, caption, draw(), out_dir) for name, caption, draw in jobs]
+
+
+def _save(name: str, caption: str, fig, out_dir: Path) -> FigureFile:
+    from matplotlib import rc_context
+
+    paths = {}
+    # SVG text stays text (smaller, faster); a fixed hash salt keeps the SVG ids reproducible.
+    with rc_context({"svg.fonttype": "none", "svg.hashsalt": "gearcli"}):
+        for fmt in ("png", "svg"):
+            buf = io.BytesIO()
+            fig.savefig(buf, format=fmt, dpi=PNG_DPI, metadata=_metadata(fmt))
+            paths[fmt] = out_dir / f"{name}.{fmt}"
+            write_atomic(paths[fmt], buf.getvalue())
+            if fmt == "png":  # the layout is done: keep it for the SVG instead of redoing it
+                fig.set_layout_engine("none")
+    return FigureFile(name, caption, paths["png"], paths["svg"])
+
+
+def _metadata(fmt: str) -> dict:
+    """No creation dates, so that the same folder gives the same files."""
+    return {"Software": None} if fmt == "png" else {"Date": None}
+
+
+def _cycle_start(t, pairs, window, period: float) -> float:
+    """Start of the zoom: just before a new pair engages, past the middle of the window."""
+    mid = 0.5 * (window[0] + window[1])
+    i0 = int(np.searchsorted(t, mid))
+    p = pairs[i0:int(np.searchsorted(t, mid + 10.0 * period))]
+    rises = np.nonzero((np.diff(p) > 0) & (p[1:] >= p.max(initial=0)))[0]
+    start = t[i0 + rises[0]] if rises.size else mid  # the last sample before the rise
+    return float(min(max(start, window[0]), window[1] - ZOOM_CYCLES * period))
+
+
+def _spectra(data: ReportData):
+    spec = data.spectrum
+    panels = {key: (title, unit, spec[col]) for key, (title, col, unit) in SPECTRA.items()
+              if col in spec}
+    harmonics = int((data.case.get("checks") or {}).get("harmonics") or 5)
+    rate = float(data.metrics.get("output_rate_Hz") or data.scalars["output_rate_Hz"])
+    return plots.plot_spectra(spec["frequency_Hz"], panels, data.analysis.get("lines", {}),
+                              data.f_z_Hz, harmonics, rate)
+
+
+def _modifications(data: ReportData, period: float):
+    case = data.case
+    errors = _errors_panel(data, period) if any(
+        v is not None for pair in (case.get("errors") or {}).values() for v in pair.values()
+    ) else None
+    relief = _relief_panel(data) if any(
+        v is not None for pair in (case.get("modifications") or {}).values()
+        for v in pair.values()
+    ) else None
+    if errors is None and relief is None:
+        raise ValueError("no errors and no relief in the case")
+    return plots.plot_modifications(errors, relief)
+
+
+def _errors_panel(data: ReportData, period: float) -> dict:
+    errs, m = data.case["errors"], data.metrics
+    shaft = {"pinion": float(m.get("pinion_shaft_Hz") or 0.0),
+             "gear": float(m.get("gear_shaft_Hz") or 0.0)}
+    parts, rev_s, ecc = [], 0.0, 0.0
+    for gear in ("pinion", "gear"):
+        run_out = (errs.get("runout") or {}).get(gear)
+        pitch = (errs.get("pitch_deviation") or {}).get(gear)
+        if run_out is None and pitch is None:
+            continue
+        if shaft[gear] > 0:
+            rev_s = max(rev_s, 1.0 / shaft[gear])
+        if run_out is not None:
+            ecc += number(run_out["eccentricity"])
+            parts.append(f"{gear} runout e = {number(run_out['eccentricity']) * 1e3:.1f} µm")
+        if pitch is not None:
+            grade = pitch.get("iso1328_grade")
+            parts.append(f"{gear} pitch deviations"
+                         + (f" (ISO 1328 grade {grade})" if grade else ""))
+    t, d = data.run.columns["t_s"], data.run.columns["delta_mm"]
+    w0, w1 = data.window_s
+    span = 3.0 * rev_s if rev_s > 0 else w1 - w0
+    sel = (t >= max(w0, w1 - span)) & (t <= w1)
+    rate = float(data.metrics.get("output_rate_Hz") or data.scalars["output_rate_Hz"])
+    t_mean, d_mean = plots.mesh_cycle_mean(t[sel], d[sel], rate * period)
+    return {
+        "t_s": t[sel], "dte_mm": d[sel], "cycle_t_s": t_mean, "cycle_mean_mm": d_mean,
+        "reference_mm": ecc or None,
+        "label": ", ".join(parts) + ": DTE over the last revolutions of the steady window",
+    }
+
+
+def _relief(spec: dict | None) -> Relief | None:
+    if spec is None:
+        return None
+    length, start = spec.get("length"), spec.get("start_diameter")
+    return Relief(number(spec["amount"]), None if length is None else number(length),
+                  None if start is None else number(start), spec.get("shape") or "linear")
+
+
+def _relief_panel(data: ReportData) -> dict | None:
+    geo = data.geometry
+    if geo is None:
+        return None
+    mods_in = data.case["modifications"]
+    tip, root = mods_in.get("tip_relief") or {}, mods_in.get("root_relief") or {}
+    mods = Modifications(_relief(tip.get("pinion")), _relief(tip.get("gear")),
+                         _relief(root.get("pinion")), _relief(root.get("gear")))
+    x = np.linspace(-0.5, geo.g_alpha_mm + 0.5, 801)
+    (g1, _), (g2, _) = modification_gaps(geo, mods, x)
+    curves, parts = {}, []
+    for gear, values in (("pinion", g1), ("gear", g2)):
+        kinds = [k for k, src in (("tip", tip), ("root", root)) if src.get(gear) is not None]
+        if kinds:
+            curves[f"{gear} {' + '.join(kinds)} relief"] = values
+        for kind, src in (("tip", tip), ("root", root)):
+            r = src.get(gear)
+            if r is not None:
+                extent = (f"over {number(r['length']):g} mm" if r.get("length") is not None
+                          else f"from d = {number(r['start_diameter']):g} mm")
+                parts.append(f"{gear} {kind} relief C = {number(r['amount']) * 1e3:g} µm "
+                             f"{extent} ({r.get('shape') or 'linear'})")
+    points = {k: v - geo.A_mm for k, v in geo.line_of_action_points().items()
+              if k in ("A", "B", "C", "D", "E")}
+    mean = data.metrics.get("dte_mean_mm")
+    return {"x_mm": x, "curves": curves, "points": points, "dte_mean_mm": mean,
+            "label": "; ".join(parts)}

@@ -1,0 +1,310 @@
+"""The report's tables as plain data (rows of strings), shared by the HTML and Markdown writers."""
+
+from __future__ import annotations
+
+import math
+import shlex
+from dataclasses import dataclass, field
+
+from gearcli.report.data import ReportData, number, unit_of
+
+
+@dataclass(frozen=True)
+class Table:
+    """A titled table of strings; ``status`` marks rows "pass" or "fail" (else "")."""
+
+    title: str
+    headers: tuple[str, ...]
+    rows: list[tuple[str, ...]]
+    note: str = ""
+    status: list[str] = field(default_factory=list)
+
+
+def fmt(value, digits: int = 4) -> str:
+    """A value for a table cell: numbers with ``digits`` significant digits, None as "–"."""
+    if value is None:
+        return "–"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            return str(value)
+        if value == 0.0:
+            return "0"
+        if 1e-3 <= abs(value) < 1e6:
+            text = f"{value:.{digits}g}"
+            return text if "e" not in text else f"{value:.0f}"
+        return f"{value:.{digits}g}"
+    if isinstance(value, list | tuple):
+        return ", ".join(fmt(v, digits) for v in value)
+    return str(value)
+
+
+def qty(value, unit: str | None = None, scale: float = 1.0) -> str:
+    """A stored "number unit" string (or number) as 'number unit', optionally rescaled."""
+    if value is None:
+        return "–"
+    x = number(value) * scale
+    u = unit if unit is not None else unit_of(value)
+    return f"{fmt(x)} {u}".strip()
+
+
+def _deg(value) -> str:
+    return "–" if value is None else f"{math.degrees(number(value)):.4g} deg"
+
+
+# --- the case ---------------------------------------------------------------------------------
+def gears_table(data: ReportData) -> Table:
+    """Table 1-style: teeth, module, pressure angle, face width, diameters, material."""
+    case, geo = data.case, data.geometry
+    g = case["gears"]
+    p, w = g["pinion"], g["gear"]
+    mat = case.get("material") or {}
+    rows = [
+        ("number of teeth z", str(p["teeth"]), str(w["teeth"])),
+        ("module m", qty(g["module"]), qty(g["module"])),
+        ("pressure angle α", _deg(g["pressure_angle"]), _deg(g["pressure_angle"])),
+        ("face width b", qty(p.get("face_width") or g["face_width"]),
+         qty(w.get("face_width") or g["face_width"])),
+        ("profile shift x", fmt(p.get("profile_shift", 0.0)), fmt(w.get("profile_shift", 0.0))),
+    ]
+    if geo is not None:
+        for label, attr in (("reference diameter d", "d_mm"), ("tip diameter d_a", "d_a_mm"),
+                            ("base diameter d_b", "d_b_mm"), ("root diameter d_f", "d_f_mm")):
+            rows.append((label, f"{fmt(getattr(geo.pinion, attr))} mm",
+                         f"{fmt(getattr(geo.gear, attr))} mm"))
+    for label, key, scale, unit in (("density ρ", "density", 1e12, "kg/m³"),
+                                    ("Young's modulus E", "youngs_modulus", 1.0, "N/mm²"),
+                                    ("Poisson ratio ν", "poisson_ratio", 1.0, "")):
+        cells = []
+        for gear in (p, w):
+            m = gear.get("material") or mat
+            cells.append(qty(m.get(key), unit, scale) if m.get(key) is not None else "–")
+        rows.append((label, *cells))
+    rows.append(("inertia model", *(_inertia(gear) for gear in (p, w))))
+    return Table("Gears and material", ("quantity", "pinion", "gear"), rows)
+
+
+def _inertia(gear: dict) -> str:
+    i = gear.get("inertia") or {}
+    model = i.get("model", "disc")
+    if model == "disc":
+        d = i.get("diameter")
+        text = "solid disc, " + ("pitch diameter" if d is None else qty(d))
+    else:
+        text = f"given J = {qty(i.get('value'))}"
+    extra = number(i.get("extra")) if i.get("extra") is not None else 0.0
+    return text + (f" + {qty(i.get('extra'))}" if extra else "")
+
+
+def geometry_table(data: ReportData) -> Table | None:
+    """Derived pair geometry (gearcli.model.geometry from the stored case)."""
+    geo = data.geometry
+    if geo is None:
+        return None
+    rows = [
+        ("gear ratio i = z2/z1", fmt(geo.ratio), "–"),
+        ("operating centre distance a_w", fmt(geo.a_w_mm), "mm"),
+        ("operating pressure angle α_w", fmt(math.degrees(geo.alpha_w_rad)), "deg"),
+        ("base pitch p_b", fmt(geo.p_b_mm), "mm"),
+        ("path of contact g_α", fmt(geo.g_alpha_mm), "mm"),
+        ("transverse contact ratio ε_α", fmt(geo.eps_alpha), "–"),
+        ("time with one pair in contact", fmt(100.0 * geo.single_contact_fraction), "%"),
+        ("normal backlash j_n", fmt(geo.j_n_mm), "mm"),
+    ]
+    note = "; ".join(f.message for f in geo.findings)
+    return Table("Pair geometry (derived)", ("quantity", "value", "unit"), rows, note)
+
+
+def contact_table(data: ReportData) -> Table:
+    """Table 3-style: contact law and friction parameters."""
+    c = data.case.get("contact") or {}
+    f = data.case.get("friction") or {}
+    e = number(c.get("exponent", 1.0))
+    rows = [
+        ("contact law", str(c.get("law", "")), ""),
+        ("engagement model", str(c.get("engagement", "")), ""),
+        ("stiffness K", fmt(number(c.get("stiffness"))), f"N/mm^{e:g}"),
+        ("force exponent e", fmt(e), "–"),
+        ("maximum damping c_max", fmt(number(c.get("max_damping"))), unit_of(c.get("max_damping"))),
+        ("damping ramp depth d_max", fmt(number(c.get("penetration_depth"))),
+         unit_of(c.get("penetration_depth"))),
+        ("friction", "on" if f.get("enabled") else "off", ""),
+    ]
+    if f.get("enabled"):
+        rows += [
+            ("static coefficient μ_s", fmt(f.get("static_coefficient")), "–"),
+            ("dynamic coefficient μ_d", fmt(f.get("dynamic_coefficient")), "–"),
+            ("stiction velocity v_s", fmt(number(f.get("stiction_velocity"))),
+             unit_of(f.get("stiction_velocity"))),
+            ("transition velocity v_d", fmt(number(f.get("transition_velocity"))),
+             unit_of(f.get("transition_velocity"))),
+        ]
+    return Table("Contact and friction", ("parameter", "value", "unit"), rows)
+
+
+def _function(spec: dict | None) -> str:
+    if not spec:
+        return "–"
+    return f"{spec.get('function', '')} [{spec.get('unit', '')}]"
+
+
+def drive_table(data: ReportData) -> Table:
+    """Drive and load functions, bearing losses and run settings."""
+    case = data.case
+    d, ld = case.get("drive") or {}, case.get("load") or {}
+    b, r = case.get("bearings") or {}, case.get("run") or {}
+    kind = d.get("type", "")
+    rows = [
+        ("drive (pinion)", f"{kind}: {_function(d.get(kind) if kind else None)}"),
+        ("initial pinion speed", qty(d.get("initial_speed"))),
+        (f"load torque (on the {ld.get('applied_to', 'gear')})", _function(ld.get("torque"))),
+        ("load: viscous / quadratic", f"{qty(ld.get('viscous'))} / {qty(ld.get('quadratic'))}"),
+        ("bearing damping pinion / gear", f"{qty((b.get('pinion') or {}).get('damping'))} / "
+                                          f"{qty((b.get('gear') or {}).get('damping'))}"),
+        ("end time", qty(r.get("end_time"))),
+        ("output", f"{fmt(data.scalars.get('output_rate_Hz'))} Hz "
+                   f"({data.run.summary.get('rows', '?')} rows)"),
+        ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / {qty(r.get('atol'))}"),
+    ]
+    for key in ("shaft", "motor_curve", "reference_speed"):
+        if d.get(key) is not None:
+            rows.append((f"drive {key.replace('_', ' ')}", str(d[key])))
+    return Table("Drive, load and run", ("item", "setting"), rows)
+
+
+def modifications_table(data: ReportData) -> Table | None:
+    """Profile reliefs and manufacturing errors that are set (None when there are none)."""
+    rows = []
+    for group in ("modifications", "errors"):
+        for kind, pair in (data.case.get(group) or {}).items():
+            for gear, spec in (pair or {}).items():
+                if spec is not None:
+                    text = ", ".join(f"{k} = {fmt(v) if not isinstance(v, str) else v}"
+                                     for k, v in spec.items() if v is not None)
+                    rows.append((f"{gear} {kind.replace('_', ' ')}", text))
+    return Table("Profile modifications and errors", ("item", "setting"), rows) if rows else None
+
+
+# --- results ----------------------------------------------------------------------------------
+#: (metrics key, label, unit, scale) in report order; keys absent from analysis.json are skipped.
+METRICS = (
+    ("pinion_speed_mean_deg_s", "pinion speed, mean", "deg/s", 1.0),
+    ("gear_speed_mean_deg_s", "gear speed, mean", "deg/s", 1.0),
+    ("speed_ratio", "speed ratio ω1/ω2", "–", 1.0),
+    ("speed_ratio_theory", "speed ratio, theory z2/z1", "–", 1.0),
+    ("speed_ratio_error_percent", "speed ratio error", "%", 1.0),
+    ("gear_speed_fluctuation_percent", "gear speed fluctuation, peak to peak / mean", "%", 1.0),
+    ("force_static_N", "static normal force T_load/r_b2", "N", 1.0),
+    ("force_mean_N", "normal force, mean", "N", 1.0),
+    ("force_rms_N", "normal force, RMS", "N", 1.0),
+    ("force_max_N", "normal force, maximum", "N", 1.0),
+    ("force_min_N", "normal force, minimum", "N", 1.0),
+    ("dynamic_factor", "dynamic factor F_max / F_static", "–", 1.0),
+    ("dte_mean_mm", "DTE, mean", "µm", 1e3),
+    ("dte_peak_to_peak_mm", "DTE, peak to peak", "µm", 1e3),
+    ("dte_rms_mm", "DTE, standard deviation", "µm", 1e3),
+    ("contact_loss_fraction", "time without drive-flank contact", "%", 100.0),
+    ("coast_impacts", "coast-flank impacts", "–", 1.0),
+    ("input_power_W", "input power", "W", 1.0),
+    ("friction_loss_W", "friction loss", "W", 1.0),
+    ("mesh_efficiency", "mesh efficiency", "–", 1.0),
+    ("drive_torque_mean_Nmm", "drive torque, mean", "N·m", 1e-3),
+    ("drive_torque_ripple_Nmm", "drive torque, peak to peak", "N·m", 1e-3),
+    ("gear_mesh_frequency_Hz", "gear-mesh frequency f_z", "Hz", 1.0),
+    ("pinion_shaft_Hz", "pinion shaft frequency n1", "Hz", 1.0),
+    ("gear_shaft_Hz", "gear shaft frequency n2", "Hz", 1.0),
+    ("mesh_natural_frequency_Hz", "mesh mode natural frequency f_n", "Hz", 1.0),
+    ("mesh_damping_ratio", "mesh mode damping ratio ζ", "–", 1.0),
+    ("resonance_margins_percent", "distance of k·f_z from f_n (k = 1, 2, ...)", "%", 1.0),
+    ("output_rate_Hz", "output sampling rate", "Hz", 1.0),
+    ("frequency_resolution_Hz", "spectrum resolution", "Hz", 1.0),
+    ("samples", "samples in the window", "–", 1.0),
+)
+_NOT_SHOWN = {"window_s", "window_reason", "force_max_source"}
+
+
+def results_table(data: ReportData) -> Table:
+    """Key metrics of analysis.json with units; unknown numeric metrics follow by name."""
+    m = data.metrics
+    w0, w1 = data.window_s
+    rows = [("steady window analysed", f"{w0:.4g} – {w1:.4g}", "s")]
+    for key, label, unit, scale in METRICS:
+        if key not in m:
+            continue
+        v = m[key]
+        if scale != 1.0 and isinstance(v, int | float):
+            v = v * scale
+        elif scale != 1.0 and isinstance(v, list):
+            v = [x * scale for x in v]
+        if key == "force_max_N" and m.get("force_max_source"):
+            label += f" (from the {m['force_max_source']})"
+        rows.append((label, fmt(v), unit))
+    known = {k for k, *_ in METRICS} | _NOT_SHOWN
+    for key, v in m.items():
+        if key not in known and isinstance(v, int | float | list):
+            rows.append((key, fmt(v), "see name"))
+    note = str(data.analysis.get("window_reason") or "")
+    return Table("Results of the steady window", ("quantity", "value", "unit"), rows,
+                 f"window: {note}" if note else "")
+
+
+def lines_table(data: ReportData) -> Table | None:
+    """Amplitude of the mesh harmonics k·f_z in each spectrum (sidebands: harmonics.csv)."""
+    lines = data.analysis.get("lines") or {}
+    signals = [(s, u) for s, u in (("gear_speed", "rad/s"), ("dte", "mm"), ("force", "N"))
+               if s in lines]
+    if not signals:
+        return None
+    first = lines[signals[0][0]]
+    rows = []
+    for label, ln in first.items():
+        if "+" in label or "-" in label:
+            continue
+        cells = [label.replace("fz", " f_z"), fmt(ln.get("expected_Hz"))]
+        for sig, _ in signals:
+            other = lines[sig].get(label) or {}
+            cells.append(fmt(other.get("amplitude")) if other.get("resolvable") else
+                         "not resolvable")
+        rows.append(tuple(cells))
+    names = {"gear_speed": "gear speed", "dte": "DTE", "force": "force"}
+    headers = ("line", "frequency [Hz]") + tuple(
+        f"{names[s]} amplitude [{u}]" for s, u in signals)
+    return Table("Mesh lines in the spectra", headers, rows,
+                 "sidebands k·f_z ± n1, n2 are in harmonics.csv")
+
+
+def checks_table(data: ReportData) -> Table:
+    """Every check of analysis.json, marked pass or fail."""
+    rows, status = [], []
+    for c in data.analysis.get("checks", []):
+        ok = bool(c.get("passed"))
+        rows.append((str(c.get("name", "")), fmt(c.get("value")), str(c.get("limit", "")),
+                     "pass" if ok else "FAIL", str(c.get("note") or "")))
+        status.append("pass" if ok else "fail")
+    return Table("Checks", ("check", "value", "limit", "result", "note"), rows, status=status)
+
+
+def _key_label(key: str) -> str:
+    """'wall_time_s' -> 'wall time [s]'."""
+    for suffix, unit in (("_s", "s"), ("_Hz", "Hz"), ("_N", "N"), ("_mm", "mm")):
+        if key.endswith(suffix):
+            return key[: -len(suffix)].replace("_", " ") + f" [{unit}]"
+    return key.replace("_", " ")
+
+
+def provenance_table(data: ReportData) -> Table:
+    """Manifest: versions, case file and hash, command line, overrides."""
+    man = data.run.manifest
+    rows = [("case file", str(man.get("case_file", "–"))),
+            ("case sha256", str(man.get("case_sha256", "–"))),
+            ("command line", shlex.join(str(a) for a in man.get("command_line") or [])),
+            ("overrides", "; ".join(str(o) for o in man.get("overrides") or []) or "none")]
+    rows += [(name if name == "platform" else f"{name} version", str(v))
+             for name, v in (man.get("versions") or {}).items()]
+    s = data.run.summary.get("solver") or {}
+    if s:
+        rows.append(("solver", ", ".join(f"{_key_label(k)} {fmt(v)}" for k, v in s.items())))
+    return Table("Provenance (manifest.json, summary.json)", ("item", "value"), rows)

@@ -1,0 +1,292 @@
+"""`gearcli.report.build_report` and the result figures of `gearcli.plotting.results`.
+
+One short run (0.6 s, ramps of 0.2 s) is simulated, analysed and reported once per module; the
+tests read the HTML and Markdown it produced. The timing target of the issue ("analyze +
+report of the seed case <= 5 s") is checked on the full 5 s seed run (marked slow).
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import re
+import shutil
+import time
+from html.parser import HTMLParser
+
+import numpy as np
+import pytest
+
+from gearcli.errors import OutputError, ResultsError
+from gearcli.pipeline.analysis_io import write_analysis
+from gearcli.pipeline.analyze import analyze
+from gearcli.pipeline.outputs import write_simulation
+from gearcli.pipeline.simulate import run_simulation
+from gearcli.plotting import results as plots
+from gearcli.report import build_report
+from tests.conftest import SEED
+
+SHORT = ["drive.speed=STEP(time, 0, 0, 0.2, 3000)", "load.torque=STEP(time, 0, 0, 0.2, 4.5e5)",
+         "run.end_time=0.6"]
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def _run(folder, overrides):
+    write_simulation(run_simulation(SEED, overrides), folder, force=False, overrides=overrides)
+    write_analysis(analyze(folder))
+    return folder
+
+
+@pytest.fixture(scope="module")
+def short_dir(tmp_path_factory):
+    return _run(tmp_path_factory.mktemp("report") / "run", SHORT)
+
+
+@pytest.fixture(scope="module")
+def html_report(short_dir):
+    path = build_report(short_dir)
+    return path, path.read_text(encoding="utf-8")
+
+
+@pytest.fixture(scope="module")
+def md_report(short_dir):
+    path = build_report(short_dir, fmt="md")
+    return path, path.read_text(encoding="utf-8")
+
+
+class _Collector(HTMLParser):
+    """Tags, attributes and the text of every table (by caption)."""
+
+    def __init__(self):
+        super().__init__(convert_charrefs=True)
+        self.tags: list[tuple[str, dict]] = []
+        self.tables: dict[str, list[list[str]]] = {}
+        self._caption = self._in_caption = self._cell = None
+        self._rows: list[list[str]] = []
+        self.row_classes: dict[str, list[str]] = {}
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        self.tags.append((tag, a))
+        if tag == "table":
+            self._caption, self._rows = "", []
+            self._row_classes = []
+        elif tag == "caption":
+            self._in_caption = True
+        elif tag == "tr":
+            self._rows.append([])
+            self._row_classes.append(a.get("class") or "")
+        elif tag in ("td", "th"):
+            self._cell = ""
+
+    def handle_endtag(self, tag):
+        if tag == "caption":
+            self._in_caption = False
+        elif tag in ("td", "th") and self._cell is not None:
+            self._rows[-1].append(self._cell)
+            self._cell = None
+        elif tag == "table":
+            self.tables[self._caption] = self._rows
+            self.row_classes[self._caption] = self._row_classes
+
+    def handle_data(self, data):
+        if self._in_caption:
+            self._caption += data
+        elif self._cell is not None:
+            self._cell += data
+
+
+def _parse(text: str) -> _Collector:
+    p = _Collector()
+    p.feed(text)
+    p.close()
+    return p
+
+
+def _table(parsed: _Collector, title: str) -> tuple[list[list[str]], list[str]]:
+    for caption, rows in parsed.tables.items():
+        if caption.endswith(title):
+            return rows, parsed.row_classes[caption]
+    raise AssertionError(f"no table {title!r} in {list(parsed.tables)}")
+
+
+def test_html_is_written_next_to_the_results_and_figures_as_png_and_svg(short_dir, html_report):
+    path, _ = html_report
+    assert path == short_dir / "report.html"
+    pngs = sorted((short_dir / "figures").glob("*.png"))
+    svgs = sorted((short_dir / "figures").glob("*.svg"))
+    assert [p.stem for p in pngs] == [p.stem for p in svgs]
+    assert {p.stem for p in pngs} == {"speeds", "force", "mesh_cycles", "dte", "spectra"}
+    for p in pngs:
+        assert p.read_bytes().startswith(PNG_SIGNATURE)
+    for p in svgs:
+        assert b"<svg" in p.read_bytes()[:2000]
+
+
+def test_html_parses_and_embeds_every_figure(short_dir, html_report):
+    _, text = html_report
+    parsed = _parse(text)
+    n_figures = len(list((short_dir / "figures").glob("*.png")))
+    assert text.count("data:image/png;base64") == n_figures
+    imgs = [a["src"] for tag, a in parsed.tags if tag == "img"]
+    assert len(imgs) == n_figures
+    for src in imgs:
+        assert base64.b64decode(src.split(",", 1)[1]).startswith(PNG_SIGNATURE)
+    assert text.count("<figcaption>") == n_figures
+
+
+def test_html_is_self_contained(html_report):
+    _, text = html_report
+    parsed = _parse(text)
+    for tag, attrs in parsed.tags:
+        assert tag not in ("script", "link", "iframe", "object"), tag
+        for key in ("src", "href"):
+            if key not in attrs:
+                continue
+            value = attrs[key] or ""
+            assert not re.match(r"\s*(https?:)?//", value, re.I), (tag, value)
+            if key == "href":
+                assert value.startswith("#"), value  # only links inside the page
+    assert "http://" not in text and "https://" not in text
+
+
+def test_html_checks_table_names_every_check_with_its_result(short_dir, html_report):
+    _, text = html_report
+    rows, classes = _table(_parse(text), "Checks")
+    doc = json.loads((short_dir / "analysis.json").read_text())
+    assert rows[0] == ["check", "value", "limit", "result", "note"]
+    body = {r[0]: (r[3], cls) for r, cls in zip(rows[1:], classes[1:], strict=True)}
+    assert set(body) == {c["name"] for c in doc["checks"]}
+    for c in doc["checks"]:
+        result, cls = body[c["name"]]
+        assert (result, cls) == (("pass", "pass") if c["passed"] else ("FAIL", "fail"))
+
+
+def test_html_holds_the_case_tables_results_and_provenance(short_dir, html_report):
+    _, text = html_report
+    parsed = _parse(text)
+    gears, _ = _table(parsed, "Gears and material")
+    cells = {r[0]: r[1:] for r in gears}
+    assert cells["number of teeth z"] == ["17", "25"]
+    assert cells["module m"] == ["10 mm", "10 mm"]
+    assert cells["pressure angle α"] == ["20 deg", "20 deg"]
+    assert cells["reference diameter d"] == ["170 mm", "250 mm"]
+    geometry = {r[0]: r[1] for r in _table(parsed, "Pair geometry (derived)")[0]}
+    assert float(geometry["transverse contact ratio ε_α"]) == pytest.approx(1.563, abs=1e-3)
+    contact = {r[0]: r[1:] for r in _table(parsed, "Contact and friction")[0]}
+    assert contact["stiffness K"] == ["100000", "N/mm^1.5"]
+    assert contact["dynamic coefficient μ_d"][0] == "0.05"
+    results = {r[0]: r[1:] for r in _table(parsed, "Results of the steady window")[0]}
+    assert results["dynamic factor F_max / F_static"][1] == "–"
+    assert results["normal force, maximum (from the solver steps)"][1] == "N"
+    manifest = json.loads((short_dir / "manifest.json").read_text())
+    assert manifest["case_sha256"] in text
+    assert "run.end_time=0.6" in text  # the overrides are shown
+
+
+def test_html_escapes_strings_from_the_case(short_dir, tmp_path):
+    folder = tmp_path / "evil"
+    shutil.copytree(short_dir, folder)
+    man = json.loads((folder / "manifest.json").read_text())
+    man["resolved_case"]["name"] = "<b>bold</b>"
+    man["resolved_case"]["description"] = '<script>alert("x")</script> & <img src=x>'
+    (folder / "manifest.json").write_text(json.dumps(man))
+    text = build_report(folder).read_text()
+    assert "<script>" not in text and "<img src=x>" not in text and "<b>bold" not in text
+    assert "&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; &lt;img src=x&gt;" in text
+    md = build_report(folder, fmt="md").read_text()
+    assert "<script>" not in md and r"\<script\>" in md
+
+
+def test_markdown_references_existing_figures(short_dir, md_report):
+    path, text = md_report
+    assert path == short_dir / "report.md"
+    links = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
+    assert len(links) == len(list((short_dir / "figures").glob("*.png")))
+    for link in links:
+        assert link.startswith("figures/") and (path.parent / link).is_file()
+    assert "| check | value | limit | result | note |" in text
+    for c in json.loads((short_dir / "analysis.json").read_text())["checks"]:
+        assert c["name"].replace("_", r"\_") in text
+
+
+def test_markdown_elsewhere_links_back_to_the_figures(short_dir, tmp_path):
+    out = build_report(short_dir, fmt="md", out_file=tmp_path / "r.md")
+    links = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", out.read_text())
+    assert links and all((out.parent / link).resolve().is_file() for link in links)
+
+
+def test_missing_analysis_asks_for_gearcli_analyze(short_dir, tmp_path):
+    folder = tmp_path / "raw"
+    shutil.copytree(short_dir, folder, ignore=shutil.ignore_patterns("report.*", "figures"))
+    (folder / "analysis.json").unlink()
+    with pytest.raises(ResultsError, match="run gearcli analyze"):
+        build_report(folder)
+    assert not (folder / "report.html").exists() and not (folder / "figures").exists()
+
+
+def test_not_a_results_folder_and_bad_options(tmp_path, short_dir):
+    with pytest.raises(ResultsError):
+        build_report(tmp_path)
+    with pytest.raises(ValueError, match="html, md"):
+        build_report(short_dir, fmt="pdf")
+    with pytest.raises(OutputError):
+        build_report(short_dir, out_file=tmp_path / "no" / "such" / "report.html")
+
+
+def test_errors_and_relief_add_a_figure(tmp_path):
+    folder = _run(tmp_path / "mods", SHORT + [
+        "errors.runout.gear={eccentricity: 0.02}",
+        "modifications.tip_relief.pinion={amount: 0.05, length: 6}"])
+    text = build_report(folder).read_text()
+    assert (folder / "figures" / "modifications.png").is_file()
+    assert text.count("data:image/png;base64") == 6
+    rows, _ = _table(_parse(text), "Profile modifications and errors")
+    assert {r[0] for r in rows[1:]} == {"pinion tip relief", "gear runout"}
+
+
+# --- plotting functions on synthetic data ----------------------------------------------------
+def test_spectra_mark_aliases_when_the_mesh_is_above_nyquist():
+    fs, f_z = 200.0, 141.67
+    freq = np.linspace(0.0, 100.0, 401)
+    amp = np.full(freq.size, 1e-3)
+    lines = {"force": {"1fz": {"expected_Hz": f_z, "resolvable": False},
+                       "2fz": {"expected_Hz": 2 * f_z, "resolvable": False}}}
+    fig = plots.plot_spectra(freq, {"force": ("force", "N", amp)}, lines, f_z, 2, fs)
+    ax = fig.axes[0]
+    assert ax.get_xlim() == (0.0, 100.0)  # never past Nyquist
+    labels = {t.get_text() for t in ax.texts}
+    assert {"1 f_z alias", "2 f_z alias"} <= labels
+    xs = sorted(round(line.get_xdata()[0], 2) for line in ax.lines if line.get_linestyle() == "-.")
+    assert xs == [58.33, 83.34]  # 200 - 141.67 and 2 x 141.67 - 200
+    assert "Nyquist" in fig._suptitle.get_text()
+
+
+def test_mesh_cycle_mean_averages_whole_cycles_only():
+    t = np.arange(100) * 0.1
+    v = np.sin(2 * np.pi * t / 1.0) + 3.0  # period = 10 samples
+    tm, vm = plots.mesh_cycle_mean(t, v, 10.0)
+    assert tm.size == vm.size == 91
+    assert np.allclose(vm, 3.0, atol=1e-12)
+    assert tm[0] == pytest.approx(0.45)
+
+
+def test_force_figure_marks_the_true_maximum_and_the_static_line():
+    t = np.linspace(0.0, 1.0, 1001)
+    f = 1000.0 + 100.0 * np.sin(2 * np.pi * 50 * t)
+    fig = plots.plot_force(t, f, 1000.0, 1500.0, 0.5, (0.2, 1.0), (0.48, 0.52), 50.0)
+    title = fig._suptitle.get_text()
+    assert "1.50 kN" in title and "1.50 × the static 1.00 kN" in title
+    stars = [ln for ax in fig.axes for ln in ax.lines if ln.get_marker() == "*"]
+    assert len(stars) == 2 and all(ln.get_ydata()[0] == pytest.approx(1.5) for ln in stars)
+
+
+@pytest.mark.slow
+def test_analyze_and_report_of_the_seed_case_take_under_5_s(tmp_path):
+    folder = tmp_path / "seed"
+    write_simulation(run_simulation(SEED), folder, force=False)
+    t0 = time.perf_counter()
+    write_analysis(analyze(folder))
+    build_report(folder)
+    elapsed = time.perf_counter() - t0
+    assert elapsed < 5.0, f"analyze + report took {elapsed:.2f} s"
