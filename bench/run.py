@@ -1,42 +1,213 @@
-"""gearcli benchmarks (`make bench`): wall times of the commands users feel.
+"""gearcli benchmarks (`make bench`): wall times of the commands users feel, solver speed.
 
-Run from the repository root with the project's venv. Prints a table and appends nothing by
+Run from the repository root with the project's venv. Prints a table and writes nothing by
 itself: copy the numbers you measured into bench/RESULTS.md with the date and machine.
+
+Sections (issue 3, speed):
+1. ``gearcli --help`` and ``gearcli geometry``: start-up.
+2. Solver: the compiled kernel call alone (``SimulationResult.wall_time_s``) on the seed case,
+   5 s simulated, default output rate, median of ``--runs`` after a warm-up (compile) run;
+   rigid engagement without friction, and the full default model. Steps and RHS evaluations.
+3. The same rigid model as a plain scipy ``solve_ivp(LSODA)`` with a Python right-hand side
+   (bench/rigid_reference.py), its time over the compiled solver's, and the agreement of the
+   mean force and mean gear speed over the steady window.
+4. ``gearcli simulate`` end to end with a warm numba cache, and the first run with an empty
+   one (``NUMBA_CACHE_DIR`` a fresh folder); the cache with the package folder read-only.
+5. Peak RSS of a 60 s simulation (``/usr/bin/time -v``).
 """
 
 from __future__ import annotations
 
+import argparse
+import math
+import os
+import platform
+import re
+import shutil
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-GEARCLI = [sys.executable, "-m", "gearcli"]
+sys.path.insert(0, str(ROOT / "bench"))
+_SCRIPT = Path(sys.executable).with_name("gearcli")
+GEARCLI = [str(_SCRIPT)] if _SCRIPT.exists() else [sys.executable, "-m", "gearcli"]
 SEED = ROOT / "cases" / "seed.yaml"
+RIGID = ["contact.engagement=rigid", "friction.enabled=false"]
+
+ROWS: list[tuple[str, str, str, str]] = []  # (what, measured, target, verdict)
 
 
-def wall(cmd: list[str], repeat: int) -> list[float]:
+def row(what: str, measured: str, target: str = "", ok: bool | None = None) -> None:
+    verdict = "" if ok is None else ("ok" if ok else "MISSED")
+    ROWS.append((what, measured, target, verdict))
+    print(f"  {what:<52} {measured:<44} {target:<12} {verdict}", flush=True)
+
+
+def wall(cmd: list[str], repeat: int, env: dict | None = None) -> list[float]:
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
-        subprocess.run(cmd, check=True, capture_output=True)
+        subprocess.run(cmd, check=True, capture_output=True, env=env)
         times.append(time.perf_counter() - t0)
     return times
 
 
-def report(name: str, times: list[float], target: str) -> None:
-    med = statistics.median(times)
-    print(f"{name:<40} median {med * 1e3:8.1f} ms  min {min(times) * 1e3:8.1f} ms  "
-          f"(n={len(times)}, target {target})")
+def startup(args) -> None:
+    print("start-up")
+    t = wall(GEARCLI + ["--help"], 15)
+    row("gearcli --help", f"median {statistics.median(t) * 1e3:.0f} ms, min "
+        f"{min(t) * 1e3:.0f} ms (n=15)", "< 300 ms", statistics.median(t) < 0.3)
+    t = wall(GEARCLI + ["geometry", str(SEED), "--json"], 5)
+    row("gearcli geometry seed --json", f"median {statistics.median(t) * 1e3:.0f} ms (n=5)",
+        "interactive")
+
+
+def solver(args) -> dict:
+    """Kernel-only times; returns the last results of both variants."""
+    from gearcli.pipeline.simulate import run_simulation
+
+    print(f"solver: seed case, 5 s, default output rate, kernel call only, median of "
+          f"{args.runs} after a warm-up")
+    out = {}
+    for name, overrides, target in (("rigid, no friction", RIGID, 10e-3),
+                                    ("full default model", [], 20e-3)):
+        res = run_simulation(SEED, overrides)  # warm-up (compiles on an empty cache)
+        times = []
+        for _ in range(args.runs):
+            res = run_simulation(SEED, overrides)
+            times.append(res.wall_time_s)
+        c = res.kernel.counters
+        med = statistics.median(times)
+        row(f"solver, {name}", f"median {med * 1e3:.2f} ms (min {min(times) * 1e3:.2f})",
+            f"<= {target * 1e3:.0f} ms", med <= target)
+        row(f"  steps acc/rej, RHS evals, output evals",
+            f"{c['accepted_steps']}/{c['rejected_steps']}, {c['rhs_evaluations']}, "
+            f"{c['output_evaluations']}")
+        out[name] = (res, med)
+    return out
+
+
+def reference(args, solved: dict) -> None:
+    from rigid_reference import run_reference, seed_rigid_model
+
+    from gearcli.core.layout import PARAM_NAMES, P
+
+    print("plain scipy reference (LSODA, Python RHS) of the rigid model")
+    res, med = solved["rigid, no friction"]
+    ki = res.kernel_input
+    model = seed_rigid_model(ki.params, PARAM_NAMES)
+    atol = [ki.params[P.atol_delta], ki.params[P.atol_deltadot]]
+    runs = [run_reference(model, ki.t_out, ki.params[P.rtol], atol)
+            for _ in range(args.ref_runs)]
+    ref = runs[-1]
+    t_ref = statistics.median(r.wall_s for r in runs)
+    row("scipy solve_ivp LSODA, rigid, 5 s", f"median {t_ref:.3f} s (n={args.ref_runs}), "
+        f"{ref.nfev} RHS evals")
+    row("  ratio scipy / compiled", f"{t_ref / med:.0f}x", ">= 100x", t_ref / med >= 100)
+    w = ref.t >= res.window.t0_s
+    f_k, f_r = res.summary["force_mean_N"], float(ref.force[w].mean())
+    n_k, n_r = res.summary["gear_speed_mean_deg_s"], math.degrees(float(ref.omega2[w].mean()))
+    row("  mean force: compiled vs scipy", f"{f_k:.4f} vs {f_r:.4f} N ({(f_r - f_k) / f_k:+.1e})")
+    row("  mean gear speed: compiled vs scipy",
+        f"{n_k:.5f} vs {n_r:.5f} deg/s ({(n_r - n_k) / n_k:+.1e})")
+
+
+def end_to_end(args) -> None:
+    print("gearcli simulate cases/seed.yaml -o <tmp> --force --quiet")
+    with tempfile.TemporaryDirectory() as tmp:
+        cmd = GEARCLI + ["simulate", str(SEED), "-o", str(Path(tmp) / "out"), "--force",
+                         "--quiet"]
+        wall(cmd, 1)  # make sure the user cache is warm
+        t = wall(cmd, 5)
+        row("end to end, warm numba cache", f"median {statistics.median(t):.2f} s (n=5)",
+            "<= 3 s", statistics.median(t) <= 3.0)
+        if args.cold:
+            env = {**os.environ, "NUMBA_CACHE_DIR": str(Path(tmp) / "numba-empty")}
+            t = wall(cmd, 1, env)
+            row("end to end, first run, empty numba cache", f"{t[0]:.1f} s", "<= 30 s",
+                t[0] <= 30.0)
+
+
+def read_only(args) -> None:
+    """Package folder read-only (a read-only bind mount of gearcli/ in a private mount
+    namespace, so that root is refused too), numba cache in a fresh XDG_CACHE_HOME."""
+    print("numba cache with a read-only package folder")
+    pkg = ROOT / "gearcli"
+    with tempfile.TemporaryDirectory() as tmp:
+        env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+        env["XDG_CACHE_HOME"] = str(Path(tmp) / "xdg")
+        out = str(Path(tmp) / "out")
+        sim = " ".join(GEARCLI + ["simulate", str(SEED), "-o", out, "--force", "--quiet"])
+        script = (f"mount --bind {pkg} {pkg} && mount -o remount,ro,bind {pkg} && "
+                  f"! touch {pkg}/core/__pycache__/.ro-probe 2>/dev/null && "
+                  f"s=$(date +%s.%N) && {sim} && m=$(date +%s.%N) && {sim} && "
+                  f"e=$(date +%s.%N) && echo TIMES $s $m $e")
+        unshare = shutil.which("unshare")
+        proc = subprocess.run([unshare, "-m", "sh", "-c", script] if unshare else ["false"],
+                              capture_output=True, text=True, env=env)
+        m = re.search(r"TIMES (\S+) (\S+) (\S+)", proc.stdout)
+        if proc.returncode != 0 or not m:
+            row("read-only package", "not measured (needs unshare -m and mount: "
+                f"{(proc.stderr or 'unavailable').strip()[:60]})")
+            return
+        s, mid, e = (float(v) for v in m.groups())
+        files = sorted((Path(tmp) / "xdg" / "gearcli" / "numba").rglob("*.nbi"))
+        folder = files[0].relative_to(Path(tmp) / "xdg").parts[:3] if files else ("?",)
+        row("read-only gearcli/: first run (compiles)", f"{mid - s:.1f} s")
+        row("read-only gearcli/: second run (cache)", f"{e - mid:.2f} s", "<= 3 s",
+            e - mid <= 3.0)
+        row("  index files in $XDG_CACHE_HOME/" + "/".join(folder), f"{len(files)} .nbi",
+            "> 0", len(files) > 0)
+
+
+def memory(args) -> None:
+    print("memory: 60 s simulation at the default output rate")
+    tool = Path("/usr/bin/time")
+    with tempfile.TemporaryDirectory() as tmp:
+        cmd = GEARCLI + ["simulate", str(SEED), "-o", str(Path(tmp) / "out"), "--force",
+                         "--quiet", "--set", "run.end_time=60"]
+        t0 = time.perf_counter()
+        if tool.exists():
+            proc = subprocess.run([str(tool), "-v", *cmd], capture_output=True, text=True,
+                                  check=True)
+            kb = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)",
+                               proc.stderr).group(1))
+        else:  # resource.getrusage of the child
+            import resource
+
+            subprocess.run(cmd, check=True, capture_output=True)
+            kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        wall_s = time.perf_counter() - t0
+        row("peak RSS, 60 s seed run (end to end)", f"{kb / 1024:.0f} MB (wall {wall_s:.1f} s)",
+            "< 1 GB", kb < 1024 * 1024)
 
 
 def main() -> None:
-    print(f"python {sys.version.split()[0]} on {sys.platform}")
-    report("gearcli --help", wall(GEARCLI + ["--help"], 15), "< 300 ms")
-    report("gearcli geometry seed --json", wall(GEARCLI + ["geometry", str(SEED), "--json"], 5),
-           "interactive")
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--runs", type=int, default=9, help="timed solver runs (median), >= 7")
+    ap.add_argument("--ref-runs", type=int, default=3, help="timed scipy reference runs")
+    ap.add_argument("--no-cold", dest="cold", action="store_false",
+                    help="skip the empty-cache end-to-end run (~20-30 s)")
+    ap.add_argument("--quick", action="store_true",
+                    help="start-up and solver only (no scipy, end-to-end, memory)")
+    args = ap.parse_args()
+    os.chdir(ROOT)
+    print(f"python {sys.version.split()[0]} on {platform.platform()}, {os.cpu_count()} CPUs, "
+          f"{platform.processor() or platform.machine()}")
+    startup(args)
+    solved = solver(args)
+    if not args.quick:
+        reference(args, solved)
+        end_to_end(args)
+        read_only(args)
+        memory(args)
+    print("\n| what | measured | target | |\n|---|---|---|---|")
+    for what, measured, target, verdict in ROWS:
+        print(f"| {what.strip()} | {measured} | {target} | {verdict} |")
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@ class ReportData:
     spectrum: dict[str, np.ndarray]
     geometry: PairGeometry | None  #: None when the stored case's geometry cannot be rebuilt
     geometry_error: str = ""
+    stress: dict | None = None  #: stress.json of gearcli stress, when it was run
 
     @property
     def folder(self) -> Path:
@@ -95,7 +96,14 @@ def load_report_data(folder: str | Path) -> ReportData:
         geometry, error = compute_pair_geometry(pair_spec(loaded.case)), ""
     except (GearcliError, KeyError, TypeError, ValueError) as exc:
         geometry, error = None, f"{type(exc).__name__}: {exc}"
-    return ReportData(run, analysis, spectrum, geometry, error)
+    stress = None
+    if (run.folder / "stress.json").is_file():
+        try:
+            stress = json.loads((run.folder / "stress.json").read_text())
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+            raise ResultsError(f"{run.folder / 'stress.json'}: unreadable JSON ({exc}); run "
+                               "gearcli stress again") from None
+    return ReportData(run, analysis, spectrum, geometry, error, stress)
 
 
 def _spectrum(path: Path) -> dict[str, np.ndarray]:

@@ -86,6 +86,7 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
             tb.drive_table(data), tb.modifications_table(data))),
         Section("Results", "results", tables(tb.results_table(data), tb.lines_table(data))),
         Section("Checks", "checks", tables(tb.checks_table(data))),
+        *([Section("Stress", "stress", tables(tb.stress_table(data)))] if data.stress else []),
         Section("Warnings", "warnings",
                 [Bullets(tuple(warnings), "warn")] if warnings else [Paragraph("None.")]),
         Section("Figures", "figures",

@@ -308,3 +308,26 @@ def provenance_table(data: ReportData) -> Table:
     if s:
         rows.append(("solver", ", ".join(f"{_key_label(k)} {fmt(v)}" for k, v in s.items())))
     return Table("Provenance (manifest.json, summary.json)", ("item", "value"), rows)
+
+
+def stress_table(data: ReportData) -> Table | None:
+    """Peak dynamic stresses against the static ISO 6336 values (from stress.json)."""
+    st = data.stress
+    if not st:
+        return None
+    rows, status = [], []
+    for gear in ("pinion", "gear"):
+        g, ref = st[gear], st["static"][gear]
+        safety = g.get("safety") or {}
+        for kind, peak_key, ref_key, ratio_key, s_key in (
+            ("contact σ_H", "peak_sigma_H", "sigma_H_iso_MPa", "ratio_sigma_H_to_static", "S_H"),
+            ("root σ_F", "peak_sigma_F", "sigma_F0_MPa", "ratio_sigma_F_to_static", "S_F"),
+        ):
+            peak = g[peak_key]
+            rows.append((gear, kind, fmt(peak["MPa"]), f"{fmt(peak['t_s'])} s, tooth "
+                         f"{peak['tooth']}, {peak['zone']}", fmt(ref[ref_key]),
+                         fmt(g[ratio_key]), fmt(safety.get(s_key))))
+            status.append("")
+    return Table("Stresses (ISO 6336 from the dynamic pair forces; MPa)",
+                 ("gear", "stress", "peak", "where", "static ISO", "ratio", "safety"), rows,
+                 note=str(st.get("ratio_definition", "")), status=status)

@@ -204,3 +204,13 @@ def test_bad_options(plain_dir, args, fragment):
 
 def test_not_a_results_folder(tmp_path):
     assert "not found" in _one_line_error(_stress(tmp_path / "nope"))
+
+
+def test_report_gains_a_stress_section(relieved_dir):
+    assert _stress(relieved_dir, *WINDOW, "--safety").exit_code == 0
+    assert runner.invoke(app, ["analyze", str(relieved_dir)]).exit_code \
+        in (0, 4)
+    result = runner.invoke(app, ["report", str(relieved_dir), "--format", "md"])
+    assert result.exit_code == 0, result.output
+    text = (relieved_dir / "report.md").read_text()
+    assert "## Stress" in text and "contact σ\\_H" in text
