@@ -137,6 +137,18 @@ class Contact(Section):
         "extended", description="'extended' (tooth-geometry gap table, default) or 'rigid'"
     )
 
+    @model_validator(mode="before")
+    @classmethod
+    def _derived_is_linear(cls, data):
+        """The ISO 6336-1 stiffness is linear per unit deflection: 'derived' implies e = 1."""
+        if isinstance(data, dict) and data.get("stiffness") == "derived":
+            exponent = data.get("exponent", 1.0)
+            if exponent != 1 and exponent != 1.0:
+                raise FieldError(("exponent",), f"got {exponent!r}; the 'derived' (ISO 6336-1) "
+                                 "stiffness is linear: use exponent 1 or omit it")
+            data = {**data, "exponent": 1.0}
+        return data
+
     @field_validator("stiffness", mode="before")
     @classmethod
     def _stiffness_units(cls, value, info):

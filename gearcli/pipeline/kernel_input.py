@@ -17,6 +17,7 @@ from gearcli.case.schema import Relief as CaseRelief
 from gearcli.core import layout
 from gearcli.model.gap import GapTables, Modifications, Relief, coast_phase_mm, gap_tables
 from gearcli.model.mesh import MeshMode, mesh_mode
+from gearcli.model.stiffness import derived_pair_stiffness
 from gearcli.pipeline.geometry import GeometryResult
 
 #: Output sampling: the analysed band reaches 10 mesh harmonics (issue 3); 2.56 samples per
@@ -107,13 +108,23 @@ def static_force_N(case: Case, geo: GeometryResult) -> float:
     return abs(torque) / geo.geometry.gear.r_b_mm
 
 
+def contact_stiffness(case: Case, geo: GeometryResult) -> float:
+    """k of the IMPACT law [N/mm^e]: given, or 'derived' = ISO 6336-1 c' b (e = 1) at the
+    static load (model.md §4)."""
+    if case.contact.stiffness != "derived":
+        return float(case.contact.stiffness)
+    torque = static_force_N(case, geo) * geo.geometry.gear.r_b_mm
+    iso = derived_pair_stiffness(geo.geometry, case.gears.rack.dedendum, torque)
+    return iso.pair_stiffness_N_mm
+
+
 def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     """Assemble the kernel's inputs from a validated case and its checked geometry."""
     g = geo.geometry
     rb1, rb2 = g.pinion.r_b_mm, g.gear.r_b_mm
     J1, J2 = geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2
     ct, fr, dr = case.contact, case.friction, case.drive
-    k = float(ct.stiffness)
+    k = contact_stiffness(case, geo)
     mode = {"speed": layout.DRIVE_SPEED, "shaft": layout.DRIVE_SHAFT,
             "torque": layout.DRIVE_TORQUE}[dr.type]
     mesh = mesh_mode(static_force_N(case, geo), g.eps_alpha, k, ct.exponent, ct.max_damping,

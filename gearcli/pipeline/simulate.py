@@ -117,9 +117,6 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
 
 def _refuse_unsupported(loaded: LoadedCase) -> None:
     case = loaded.case
-    if case.contact.stiffness == "derived":
-        raise loaded.error(("contact", "stiffness"), "the ISO 6336 'derived' stiffness is not "
-                           "implemented yet; give k in N/mm^e", "derived", True)
     if case.load.applied_to == "pinion":
         raise loaded.error(("load", "applied_to"), "a load on the pinion is not supported by "
                            "the solver yet; apply it to the gear", "pinion", True)
