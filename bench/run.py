@@ -84,7 +84,7 @@ def solver(args) -> dict:
         med = statistics.median(times)
         row(f"solver, {name}", f"median {med * 1e3:.2f} ms (min {min(times) * 1e3:.2f})",
             f"<= {target * 1e3:.0f} ms", med <= target)
-        row(f"  steps acc/rej, RHS evals, output evals",
+        row("  steps acc/rej, RHS evals, output evals",
             f"{c['accepted_steps']}/{c['rejected_steps']}, {c['rhs_evaluations']}, "
             f"{c['output_evaluations']}")
         out[name] = (res, med)

@@ -54,9 +54,10 @@ P_DENSE = np.array([
 
 
 @jit_noalloc_inline
-def stage_state(y, K, s, h, out):
-    """State of stage ``s`` (1..5): ``out = y + h sum_{k<s} A[s, k] K[k]``."""
-    for i in range(y.shape[0]):
+def stage_state(y, K, s, h, out, lo):
+    """State of stage ``s`` (1..5): ``out = y + h sum_{k<s} A[s, k] K[k]``, components
+    ``lo ..`` (the ones below ``lo`` are not integrated: prescribed motion)."""
+    for i in range(lo, y.shape[0]):
         acc = 0.0
         for k in range(s):
             acc += A[s, k] * K[k, i]
@@ -64,9 +65,9 @@ def stage_state(y, K, s, h, out):
 
 
 @jit_noalloc_inline
-def solution(y, K, h, out):
-    """5th-order solution ``out = y + h sum_k B[k] K[k]``."""
-    for i in range(y.shape[0]):
+def solution(y, K, h, out, lo):
+    """5th-order solution ``out = y + h sum_k B[k] K[k]``, components ``lo ..``."""
+    for i in range(lo, y.shape[0]):
         acc = 0.0
         for k in range(N_STAGES):
             acc += B[k] * K[k, i]

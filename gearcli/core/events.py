@@ -58,11 +58,12 @@ def _boundary_ahead(x, rate, x_lo, x_hi):
 
 @jit_noalloc
 def _flank_crossing(sigma, s1, v1, a1, delta, deltadot, deltaddot, phase0, offset, g1, g2,
-                    overlap_max, prm, derived, tables, window, margin):
+                    overlap_max, end_gap, prm, derived, tables, window, margin):
     """Earliest loaded table-end crossing of one flank family within ``window`` [s]."""
-    # no pair of the family can touch within the window (rhs.overlap_bound): nothing to find
+    # no pair of the family can touch within the window (rhs.overlap_bound), or none can be
+    # loaded where it crosses a table end (rhs.end_gap_bound: extended tables): nothing to find
     reach = sigma * delta + (abs(deltadot) + 0.5 * abs(deltaddot) * window) * window
-    if reach - offset + overlap_max <= -margin:
+    if reach - offset + min(overlap_max, -end_gap) <= -margin:
         return math.inf
     p_b = prm[P.p_b]
     x_lo = prm[P.x_lo]
@@ -125,12 +126,13 @@ def next_crossing(s1, v1, a1, delta, deltadot, deltaddot, prm, derived, tables, 
         (covers runout and tooth offsets, which are not evaluated here).
     """
     tau = _flank_crossing(1.0, s1, v1, a1, delta, deltadot, deltaddot, prm[P.s1_0], 0.0,
-                          TABLE_G1, TABLE_G2, derived[D.overlap_drive], prm, derived, tables,
-                          window, margin)
+                          TABLE_G1, TABLE_G2, derived[D.overlap_drive], derived[D.end_gap_drive],
+                          prm, derived, tables, window, margin)
     if prm[P.coast_flanks] != 0.0:
         tau_c = _flank_crossing(-1.0, s1, v1, a1, delta, deltadot, deltaddot, prm[P.s1c_0],
                                 prm[P.backlash_n], TABLE_G1_COAST, TABLE_G2_COAST,
-                                derived[D.overlap_coast], prm, derived, tables, window, margin)
+                                derived[D.overlap_coast], derived[D.end_gap_coast], prm, derived,
+                                tables, window, margin)
         if tau_c < tau:
             tau = tau_c
     return tau

@@ -175,7 +175,14 @@ N_AUX = len(AUX_NAMES)
 DERIVED_NAMES = (
     "overlap_drive",  # upper bound of -G1 - G2 - errors on the drive flanks [mm]
     "overlap_coast",  # the same on the coast flanks [mm]
+    "end_gap_drive",  # lower bound of G1 + G2 with a position on a table end, drive [mm]
+    "end_gap_coast",  # the same, coast flanks [mm]
     "error_bound",  # largest overlap runout + tooth offsets add on either flank family [mm]
+    "tooth_offsets_used",  # 1 when any per-tooth flank offset is non-zero, else 0
+    # [zero_lo + k, zero_hi + k]: roll positions [mm] where gap table k is exactly zero
+    "zero_lo", "zero_lo_1", "zero_lo_2", "zero_lo_3",
+    "zero_hi", "zero_hi_1", "zero_hi_2", "zero_hi_3",
+    "inv_exponent_plus_1",  # 1/(e + 1) [-]
     "grid_step",  # gap-table spacing (x_hi - x_lo)/(n - 1) [mm]
     "inv_grid_step",  # [1/mm]
     "inv_p_b",  # [1/mm]

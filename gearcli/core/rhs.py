@@ -97,6 +97,13 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
         Upper bound of ``-G1 - G2 - e1 - e2 - Ft1 - Ft2`` over all positions [mm]
         (:func:`overlap_bound`); with ``sigma delta - offset + overlap_max <= 0`` no slot can
         touch and the slot loop is skipped.
+
+    Fast paths that leave every result unchanged (tests/physics/test_kernel_fastpaths.py,
+    bench/RESULTS.md): inside a table's zero run (``derived[D.zero_lo + k] ..
+    derived[D.zero_hi + k]``, :func:`derive`) the gap and its slope are exactly 0 and the
+    table is not read (most slots of the seed case: the mid-path of extended tables, all of
+    the rigid ones); without per-tooth offsets (``derived[D.tooth_offsets_used] == 0``) the
+    tooth indices are not tracked.
     prm, derived : ndarray
         Parameter vector (layout.P) and derived constants (layout.D).
     tables, tooth_offsets : ndarray
@@ -130,6 +137,7 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
     d_max = prm[P.d_max]
     mu_s = prm[P.mu_s]
     mu_d = prm[P.mu_d]
+    inv_e1 = derived[D.inv_exponent_plus_1]
     use_friction = mu_s != 0.0 or mu_d != 0.0
     r = sigma * s1 - phase0
     nf = math.floor(r * derived[D.inv_p_b])
@@ -154,10 +162,18 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
     pot = 0.0
     pen_max = 0.0
     # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (module docstring)
-    i1 = (k1 + isig * n) % z1
-    i2 = (k2 + isig * n) % z2
+    use_offsets = derived[D.tooth_offsets_used] != 0.0
+    zlo1 = derived[D.zero_lo + g1]
+    zhi1 = derived[D.zero_hi + g1]
+    zlo2 = derived[D.zero_lo + g2]
+    zhi2 = derived[D.zero_hi + g2]
+    i1 = 0
+    i2 = 0
+    if use_offsets:
+        i1 = (k1 + isig * n) % z1
+        i2 = (k2 + isig * n) % z2
     for j in range(slot_force.shape[0]):
-        if j > 0:
+        if j > 0 and use_offsets:
             i1 -= isig
             i2 -= isig
             if i1 < 0:
@@ -169,15 +185,26 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
             elif i2 >= z2:
                 i2 -= z2
         x1 = x_lo + u + j * p_b
-        in1, gap1, dgap1 = hermite(tables, g1, x_lo, x_hi, h_grid, inv_h, x1)
-        if not in1:
-            break  # x1 grows with j: every further slot is beyond the table too
         x2 = x1 - sigma * delta
-        in2, gap2, dgap2 = hermite(tables, g2, x_lo, x_hi, h_grid, inv_h, x2)
-        if not in2:
+        # x1 >= x_lo always (u >= 0); NaN fails every comparison and ends the loop
+        if not x1 <= x_hi:
+            break  # x1 grows with j: every further slot is beyond the table too
+        if not (x2 >= x_lo and x2 <= x_hi):
             continue
-        pen = (sigma * delta - offset - gap1 - gap2 - e1 - e2
-               - tooth_offsets[t1, i1] - tooth_offsets[t2, i2])
+        # inside a table's zero run the Hermite cubic is exactly 0 (values and slopes 0)
+        if x1 >= zlo1 and x1 <= zhi1:
+            gap1 = 0.0
+            dgap1 = 0.0
+        else:
+            _, gap1, dgap1 = hermite(tables, g1, x_lo, x_hi, h_grid, inv_h, x1)
+        if x2 >= zlo2 and x2 <= zhi2:
+            gap2 = 0.0
+            dgap2 = 0.0
+        else:
+            _, gap2, dgap2 = hermite(tables, g2, x_lo, x_hi, h_grid, inv_h, x2)
+        pen = sigma * delta - offset - gap1 - gap2 - e1 - e2
+        if use_offsets:
+            pen -= tooth_offsets[t1, i1] + tooth_offsets[t2, i2]
         if pen <= 0.0:
             continue
         if pen > pen_max:
@@ -186,7 +213,7 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
         dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
         pdot = dp1 * v1 + dp2 * v2
         force, fel = impact_force(pen, pdot, k, ex, c_max, d_max)
-        pot += fel * pen / (ex + 1.0)  # k p^(e+1)/(e+1), contact.impact_potential
+        pot += fel * pen * inv_e1  # k p^(e+1)/(e+1), contact.impact_potential
         # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0
         pdamp += (force - fel) * pdot
         if force <= 0.0:
@@ -235,6 +262,43 @@ def overlap_bound(prm, tables, tooth_offsets, g1, g2, t1, t2):
 
 
 @jit_noalloc
+def end_gap_bound(tables, g1, g2, h):
+    """Lower bound [mm] of ``G1(x1) + G2(x2)`` when either position sits on a table end.
+
+    ``min(G1(x_lo), G1(x_hi)) + min G2`` or the same with the tables swapped (``min G`` from
+    :func:`gearcli.core.gaptable.table_floor`). A pair crossing a table end overlaps by at most
+    ``sigma delta - offset`` minus this (events.py); extended tables open a gap of about the
+    tabulation cap there, so no crossing of theirs is loaded.
+    """
+    n = tables.shape[2]
+    end1 = min(tables[g1, 0, 0], tables[g1, 0, n - 1]) + table_floor(tables, g2, h)
+    end2 = min(tables[g2, 0, 0], tables[g2, 0, n - 1]) + table_floor(tables, g1, h)
+    return min(end1, end2)
+
+
+@jit_noalloc
+def zero_run(tables, k):
+    """First and last grid index of the longest run of grid points of table ``k`` where the
+    value and the slope are both zero (``(0, -1)`` if none): the Hermite cubic vanishes
+    identically between them."""
+    best_lo = 0
+    best_hi = -1
+    start = -1
+    n = tables.shape[2]
+    for i in range(n + 1):
+        zero = i < n and tables[k, 0, i] == 0.0 and tables[k, 1, i] == 0.0
+        if zero:
+            if start < 0:
+                start = i
+        elif start >= 0:
+            if i - 1 - start > best_hi - best_lo:
+                best_lo = start
+                best_hi = i - 1
+            start = -1
+    return best_lo, best_hi
+
+
+@jit_noalloc
 def derive(prm, tables, tooth_offsets, derived):
     """Fill ``derived`` (layout.D) with the constants of a run: overlap bounds, grid step and
     reciprocals of the geometry and inertia parameters."""
@@ -244,6 +308,25 @@ def derive(prm, tables, tooth_offsets, derived):
                                              TABLE_G2_COAST, 2, 3)
     derived[D.error_bound] = max(error_bound(prm, tooth_offsets, 0, 1),
                                  error_bound(prm, tooth_offsets, 2, 3))
+    used = 0.0
+    for row in range(tooth_offsets.shape[0]):
+        for i in range(tooth_offsets.shape[1]):
+            if tooth_offsets[row, i] != 0.0:
+                used = 1.0
+    derived[D.tooth_offsets_used] = used
+    for k in range(tables.shape[0]):
+        lo, hi = zero_run(tables, k)
+        if hi - lo >= 2:
+            # one grid step in from the run's ends: a position there falls in an interval of
+            # the run whatever the rounding of its grid index, and the cubic is exactly 0
+            derived[D.zero_lo + k] = prm[P.x_lo] + (lo + 1) * h
+            derived[D.zero_hi + k] = prm[P.x_lo] + (hi - 1) * h
+        else:  # no zero run: an empty interval
+            derived[D.zero_lo + k] = math.inf
+            derived[D.zero_hi + k] = -math.inf
+    derived[D.inv_exponent_plus_1] = 1.0 / (prm[P.exponent] + 1.0)
+    derived[D.end_gap_drive] = end_gap_bound(tables, TABLE_G1, TABLE_G2, h)
+    derived[D.end_gap_coast] = end_gap_bound(tables, TABLE_G1_COAST, TABLE_G2_COAST, h)
     derived[D.grid_step] = h
     derived[D.inv_grid_step] = 1.0 / h
     derived[D.inv_p_b] = 1.0 / prm[P.p_b]

@@ -115,15 +115,17 @@ def _attempt(t, h, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, table
     """One Dormand-Prince step attempt from (t, y) with K[0] = f(t, y): stages 2..6, the
     solution ``y_new`` at ``t_new = t + h``, the FSAL stage K[6] = f(t_new, y_new) (its ``aux``,
     ``sf``, ``sfc`` stay in the work arrays) and the scaled error norm (dopri5.error_norm).
+    Only components ``first ..`` are integrated (speed mode: s1, v1 are prescribed and
+    the rhs ignores their entries of the state).
 
     The hot path of the kernel: forcing and rhs are inlined here (nrt.jit_noalloc_inline).
     """
     for s in range(1, N_STAGES + 1):
         if s < N_STAGES:
-            stage_state(y, K, s, h, ys)
+            stage_state(y, K, s, h, ys, first)
             ts = t + C_STAGE[s] * h
         else:
-            solution(y, K, h, ys)
+            solution(y, K, h, ys, first)
             ts = t_new
         ang, val, rate, load = forcing(ts, mode, theta_offset, drive_pp, angle_pp, load_pp)
         # writes straight into the row of K (a view costs nothing without reference counts)

@@ -1,0 +1,71 @@
+"""Shortcuts of the compiled kernel that must not change a result (bench/RESULTS.md).
+
+* inside a gap table's zero run (values and slopes 0 at consecutive grid points) the Hermite
+  cubic is exactly zero, so the right-hand side skips the table lookup there;
+* a flank family whose tables open a gap at their ends (extended engagement) cannot have a
+  loaded table-end crossing, so the event search skips it;
+* without per-tooth offsets the tooth indices are not tracked.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gearcli.core import layout
+from gearcli.core.gaptable import hermite, table_floor
+from gearcli.core.layout import D, P
+from gearcli.core.rhs import derive, end_gap_bound, zero_run
+
+
+def _tables(values: np.ndarray, slopes: np.ndarray) -> np.ndarray:
+    t = np.zeros((4, 2, values.size))
+    t[:, 0, :] = values
+    t[:, 1, :] = slopes
+    return t
+
+
+def test_zero_run_is_the_longest_run_and_the_cubic_vanishes_on_it():
+    x = np.linspace(-2.0, 6.0, 81)
+    g = np.where(x < 0.0, x**2, 0.0) + np.where(x > 4.0, 0.5 * (x - 4.0) ** 2, 0.0)
+    dg = np.where(x < 0.0, 2.0 * x, 0.0) + np.where(x > 4.0, x - 4.0, 0.0)
+    g[70] = 0.0  # a shorter zero run elsewhere (value only: slope non-zero) is not taken
+    tables = _tables(g, dg)
+    lo, hi = zero_run(tables, 0)
+    assert (lo, hi) == (20, 60)  # x = 0 .. 4
+    h = x[1] - x[0]
+    for q in np.linspace(x[lo + 1], x[hi - 1], 57):  # rhs.derive's shortcut interval
+        inside, value, slope = hermite(tables, 0, x[0], x[-1], h, 1.0 / h, q)
+        assert inside and value == 0.0 and slope == 0.0
+    assert zero_run(_tables(np.ones(5), np.zeros(5)), 1) == (0, -1)  # no zero run
+
+
+def test_derive_zero_runs_end_gaps_and_offset_flag():
+    x = np.linspace(-1.0, 5.0, 61)
+    g = np.where(x < 0.0, x**2, 0.0) + np.where(x > 4.0, (x - 4.0) ** 2, 0.0)
+    dg = np.where(x < 0.0, 2.0 * x, 0.0) + np.where(x > 4.0, 2.0 * (x - 4.0), 0.0)
+    tables = _tables(g, dg)
+    prm = layout.make_params(t_end=1.0, r_b1=80.0, r_b2=117.0, J1=60.0, J2=300.0, z1=17,
+                             z2=25, p_b=29.5, T1A=5.0, T1T2=72.0, x_lo=-1.0, x_hi=5.0,
+                             n_slots=2, k_contact=1e5, exponent=1.5, c_max=100.0, d_max=0.1,
+                             drive_mode=0)
+    offsets = np.zeros((4, 25))
+    derived = np.zeros(layout.N_DERIVED)
+    derive(prm, tables, offsets, derived)
+    h = derived[D.grid_step]
+    assert derived[D.zero_lo] == pytest.approx(0.0 + h, abs=1e-12)  # one step inside the run
+    assert derived[D.zero_hi] == pytest.approx(4.0 - h, abs=1e-12)
+    assert derived[D.tooth_offsets_used] == 0.0
+    # table ends at x = -1 (G = 1) and x = 5 (G = 1); the floor of the Hermite cubic <= 0
+    expected = 1.0 + table_floor(tables, 1, h)
+    assert derived[D.end_gap_drive] == pytest.approx(expected)
+    assert end_gap_bound(tables, 0, 1, h) == pytest.approx(expected)
+    assert derived[D.inv_exponent_plus_1] == pytest.approx(1.0 / 2.5)
+    offsets[1, 3] = 1e-3
+    derive(prm, tables, offsets, derived)
+    assert derived[D.tooth_offsets_used] == 1.0
+    # rigid tables (all zero): the whole grid is one zero run, and the ends are loaded
+    derive(prm, np.zeros_like(tables), offsets, derived)
+    assert derived[D.zero_lo] == pytest.approx(prm[P.x_lo] + h)
+    assert derived[D.zero_hi] == pytest.approx(prm[P.x_hi] - h)
+    assert derived[D.end_gap_drive] == 0.0
