@@ -39,8 +39,9 @@ def _root(
     """
 
 
-# Registering the commands (each module imports only typer at import time).
-from gearcli.cli import analyze, casefile, geometry, report, simulate, stress  # noqa: E402,F401
+# Registering the commands (each module imports only typer at import time); the order of
+# registration is the order of `gearcli --help`: the workflow first.
+from gearcli.cli import geometry, simulate, analyze, report, stress, casefile  # noqa: E402,F401,I001
 
 
 def main() -> None:
