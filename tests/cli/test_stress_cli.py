@@ -18,9 +18,8 @@ from typer.testing import CliRunner
 import gearcli.cli.stress  # noqa: F401  (registers the command until cli/__init__ imports it)
 from gearcli.cli import app
 from gearcli.io.results import read_run
-from gearcli.pipeline.outputs import write_simulation
-from gearcli.pipeline.simulate import run_simulation
 from tests.conftest import SEED
+from tests.physics.simrun import write_run
 
 runner = CliRunner()
 
@@ -34,15 +33,10 @@ K_LINEAR = 4e5  # N/mm
 LIMITS = ["material.contact_fatigue_limit=1500", "material.bending_fatigue_limit=430"]
 
 
-def _run(folder, overrides):
-    write_simulation(run_simulation(SEED, overrides), folder, force=False, overrides=overrides)
-    return folder
-
-
 @pytest.fixture(scope="module")
 def plain_dir(tmp_path_factory):
     """Quasi-static, unmodified teeth."""
-    return _run(tmp_path_factory.mktemp("qs") / "plain", QUASI_STATIC)
+    return write_run(tmp_path_factory.mktemp("qs") / "plain", QUASI_STATIC)
 
 
 @pytest.fixture(scope="module")
@@ -59,7 +53,7 @@ def relieved_dir(tmp_path_factory):
     length = geo.g_alpha_mm - geo.p_b_mm
     relief = [f"modifications.tip_relief.{g}.{k}={v!r}" for g in ("pinion", "gear")
               for k, v in (("amount", c_a), ("length", length))]
-    return _run(tmp_path_factory.mktemp("qs") / "relieved", QUASI_STATIC + relief + LIMITS)
+    return write_run(tmp_path_factory.mktemp("qs") / "relieved", QUASI_STATIC + relief + LIMITS)
 
 
 def _stress(folder, *args):

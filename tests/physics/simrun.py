@@ -37,3 +37,15 @@ def slot_positions(res):
 
 def deg(x):
     return math.degrees(x)
+
+
+def write_run(folder, overrides, analysed=False):
+    """A results folder of the seed case with ``overrides`` (and analysis files if asked)."""
+    from gearcli.pipeline.analysis_io import write_analysis
+    from gearcli.pipeline.analyze import analyze
+    from gearcli.pipeline.outputs import write_simulation
+
+    write_simulation(run_simulation(SEED, overrides), folder, force=False, overrides=overrides)
+    if analysed:
+        write_analysis(analyze(folder))
+    return folder

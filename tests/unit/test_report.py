@@ -25,21 +25,16 @@ from gearcli.pipeline.simulate import run_simulation
 from gearcli.plotting import results as plots
 from gearcli.report import build_report
 from tests.conftest import SEED
+from tests.physics.simrun import write_run
 
 SHORT = ["drive.speed=STEP(time, 0, 0, 0.2, 3000)", "load.torque=STEP(time, 0, 0, 0.2, 4.5e5)",
          "run.end_time=0.6"]
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
-def _run(folder, overrides):
-    write_simulation(run_simulation(SEED, overrides), folder, force=False, overrides=overrides)
-    write_analysis(analyze(folder))
-    return folder
-
-
 @pytest.fixture(scope="module")
 def short_dir(tmp_path_factory):
-    return _run(tmp_path_factory.mktemp("report") / "run", SHORT)
+    return write_run(tmp_path_factory.mktemp("report") / "run", SHORT, analysed=True)
 
 
 @pytest.fixture(scope="module")
@@ -235,7 +230,7 @@ def test_not_a_results_folder_and_bad_options(tmp_path, short_dir):
 
 
 def test_errors_and_relief_add_a_figure(tmp_path):
-    folder = _run(tmp_path / "mods", SHORT + [
+    folder = write_run(tmp_path / "mods", analysed=True, overrides=SHORT + [
         "errors.runout.gear={eccentricity: 0.02}",
         "modifications.tip_relief.pinion={amount: 0.05, length: 6}"])
     text = build_report(folder).read_text()
