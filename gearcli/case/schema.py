@@ -155,7 +155,10 @@ class Contact(Section):
         if value == "derived":
             return value
         exponent = info.data.get("exponent", 1.5)
-        return units.parse_quantity(value, units.contact_stiffness_dim(exponent))
+        k = units.parse_quantity(value, units.contact_stiffness_dim(exponent))
+        if not k > 0.0:
+            raise ValueError("expected a contact stiffness > 0 (or 'derived')")
+        return k
 
 
 class Friction(Section):

@@ -41,7 +41,7 @@ def _root(
 
 # Registering the commands (each module imports only typer at import time); the order of
 # registration is the order of `gearcli --help`: the workflow first.
-from gearcli.cli import geometry, simulate, analyze, report, stress, casefile  # noqa: E402,F401,I001
+from gearcli.cli import geometry, simulate, analyze, report, stress, modal, casefile  # noqa: E402,F401,I001
 
 
 def main() -> None:

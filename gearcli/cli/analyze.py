@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli import app
-from gearcli.cli.common import format_value, handle_errors, print_quantity_table
+from gearcli.cli.common import handle_errors, print_checks_table, print_quantity_table
 
 
 @app.command()
@@ -42,9 +42,6 @@ def analyze(
 
 
 def print_checks(doc: dict) -> None:
-    from rich.console import Console
-    from rich.table import Table
-
     m = doc["metrics"]
     rows = [
         ("mean gear speed", m["gear_speed_mean_deg_s"], "deg/s"),
@@ -67,11 +64,4 @@ def print_checks(doc: dict) -> None:
     w0, w1 = m["window_s"]
     print_quantity_table(f"{doc['case']}: window {w0:.3f}-{w1:.3f} s ({m['window_reason']})",
                          rows)
-    console = Console()
-    c = Table(title="Checks", title_justify="left")
-    for col in ("check", "value", "limit", "result", "note"):
-        c.add_column(col)
-    for ck in doc["checks"]:
-        c.add_row(ck["name"], format_value(ck["value"]), ck["limit"],
-                  "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]", ck["note"])
-    console.print(c)
+    print_checks_table(doc["checks"])

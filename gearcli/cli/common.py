@@ -112,3 +112,17 @@ def print_quantity_table(title: str, rows) -> None:
     for label, value, unit in rows:
         t.add_row(label, format_value(value), unit)
     Console().print(t)
+
+
+def print_checks_table(checks: list[dict]) -> None:
+    """The Checks table (name, value, limit, pass/FAIL, note) of analyze and modal."""
+    from rich.console import Console
+    from rich.table import Table
+
+    c = Table(title="Checks", title_justify="left")
+    for col in ("check", "value", "limit", "result", "note"):
+        c.add_column(col)
+    for ck in checks:
+        c.add_row(ck["name"], format_value(ck["value"]), ck["limit"],
+                  "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]", ck["note"])
+    Console().print(c)

@@ -16,6 +16,7 @@ import numpy as np
 from gearcli.case.load import load_case_text
 from gearcli.errors import ResultsError
 from gearcli.io.results import StoredRun, read_run
+from gearcli.model.modal import has_resonant_peak
 from gearcli.pipeline.geometry import run_geometry
 from gearcli.pipeline.spectrum import (
     Line,
@@ -195,9 +196,8 @@ def _checks(res: Analysis, case, s) -> list[Check]:
     k_min = int(np.argmin(margins)) + 1
     m["resonance_margins_percent"] = margins
     note = f"nearest: {k_min} x f_z = {k_min * f_z:.1f} Hz vs mesh mode {f_n:.1f} Hz"
-    # A mode with zeta >= 1/sqrt(2) has no resonant peak: |H(f)| <= 1 at every frequency
-    # (base-excited single-DOF oscillator; e.g. Rao, Mechanical Vibrations, §3.4).
-    no_peak = zeta >= 1.0 / math.sqrt(2.0)
+    # A mode with zeta >= 1/sqrt(2) has no resonant peak (one rule: gearcli.model.modal).
+    no_peak = not has_resonant_peak(zeta)
     if no_peak:
         note += f"; the mode has no resonant peak (damping ratio {zeta:.2f} >= 0.707)"
     out.append(Check("resonance_margin_percent", min(margins),

@@ -1,0 +1,115 @@
+"""Campbell diagram (frequency vs pinion speed) and a mode-shape panel.
+
+Mode lines are horizontal: the linearised mesh stiffness does not depend on speed. Order lines
+f = per_rev · n1 (n1 the pinion speed in rev/s); a circle marks where an order line meets a mode
+with a resonant peak (a cross when the mode has none), a vertical line the case speed.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from gearcli.model.modal import ModalResult, Order
+
+__all__ = ["plot_campbell"]
+
+_DOF_LABELS = {"theta1_rad": "pinion θ1", "theta2_rad": "gear θ2"}
+
+
+def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
+                  speed_range_deg_s: tuple[float, float], case_speed_deg_s: float | None,
+                  title: str = "") -> Figure:
+    """Campbell diagram (left) and mode shapes (right) of a torsional modal result.
+
+    Parameters
+    ----------
+    result : ModalResult
+        Modes from :func:`gearcli.model.modal.torsional_modes`.
+    orders : tuple of Order
+        Excitation orders (events per pinion revolution).
+    speed_range_deg_s : (float, float)
+        Pinion speed axis [deg/s].
+    case_speed_deg_s : float or None
+        The case's pinion speed [deg/s], marked when given.
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(12.0, 5.8), layout="constrained")
+    ax, axs = fig.subplots(1, 2, width_ratios=[2.3, 1.0])
+    lo, hi = speed_range_deg_s
+    speed = np.linspace(lo, hi, 200)
+    elastic = result.elastic
+    f_modes = [m.natural_frequency_Hz for m in elastic]
+    f_top = 1.25 * max(f_modes) if f_modes else (max(o.per_rev for o in orders) * hi / 360.0)
+    mode_colours = ["#c62828", "#1565c0", "#2e7d32", "#6a1b9a"]
+
+    gmf = [o for o in orders if "GMF" in o.name]
+    shafts = [o for o in orders if "GMF" not in o.name]
+    greys = np.linspace(0.15, 0.65, max(len(gmf), 1))
+    for o, grey in zip(gmf, greys, strict=False):
+        f = o.per_rev * speed / 360.0
+        ax.plot(speed, f, color=str(grey), lw=1.0)
+        _label_line(ax, speed, f, o.name, f_top)
+    for o, style in zip(shafts, ("--", ":"), strict=False):
+        f = o.per_rev * speed / 360.0
+        ax.plot(speed, f, color="#555555", lw=1.0, ls=style, label=f"{o.name} (shaft order)")
+    for m, col in zip(elastic, mode_colours, strict=False):
+        ax.axhline(m.natural_frequency_Hz, color=col, lw=2.0,
+                   label=f"mode {m.number}: {m.natural_frequency_Hz:.0f} Hz, "
+                         f"ζ = {m.damping_ratio:.3g}")
+        for o in orders:
+            n = m.natural_frequency_Hz / o.per_rev * 360.0
+            if lo <= n <= hi:
+                ax.plot(n, m.natural_frequency_Hz, "o" if m.has_peak else "x", ms=7,
+                        mfc="none", mec=col, color=col, mew=1.6)
+    if case_speed_deg_s is not None and lo <= case_speed_deg_s <= hi:
+        ax.axvline(case_speed_deg_s, color="#ef6c00", lw=1.5, ls="-.",
+                   label=f"case speed {case_speed_deg_s:.0f} deg/s")
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(0.0, f_top)
+    ax.set_xlabel("pinion speed [deg/s]")
+    ax.set_ylabel("frequency [Hz]")
+    ax.set_title("Campbell diagram (o crossing with a resonant mode, x mode without a peak)",
+                 fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
+
+    _plot_shapes(axs, result, mode_colours)
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def _label_line(ax, speed, f, text, f_top) -> None:
+    """Write the order's name where its line leaves the plot (top or right edge)."""
+    inside = np.nonzero(f <= 0.97 * f_top)[0]
+    if inside.size == 0 or inside[-1] == 0:
+        return
+    i = inside[-1]
+    ax.annotate(text, (speed[i], f[i]), fontsize=7, color="#333333", ha="right", va="bottom",
+                xytext=(-2, 2), textcoords="offset points",
+                bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none", "alpha": 0.8})
+
+
+def _plot_shapes(ax, result: ModalResult, colours) -> None:
+    dofs = [_DOF_LABELS.get(d, d) for d in result.dofs]
+    x = np.arange(len(dofs))
+    modes = result.modes
+    width = 0.8 / max(len(modes), 1)
+    for k, m in enumerate(modes):
+        col = "#777777" if m.rigid else colours[(k - sum(mm.rigid for mm in modes)) % 4]
+        label = (f"mode {m.number}: rigid body" if m.rigid
+                 else f"mode {m.number}: {m.natural_frequency_Hz:.0f} Hz")
+        ax.bar(x + (k - (len(modes) - 1) / 2) * width, m.shape, width, color=col, label=label)
+    ax.axhline(0.0, color="black", lw=0.8)
+    ax.set_xticks(x, dofs)
+    ax.set_ylim(-1.15, 1.35)
+    ax.set_ylabel("normalised amplitude (largest = 1)")
+    ax.set_title("mode shapes (θ2 in the gear's sense of rotation)", fontsize=9)
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(axis="y", alpha=0.3)
