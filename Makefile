@@ -36,3 +36,14 @@ lint: $(STAMP)
 
 clean:
 	rm -rf $(VENV) out build *.egg-info .pytest_cache .ruff_cache
+
+# --- parametric studies (gearcli sweep); one target per study so `make -j studies` works ---
+STUDY_OUT ?= out/studies
+.PHONY: studies study-table5 study-speed
+studies: study-table5 study-speed
+
+study-table5: $(STAMP)
+	$(BIN)/gearcli sweep cases/studies/table5.yaml -o $(STUDY_OUT)/table5
+
+study-speed: $(STAMP)
+	$(BIN)/gearcli sweep cases/studies/speed.yaml -o $(STUDY_OUT)/speed

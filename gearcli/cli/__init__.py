@@ -41,7 +41,9 @@ def _root(
 
 # Registering the commands (each module imports only typer at import time); the order of
 # registration is the order of `gearcli --help`: the workflow first.
-from gearcli.cli import geometry, simulate, analyze, report, stress, modal, casefile  # noqa: E402,F401,I001
+from gearcli.cli import (  # noqa: E402,F401,I001
+    geometry, simulate, analyze, report, stress, modal, sweep, casefile,
+)
 
 
 def main() -> None:

@@ -55,7 +55,10 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
     """Load (if needed) and check the case's geometry; geometry errors raise a located CaseError."""
     loaded = source if isinstance(source, LoadedCase) else load_case(source)
     case = loaded.case
-    geo = compute_pair_geometry(pair_spec(case))
+    try:
+        geo = compute_pair_geometry(pair_spec(case))
+    except ValueError as exc:  # impossible input the schema cannot see (e.g. a rack that
+        raise loaded.error(("gears",), f"impossible geometry: {exc}") from None  # cannot exist)
     errors = sorted(
         (f for f in geo.findings if f.severity == "error"),
         key=lambda f: _ROOT_CAUSE_ORDER.index(f.code) if f.code in _ROOT_CAUSE_ORDER else 99,

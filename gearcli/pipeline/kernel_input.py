@@ -7,6 +7,7 @@ are measured from A along the line of action.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -118,6 +119,14 @@ def contact_stiffness(case: Case, geo: GeometryResult) -> float:
     return iso.pair_stiffness_N_mm
 
 
+@functools.lru_cache(maxsize=16)
+def _gap_tables(geometry, mods, engagement: str, cap_mm: float) -> GapTables:
+    """gap_tables, memoised per process: the points of a sweep that keep the geometry (speed,
+    load, damping, ...) share their tables (~0.15 s each to build). The inputs are frozen
+    dataclasses; the tables are only read."""
+    return gap_tables(geometry, mods, engagement, cap_mm=cap_mm)
+
+
 def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     """Assemble the kernel's inputs from a validated case and its checked geometry."""
     g = geo.geometry
@@ -131,7 +140,7 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
                      ct.penetration_depth, rb1, rb2, J1, J2, pinion_free=mode != layout.DRIVE_SPEED)
     # Tip gaps are tabulated up to well beyond the deflections the run can reach.
     cap = max(0.05 * g.module_mm, 20.0 * mesh.static_deflection_mm)
-    tables = gap_tables(g, modifications(case), ct.engagement, cap_mm=cap)
+    tables = _gap_tables(g, modifications(case), ct.engagement, cap)
     x_c = g.C_mm - g.A_mm  # pitch point, from A
     n_slots = math.ceil((tables.x_hi - tables.x_lo) / g.p_b_mm) + 1
     s1_0 = (-(x_c - tables.x_lo)) % g.p_b_mm  # slot at x_C when s1 = 0 (θ1 = 0: pair at C)

@@ -217,6 +217,11 @@ def collect_warnings(res: SimulationResult) -> list[str]:
             out.append(f"output aliasing: {rate:g} Hz sampling resolves only {n_ok} of the "
                        f"{harmonics} analysed mesh harmonics (default rate resolves "
                        f"{HARMONICS_RESOLVED})")
+    pen = res.kernel.extremum("penetration_max_mm")
+    if pen > max(10.0 * ki.mesh.static_deflection_mm, 0.02 * res.geometry.geometry.module_mm):
+        out.append(f"penetration up to {pen:.3f} mm (static deflection "
+                   f"{ki.mesh.static_deflection_mm:.4f} mm): far beyond elastic tooth "
+                   "deflection; the rigid-tooth contact model is outside its validity here")
     if res.window.reason.startswith("the second half"):
         out.append("no steady state: the run ends before the ramps have settled")
     return out

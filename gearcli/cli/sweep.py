@@ -1,0 +1,85 @@
+"""`gearcli sweep STUDY -o DIR`: run a parametric study; summary.csv, trends.csv/.md, plots."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from gearcli.cli import app
+from gearcli.cli.common import handle_errors, numba_cache_setup
+
+
+@app.command()
+@handle_errors
+def sweep(
+    study: Path = typer.Argument(..., help="Study file (YAML): base case, parameters, design."),
+    out: Path = typer.Option(..., "-o", "--out", help="Output folder (summary.csv, trends)."),
+    jobs: int = typer.Option(0, "--jobs", "-j", min=0,
+                             help="Worker processes (0 = all cores; 1 = serial)."),
+    scheduler: str = typer.Option(None, "--scheduler",
+                                  help="Dask: 'local' (embedded LocalCluster) or tcp://host:port."),
+    keep_timeseries: bool = typer.Option(False, "--keep-timeseries",
+                                         help="Also write each point's results folder."),
+    force: bool = typer.Option(False, "--force", help="Start over (discard summary.csv)."),
+    yes: bool = typer.Option(False, "--yes", "-y", help="Run studies of more than 1000 points."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar, no summary line."),
+) -> None:
+    """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
+    failed points are recorded, never abort the study."""
+    numba_cache_setup()
+    from gearcli.pipeline.sweep_run import run_study
+    from gearcli.pipeline.sweep_study import load_study
+    from gearcli.pipeline.sweep_trends import write_trends
+
+    spec = load_study(study, allow_large=yes)
+    with _progress(enabled=not quiet, total=len(spec.points)) as progress:
+        outcome = run_study(spec, out, jobs or None, scheduler, keep_timeseries, force,
+                            progress)
+    write_trends(out, spec, outcome.rows)
+    if not quiet:
+        typer.echo(f"{outcome.total} points: {outcome.ran} run, {outcome.skipped} already done, "
+                   f"{outcome.failed} failed ({outcome.wall_time_s:.1f} s); results in {out}/"
+                   " (summary.csv, trends.md)")
+
+
+class _Silent:
+    def __enter__(self):
+        return None
+
+    def __exit__(self, *exc):
+        return False
+
+
+def _progress(enabled: bool, total: int):
+    """A rich progress bar (done/failed/remaining, ETA) on a terminal; nothing otherwise."""
+    import sys
+
+    if not enabled or not sys.stderr.isatty():
+        return _Silent()
+    from contextlib import contextmanager
+
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    @contextmanager
+    def bar():
+        cols = (TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
+                TextColumn("{task.fields[failed]} failed, {task.fields[left]} left"),
+                TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn())
+        with Progress(*cols, console=Console(stderr=True)) as pr:
+            task = pr.add_task("sweep", total=total, failed=0, left=total)
+
+            def update(done: int, failed: int, n: int) -> None:
+                pr.update(task, completed=done, failed=failed, left=n - done)
+
+            yield update
+
+    return bar()

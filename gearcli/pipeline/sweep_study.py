@@ -1,0 +1,451 @@
+"""Study files for `gearcli sweep`: a base case, parameters over case key paths, a design.
+
+A study file (YAML)::
+
+    name: table5
+    base: ../seed.yaml            # path relative to the study file, or an inline case mapping
+    set:                          # overrides applied to every point (key.path: value)
+      run.end_time: 3 s
+    design: one_at_a_time         # grid (default) | zip | lhs | one_at_a_time
+    parameters:                   # key path -> explicit list, or a range
+      gears.module: [8, 10, 12]
+      gears.face_width: {linspace: ["60 mm", "140 mm"], num: 5}
+      contact.stiffness: {logspace: ["1e5 N/mm", "1e6 N/mm"], num: 4}
+      mesh_frequency: {linspace: ["50 Hz", "1500 Hz"], num: 30}   # virtual: sets drive.speed
+    samples: 50                   # lhs only: number of points
+    seed: 1                       # lhs only
+    metrics: [force_max_N, dynamic_factor]  # optional: columns kept (default: all)
+    checks:                       # optional: per-point limits, reported in the summary
+      - {metric: dynamic_factor, max: 2.0}
+
+Values with units are passed to the case as strings ("9.5 mm"); ranges keep the unit of their
+first end. ``mesh_frequency`` is not a case key: it sets the final value of the drive-speed ramp
+(``drive.speed``) so that the gear-mesh frequency f_z = z1 n1 takes the given value.
+
+Every point is resolved (overrides applied, validated) before anything runs, so an unknown key,
+an empty list or a wrong unit is one located error, and the case hash (sha256 of the resolved
+case JSON) identifies the point for resuming.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from gearcli import units
+from gearcli.case.load import validate_source
+from gearcli.case.overrides import apply_overrides
+from gearcli.case.schema import Case
+from gearcli.case.yamlsrc import Source, parse_source, read_source
+from gearcli.errors import CaseError
+
+#: Without ``--yes``, studies with more points than this are refused.
+MAX_POINTS = 1000
+#: A virtual parameter: the gear-mesh frequency f_z [Hz], set through ``drive.speed``.
+MESH_FREQUENCY = "mesh_frequency"
+_RAMP = re.compile(r"^\s*(STEP5?|RAMP)\s*\(\s*time\s*,([^,]+),([^,]+),([^,]+),([^,()]+)\)\s*$",
+                   re.IGNORECASE)
+_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class Range(_Strict):
+    """``{linspace: [start, stop], num: N}``, ``{logspace: ...}`` or ``{values: [...]}``;
+    ``with`` holds overrides set together with the parameter (e.g. a tip relief's length);
+    ``{value}`` in them stands for the parameter's value."""
+
+    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+    linspace: list[float | str] | None = Field(None, min_length=2, max_length=2)
+    logspace: list[float | str] | None = Field(None, min_length=2, max_length=2)
+    values: list[Any] | None = None
+    num: int | None = Field(None, ge=1, le=100_000)
+    with_: dict[str, Any] = Field(default_factory=dict, alias="with")
+
+    @model_validator(mode="after")
+    def _one_kind(self):
+        if sum(x is not None for x in (self.linspace, self.logspace, self.values)) != 1:
+            raise ValueError("give exactly one of 'linspace', 'logspace' (with 'num') or "
+                             "'values'")
+        return self
+
+
+class Check(_Strict):
+    metric: str
+    min: float | None = None
+    max: float | None = None
+
+
+class StudyFile(_Strict):
+    name: str | None = None
+    description: str | None = None
+    base: str | dict[str, Any]
+    set: dict[str, Any] = Field(default_factory=dict)
+    design: Literal["grid", "zip", "lhs", "one_at_a_time"] = "grid"
+    samples: int | None = Field(None, ge=1)
+    seed: int | None = None
+    parameters: dict[str, list[Any] | Range] = Field(min_length=1)
+    metrics: list[str] | None = Field(None, min_length=1)
+    checks: list[Check] = Field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One varied key path: its values as passed to the override, and as numbers in ``unit``."""
+
+    key: str
+    unit: str  #: "" for unitless or non-numeric values
+    values: tuple  #: override values (numbers, or strings with units)
+    numbers: tuple  #: the values as floats in ``unit`` (nan where not numeric)
+    log: bool = False
+    bounds: tuple[float, float] | None = None  #: a range's ends (for lhs)
+    extra: tuple[str, ...] = ()  #: overrides set with the parameter (``with``)
+
+    @property
+    def column(self) -> str:
+        return f"{self.key} [{self.unit}]" if self.unit else self.key
+
+
+@dataclass
+class Point:
+    """One resolved point: its index, its parameter values, the resolved case and its hash."""
+
+    index: int
+    values: dict[str, Any]  #: parameter column -> number (or text)
+    overrides: list[str]
+    case_json: str = ""
+    case_hash: str = ""
+
+
+@dataclass
+class Study:
+    name: str
+    file: str
+    design: str
+    parameters: list[Parameter]
+    points: list[Point]
+    metrics: list[str] | None
+    checks: list[Check]
+    base_case_json: str
+    base_values: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def parameter_columns(self) -> list[str]:
+        return [p.column for p in self.parameters]
+
+
+def load_study(path: str | Path, allow_large: bool = False) -> Study:
+    """Read, validate and resolve a study file; every input problem is a located CaseError."""
+    src = read_source(path)
+    return _build(src, Path(path).resolve().parent, Path(path).stem, allow_large)
+
+
+def load_study_text(text: str, name: str = "<study>", folder: str | Path = ".",
+                    allow_large: bool = False) -> Study:
+    return _build(parse_source(text, name), Path(folder), Path(name).stem, allow_large)
+
+
+def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
+    try:
+        spec = StudyFile.model_validate(src.data)
+    except ValidationError as exc:
+        err = sorted(exc.errors(), key=lambda e: e["type"] == "missing")[0]  # a typo first
+        loc = _yaml_loc(tuple(err["loc"]), src.data)
+        msg = err["msg"].removeprefix("Value error, ")
+        if err["type"] == "missing":
+            msg = "missing required key"
+        if err["type"] == "extra_forbidden":
+            msg = "unknown key; expected one of: " + ", ".join(StudyFile.model_fields)
+        raise src.error(loc, msg) from None
+    base_src = _base_source(spec, src, folder)
+    fixed = [f"{k}={_yaml(v)}" for k, v in spec.set.items()]
+    _check_keys(src, ("set",), spec.set)
+    _check_keys(src, ("parameters",), spec.parameters)
+    try:
+        base_src.data = apply_overrides(base_src.data, fixed, Case)
+        base = validate_source(base_src, stem)
+    except CaseError as exc:
+        raise CaseError(f"the base case is invalid: {exc}", file=src.file,
+                        line=src.line_of(("base",))) from None
+    params = [_parameter(src, key, spec.parameters[key]) for key in spec.parameters]
+    for key, spec_p in spec.parameters.items():
+        if isinstance(spec_p, Range) and spec_p.with_:
+            _check_keys(src, ("parameters", key, "with"), spec_p.with_)
+    _check_design(src, spec, params)
+    combos = _design(spec, params)
+    if len(combos) > MAX_POINTS and not allow_large:
+        raise src.error(("parameters",), f"the {spec.design} has {len(combos)} points "
+                        f"(> {MAX_POINTS}); pass --yes to run it")
+    base_values = {p.column: _base_value(base_src.data, p) for p in params}
+    points = []
+    for i, combo in enumerate(combos):
+        values = dict(base_values)
+        overrides = []
+        for p, j in combo:
+            values[p.column] = p.numbers[j] if not math.isnan(p.numbers[j]) else p.values[j]
+            overrides.append((p, p.values[j]))
+        points.append(_resolve(src, base_src, i, values, overrides, stem))
+    metrics = spec.metrics
+    if metrics:
+        from gearcli.pipeline.sweep_metrics import METRICS
+
+        for k, m in enumerate(metrics):
+            if m not in METRICS:
+                raise src.error(("metrics", k), f"unknown metric '{m}'; expected one of: "
+                                + ", ".join(METRICS))
+    return Study(spec.name or stem, src.file, spec.design, params, points, metrics, spec.checks,
+                 _canonical(base), base_values)
+
+
+def _yaml(value) -> str:
+    return json.dumps(value) if not isinstance(value, str) else value
+
+
+def _yaml_loc(loc: tuple, data) -> tuple:
+    out, node = [], data
+    for part in loc:
+        if isinstance(node, dict) and part in node:
+            out.append(part)
+            node = node[part]
+        elif isinstance(node, list) and isinstance(part, int) and part < len(node):
+            out.append(part)
+            node = node[part]
+        elif isinstance(part, str) and part.isidentifier() and node is not None:
+            out.append(part)
+            node = None
+    return tuple(out)
+
+
+def _base_source(spec: StudyFile, src: Source, folder: Path) -> Source:
+    if isinstance(spec.base, dict):
+        import yaml
+
+        text = yaml.safe_dump(spec.base, sort_keys=False)
+        return parse_source(text, f"{src.file} (inline base)")
+    path = folder / spec.base
+    if not path.is_file():
+        raise src.error(("base",), f"base case {str(path)!r} not found; expected a case file "
+                        "path relative to the study file, or an inline case mapping")
+    return read_source(path)
+
+
+def _check_keys(src: Source, where: tuple, mapping: dict) -> None:
+    from gearcli.case.overrides import _check_path  # noqa: PLC2701 - gearcli's own path check
+
+    for key in mapping:
+        if key == MESH_FREQUENCY and where == ("parameters",):
+            continue
+        path = tuple(key.split("."))
+        try:
+            _check_path(path, Case, f"{key}=...")
+        except CaseError as exc:
+            msg = str(exc).split(": ", 1)[1] if ": " in str(exc) else str(exc)
+            raise src.error((*where, key), msg) from None
+
+
+def _split(value) -> tuple[float, str] | None:
+    """(number, unit) of 12, "12", "12 mm"; None for anything else ("derived")."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int | float):
+        return float(value), ""
+    if isinstance(value, str):
+        m = _NUMBER_UNIT.match(value)
+        if m:
+            return float(m.group(1)), m.group(2)
+    return None
+
+
+def _to_unit(number: float, unit: str, target: str) -> float:
+    if unit == target:
+        return number
+    q = units.registry().Quantity(number, unit or "dimensionless")
+    return float(q.to(target or "dimensionless").magnitude)
+
+
+def _parameter(src: Source, key: str, spec) -> Parameter:
+    if isinstance(spec, Range):
+        extra = tuple(f"{k}={_yaml(v)}" for k, v in spec.with_.items())
+        if spec.values is not None:
+            p = _parameter(src, key, spec.values)
+            return Parameter(p.key, p.unit, p.values, p.numbers, extra=extra)
+        p = _range(src, key, spec)
+        return Parameter(p.key, p.unit, p.values, p.numbers, p.log, p.bounds, extra)
+    loc = ("parameters", key)
+    if isinstance(spec, list):
+        if not spec:
+            raise src.error(loc, "empty list; expected at least one value")
+        parts = [_split(v) for v in spec]
+        unit = next((p[1] for p in parts if p), "")
+        numbers = []
+        for i, (v, p) in enumerate(zip(spec, parts, strict=True)):
+            try:
+                numbers.append(_to_unit(p[0], p[1], unit) if p else math.nan)
+            except Exception:
+                raise src.error((*loc, i), f"got {v!r}: wrong unit; expected a value in "
+                                f"'{unit}' or a compatible unit") from None
+        return Parameter(key, unit, tuple(spec), tuple(numbers))
+    raise src.error(loc, "expected a list of values or a range mapping")
+
+
+def _range(src: Source, key: str, spec: Range) -> Parameter:
+    loc = ("parameters", key)
+    kind = "linspace" if spec.linspace is not None else "logspace"
+    ends = spec.linspace or spec.logspace
+    parts = [_split(v) for v in ends]
+    if not all(parts):
+        raise src.error((*loc, kind), f"got {ends!r}; expected two numbers, optionally with "
+                        "units, e.g. ['8 mm', '12 mm']")
+    unit = parts[0][1]
+    try:
+        lo, hi = parts[0][0], _to_unit(parts[1][0], parts[1][1], unit)
+        if unit:
+            units.registry().Quantity(1.0, unit)
+    except Exception:
+        raise src.error((*loc, kind), f"got {ends!r}: wrong or inconsistent units; both ends "
+                        "need units of the same dimension") from None
+    if kind == "logspace" and (lo <= 0 or hi <= 0):
+        raise src.error((*loc, kind), f"got {ends!r}; logspace needs positive ends")
+    num = spec.num or 0
+    if num:
+        nums = np.linspace(lo, hi, num) if kind == "linspace" else np.geomspace(lo, hi, num)
+    else:
+        nums = np.array([lo, hi])
+    numbers = tuple(float(f"{x:.12g}") for x in nums)
+    values = tuple(f"{x:.12g} {unit}" if unit else x for x in numbers)
+    return Parameter(key, unit, values, numbers, kind == "logspace", (lo, hi))
+
+
+def _check_design(src: Source, spec: StudyFile, params: list[Parameter]) -> None:
+    ranges = {k: v for k, v in spec.parameters.items() if isinstance(v, Range)}
+    if spec.design == "lhs":
+        if spec.samples is None:
+            raise src.error(("design",), "a Latin hypercube needs 'samples' (and 'seed')")
+        return
+    for key, r in ranges.items():
+        if r.num is None and r.values is None:
+            raise src.error(("parameters", key), f"a range in a {spec.design} needs 'num'")
+    if spec.design == "zip":
+        sizes = {p.key: len(p.values) for p in params}
+        if len(set(sizes.values())) > 1:
+            raise src.error(("design",), f"zip needs lists of one length; got {sizes}")
+    if spec.samples is not None:
+        raise src.error(("samples",), "'samples' is for design: lhs only")
+
+
+def _design(spec: StudyFile, params: list[Parameter]) -> list[list[tuple[Parameter, int]]]:
+    """Each point as a list of (parameter, value index)."""
+    if spec.design == "grid":
+        return [list(zip(params, idx, strict=True))
+                for idx in itertools.product(*(range(len(p.values)) for p in params))]
+    if spec.design == "zip":
+        return [[(p, i) for p in params] for i in range(len(params[0].values))]
+    if spec.design == "one_at_a_time":
+        out: list = [[]]  # the base point
+        for p in params:
+            out.extend([[(p, i)] for i in range(len(p.values))])
+        return out
+    return _lhs(spec, params)
+
+
+def _lhs(spec: StudyFile, params: list[Parameter]) -> list[list[tuple[Parameter, int]]]:
+    """Latin hypercube (scipy.stats.qmc) over the ranges; lists are sampled by index."""
+    from scipy.stats import qmc
+
+    u = qmc.LatinHypercube(d=len(params), seed=spec.seed).random(spec.samples)
+    out = []
+    sampled: list[Parameter] = []
+    for p in params:
+        if p.bounds is None:
+            sampled.append(p)
+            continue
+        lo, hi = p.bounds
+        x = (np.exp(np.log(lo) + u[:, len(sampled)] * (np.log(hi) - np.log(lo))) if p.log
+             else lo + u[:, len(sampled)] * (hi - lo))
+        numbers = tuple(float(f"{v:.12g}") for v in x)
+        values = tuple(f"{v:.12g} {p.unit}" if p.unit else v for v in numbers)
+        sampled.append(Parameter(p.key, p.unit, values, numbers, p.log, p.bounds, p.extra))
+    params[:] = sampled
+    for i in range(spec.samples):
+        combo = []
+        for j, p in enumerate(params):
+            k = i if p.bounds is not None else min(int(u[i, j] * len(p.values)),
+                                                   len(p.values) - 1)
+            combo.append((p, k))
+        out.append(combo)
+    return out
+
+
+def _base_value(data: dict, p: Parameter):
+    """The base case's value of a parameter, in the parameter's unit where it is a number."""
+    if p.key == MESH_FREQUENCY:
+        return None
+    node: Any = data
+    for part in p.key.split("."):
+        node = node.get(part) if isinstance(node, dict) else None
+    parts = _split(node) if node is not None else None
+    if parts is None:
+        return node
+    try:
+        return _to_unit(parts[0], parts[1] or p.unit, p.unit)
+    except Exception:
+        return node
+
+
+def _resolve(src: Source, base_src: Source, index: int, values: dict, overrides: list,
+             stem: str) -> Point:
+    texts, owner = [], {}
+    for p, v in overrides:
+        own = [_speed_override(src, base_src.data, overrides, v) if p.key == MESH_FREQUENCY
+               else f"{p.key}={_yaml(v)}", *(t.replace("{value}", str(v)) for t in p.extra)]
+        texts += own
+        owner.update({t: p.key for t in own})
+    point_src = copy.copy(base_src)
+    point_src.key_lines = dict(base_src.key_lines)
+    point_src.overridden = {}
+    try:
+        point_src.data = apply_overrides(base_src.data, texts, Case)
+        for t in texts:
+            point_src.overridden[tuple(t.partition("=")[0].split("."))] = t
+        loaded = validate_source(point_src, stem)
+    except CaseError as exc:
+        key = next((k for t, k in owner.items() if exc.file == f"--set {t}"), None)
+        loc = ("parameters", key) if key else ("parameters",)
+        raise src.error(loc, f"point {index}: {exc}") from None
+    case_json = _canonical(loaded)
+    return Point(index, values, texts, case_json, hashlib.sha256(case_json.encode()).hexdigest())
+
+
+def _canonical(loaded) -> str:
+    """The resolved case as canonical JSON (sorted keys): what the case hash is taken of."""
+    return json.dumps(json.loads(loaded.case.model_dump_json()), sort_keys=True)
+
+
+def _speed_override(src: Source, data: dict, overrides: list, value) -> str:
+    """``drive.speed=...`` giving the gear-mesh frequency ``value`` (f_z = z1 n1)."""
+    teeth = next((v for p, v in overrides if p.key == "gears.pinion.teeth"), None)
+    teeth = teeth or data.get("gears", {}).get("pinion", {}).get("teeth")
+    try:
+        f_z = units.parse_quantity(value, units.FREQUENCY)
+        n1_deg_s = f_z / float(teeth) * 360.0
+    except (units.UnitError, TypeError, ValueError) as exc:
+        raise src.error(("parameters", MESH_FREQUENCY), f"got {value!r}: {exc}") from None
+    speed = data.get("drive", {}).get("speed")
+    m = _RAMP.match(speed) if isinstance(speed, str) else None
+    if m:
+        name, t0, h0, t1, _ = m.groups()
+        return (f"drive.speed={name}(time,{t0.strip()},{h0.strip()},{t1.strip()},"
+                f"{n1_deg_s:.12g})")
+    return f"drive.speed={n1_deg_s:.12g} deg/s"

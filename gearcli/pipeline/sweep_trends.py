@@ -1,0 +1,220 @@
+"""Trends of a finished sweep: the seed's Table 5 computed, plus plots (``trends.csv/.md``).
+
+For each varied parameter and each trend metric, the (parameter, metric) pairs of the points
+that isolate that parameter are reduced to one value per parameter level (mean over the other
+parameters in a grid; the points varying it alone, plus the base point, in a one-at-a-time
+design; every point in zip/lhs designs). Reported: the tested range, the metric at its ends,
+the change over the range (least-squares slope x range, relative to the mean), the Spearman
+rank correlation and a direction: "increases" / "decreases" when |rho| >= 0.8, else
+"non-monotonic" (or "no effect" when the change is below 0.1 %).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.pipeline.sweep_study import MESH_FREQUENCY, Study
+
+#: Metrics of the seed's Table 5.
+TREND_METRICS = ("force_max_N", "dynamic_factor", "dte_peak_to_peak_mm",
+                 "gear_speed_gmf_amplitude_rad_s")
+TREND_COLUMNS = ("parameter", "metric", "points", "parameter_min", "parameter_max",
+                 "metric_at_min", "metric_at_max", "change_percent", "spearman_rho", "direction")
+#: |Spearman rho| needed to call a trend monotonic.
+MONOTONIC_RHO = 0.8
+#: Relative changes below this [%] are "no effect".
+NO_EFFECT_PERCENT = 0.1
+
+
+def parameter_levels(df, study: Study, column: str, metric: str) -> tuple[np.ndarray, np.ndarray]:
+    """(levels, metric per level) isolating the parameter ``column`` (see the module doc)."""
+    ok = df[df["status"] == "ok"]
+    if study.design == "one_at_a_time":
+        varied = ok[ok["point"].isin(_points_varying(study, column))]
+        base = ok[ok["point"] == 0]
+        ok = varied if base.empty else _concat(varied, base)
+    x = np.asarray(ok[column], dtype=object)
+    y = np.asarray(ok[metric], dtype=object)
+    keep = [_isnum(a) and _isnum(b) for a, b in zip(x, y, strict=True)]
+    x = np.array([float(v) for v, k in zip(x, keep, strict=True) if k])
+    y = np.array([float(v) for v, k in zip(y, keep, strict=True) if k])
+    if x.size == 0:
+        return x, y
+    if study.design in ("grid", "one_at_a_time"):
+        levels = np.unique(x)
+        return levels, np.array([y[x == v].mean() for v in levels])
+    order = np.argsort(x, kind="stable")
+    return x[order], y[order]
+
+
+def _concat(a, b):
+    import pandas as pd
+
+    return pd.concat([a, b])
+
+
+def _points_varying(study: Study, column: str) -> list[int]:
+    key = next(p.key for p in study.parameters if p.column == column)
+    return [pt.index for pt in study.points
+            if any(o.startswith(f"{key}=") or (key == MESH_FREQUENCY and
+                                                o.startswith("drive.speed="))
+                   for o in pt.overrides)]
+
+
+def _isnum(v) -> bool:
+    try:
+        return v is not None and v != "" and math.isfinite(float(v))
+    except (TypeError, ValueError):
+        return False
+
+
+def trend_rows(df, study: Study) -> list[dict]:
+    from scipy.stats import spearmanr
+
+    rows = []
+    for p in study.parameters:
+        for m in TREND_METRICS:
+            if m not in df.columns:
+                continue
+            x, y = parameter_levels(df, study, p.column, m)
+            row = {"parameter": p.column, "metric": m, "points": int(x.size)}
+            if x.size >= 2 and np.ptp(x) > 0:
+                slope = np.polyfit(x, y, 1)[0]
+                mean = float(np.mean(np.abs(y))) or 1.0
+                change = 100.0 * slope * np.ptp(x) / mean
+                rho = float(spearmanr(x, y).statistic) if np.ptp(y) > 0 else 0.0
+                if abs(change) < NO_EFFECT_PERCENT or not math.isfinite(rho):
+                    direction = "no effect"
+                elif abs(rho) >= MONOTONIC_RHO:
+                    direction = "increases" if rho > 0 else "decreases"
+                else:
+                    direction = "non-monotonic"
+                row.update(parameter_min=float(x[0]), parameter_max=float(x[-1]),
+                           metric_at_min=float(y[0]), metric_at_max=float(y[-1]),
+                           change_percent=float(change), spearman_rho=rho, direction=direction)
+            else:
+                row.update(direction="not varied (fewer than 2 numeric levels)")
+            rows.append(row)
+    return rows
+
+
+def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Path]:
+    """Write trends.csv, trends.md and the plots; returns the paths written."""
+    import pandas as pd
+
+    from gearcli.pipeline.sweep_run import summary_columns
+
+    out = Path(folder)
+    columns = summary_columns(study)
+    df = pd.DataFrame([{c: r.get(c) for c in columns} for r in rows], columns=columns)
+    for c in df.columns:
+        if c not in ("status", "error", "warnings", "case_hash", "checks"):
+            df[c] = pd.to_numeric(df[c], errors="coerce")
+    trends = trend_rows(df, study)
+    tdf = pd.DataFrame(trends, columns=list(TREND_COLUMNS))
+    paths = [out / "trends.csv", out / "trends.md"]
+    tdf.to_csv(paths[0], index=False, float_format="%.6g")
+    paths[1].write_text(_markdown(study, df, trends))
+    paths += _plots(out, study, df)
+    return paths
+
+
+def _markdown(study: Study, df, trends: list[dict]) -> str:
+    n_ok = int((df["status"] == "ok").sum())
+    lines = [f"# Trends: {study.name}", "",
+             f"{len(df)} points ({study.design}), {n_ok} ok, {len(df) - n_ok} failed. "
+             "Effect = least-squares slope x tested range, relative to the mean metric; "
+             f"direction from the Spearman rank correlation (|rho| >= {MONOTONIC_RHO}).", "",
+             "| parameter | tested range | metric | at min | at max | change | direction |",
+             "|---|---|---|---|---|---|---|"]
+    for t in trends:
+        if "change_percent" not in t:
+            lines.append(f"| {t['parameter']} | — | {t['metric']} | — | — | — | "
+                         f"{t['direction']} |")
+            continue
+        lines.append(f"| {t['parameter']} | {t['parameter_min']:.4g} … {t['parameter_max']:.4g}"
+                     f" | {t['metric']} | {t['metric_at_min']:.4g} | {t['metric_at_max']:.4g} "
+                     f"| {t['change_percent']:+.1f} % | {t['direction']} "
+                     f"(rho {t['spearman_rho']:+.2f}) |")
+    failed = df[df["status"] != "ok"]
+    if len(failed):
+        lines += ["", "## Failed points", ""]
+        lines += [f"- point {int(r['point'])}: {r['error']}" for _, r in failed.iterrows()]
+    lines += ["", "Plots: " + ", ".join(f"`{p}`" for p in _plot_names(study)), ""]
+    return "\n".join(lines)
+
+
+def _plot_names(study: Study) -> list[str]:
+    names = [f"trend_{_slug(p.column)}.png" for p in study.parameters]
+    if any(p.key == MESH_FREQUENCY for p in study.parameters):
+        names.append("speed_sweep.png")
+    return names
+
+
+def _slug(text: str) -> str:
+    return "".join(c if c.isalnum() else "_" for c in text).strip("_")
+
+
+def _plots(out: Path, study: Study, df) -> list[Path]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    paths = []
+    for p in study.parameters:
+        fig, axes = plt.subplots(2, 2, figsize=(10, 7), constrained_layout=True)
+        for ax, m in zip(axes.flat, TREND_METRICS, strict=True):
+            x, y = parameter_levels(df, study, p.column, m)
+            ax.plot(x, y, "o-", ms=3)
+            ax.set_xlabel(p.column)
+            ax.set_ylabel(m)
+            ax.grid(alpha=0.3)
+        fig.suptitle(f"{study.name}: effect of {p.column}")
+        path = out / f"trend_{_slug(p.column)}.png"
+        fig.savefig(path, dpi=100)
+        plt.close(fig)
+        paths.append(path)
+    speed = next((p for p in study.parameters if p.key == MESH_FREQUENCY), None)
+    if speed is not None:
+        paths.append(_speed_plot(out, study, df, speed, plt))
+    return paths
+
+
+def _speed_plot(out: Path, study: Study, df, speed, plt) -> Path:
+    """Dynamic factor and DTE RMS against f_z, one curve per combination of the other
+    parameters, with the mesh natural frequency f_n and f_n/2, f_n/3 marked."""
+    ok = df[df["status"] == "ok"]
+    others = [p.column for p in study.parameters if p is not speed]
+    groups = ok.groupby(others, dropna=False) if others else [((), ok)]
+    fig, axes = plt.subplots(2, 1, figsize=(9, 7), sharex=True, constrained_layout=True)
+    f_ns = []
+    for key, g in groups:
+        g = g.sort_values(speed.column)
+        key = key if isinstance(key, tuple) else (key,)
+        label = ", ".join(f"{c} = {v:g}" for c, v in zip(others, key, strict=True)) or None
+        axes[0].plot(g[speed.column], g["dynamic_factor"], "o-", ms=3, label=label)
+        axes[1].plot(g[speed.column], g["dte_rms_mm"], "o-", ms=3, label=label)
+        f_ns += list(g["mesh_natural_frequency_Hz"].dropna())
+    if f_ns:
+        f_n = float(np.median(f_ns))
+        for ax in axes:
+            for k, style in ((1, "-"), (2, "--"), (3, ":")):
+                ax.axvline(f_n / k, color="k", ls=style, lw=0.8,
+                           label=f"f_n/{k} = {f_n / k:.0f} Hz" if k > 1 else
+                           f"f_n = {f_n:.0f} Hz")
+    axes[0].set_ylabel("dynamic factor")
+    axes[1].set_ylabel("DTE RMS [mm]")
+    axes[1].set_xlabel("gear-mesh frequency f_z [Hz]")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
+    fig.suptitle(f"{study.name}: speed sweep")
+    path = out / "speed_sweep.png"
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path

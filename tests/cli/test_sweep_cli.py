@@ -1,0 +1,66 @@
+"""`gearcli sweep`: CliRunner runs, one-line input errors, and resume after SIGKILL."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from typer.testing import CliRunner
+
+import gearcli.cli.sweep  # noqa: F401  (registers the command until gearcli/cli/__init__ does)
+from gearcli.cli import app
+from gearcli.pipeline.sweep_run import SUMMARY
+from tests.unit.sweep_helpers import write_study
+
+runner = CliRunner()
+
+
+def test_sweep_writes_summary_trends_and_plots(tmp_path):
+    study = write_study(tmp_path, "parameters:\n  mesh_frequency: [\"100 Hz\", \"200 Hz\"]\n")
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["sweep", str(study), "-o", str(out), "--jobs", "1",
+                              "--keep-timeseries"])
+    assert res.exit_code == 0, res.output
+    assert "2 points: 2 run, 0 already done, 0 failed" in res.output
+    for name in (SUMMARY, "trends.csv", "trends.md", "speed_sweep.png",
+                 "trend_mesh_frequency__Hz.png", "points/00001/timeseries.csv"):
+        assert (out / name).exists(), name
+    res = runner.invoke(app, ["sweep", str(study), "-o", str(out)])
+    assert res.exit_code == 0 and "0 run, 2 already done" in res.output
+
+
+def test_bad_study_is_one_line_exit_1(tmp_path):
+    study = write_study(tmp_path, "parameters:\n  gears.modul: [9]\n")
+    res = runner.invoke(app, ["sweep", str(study), "-o", str(tmp_path / "o")])
+    assert res.exit_code == 1
+    assert res.output.startswith("error: ") and "unknown key 'modul'" in res.output
+    big = write_study(tmp_path, "parameters:\n  contact.max_damping: "
+                      "{linspace: [1, 100], num: 1001}\n", "big.yaml")
+    res = runner.invoke(app, ["sweep", str(big), "-o", str(tmp_path / "o")])
+    assert res.exit_code == 1 and "pass --yes" in res.output
+
+
+def test_resume_after_sigkill(tmp_path):
+    study = write_study(tmp_path, "parameters:\n  mesh_frequency: "
+                        "{linspace: [\"100 Hz\", \"200 Hz\"], num: 12}\n")
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-c", "import gearcli.cli.sweep; from gearcli.cli import app; app()",
+           "sweep", str(study), "-o", str(out), "--jobs", "1", "-q"]
+    proc = subprocess.Popen(cmd, start_new_session=True)
+    summary = out / SUMMARY
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        if summary.exists() and len(summary.read_text().splitlines()) >= 4:
+            break
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    done_before = len(summary.read_text().splitlines()) - 1
+    assert 3 <= done_before < 12
+    res = runner.invoke(app, ["sweep", str(study), "-o", str(out), "--jobs", "2"])
+    assert res.exit_code == 0, res.output
+    assert f"{12 - done_before} run, {done_before} already done" in res.output
+    lines = summary.read_text().splitlines()
+    assert len(lines) == 13 and [ln.split(",")[0] for ln in lines[1:]] == \
+        [str(i) for i in range(12)]

@@ -1,0 +1,134 @@
+"""Study files: designs, units, the virtual mesh_frequency parameter, and every bad input."""
+
+import pytest
+
+from gearcli.errors import CaseError
+from gearcli.pipeline.sweep_study import MAX_POINTS, load_study
+from tests.unit.sweep_helpers import write_study
+
+
+def test_grid_with_units_and_ranges(tmp_path):
+    s = load_study(write_study(tmp_path, """parameters:
+  gears.face_width: {linspace: ["80 mm", "12 cm"], num: 3}
+  contact.max_damping: {logspace: [1, 100], num: 3}
+"""))
+    assert len(s.points) == 9
+    assert s.parameter_columns == ["gears.face_width [mm]", "contact.max_damping"]
+    assert [p.values["gears.face_width [mm]"] for p in s.points[::3]] == [80.0, 100.0, 120.0]
+    assert [p.values["contact.max_damping"] for p in s.points[:3]] == [1.0, 10.0, 100.0]
+    assert s.points[4].overrides == ["gears.face_width=100 mm", "contact.max_damping=10.0"]
+    assert len({p.case_hash for p in s.points}) == 9
+
+
+def test_zip_lhs_and_one_at_a_time(tmp_path):
+    z = load_study(write_study(tmp_path, """design: zip
+parameters:
+  gears.face_width: ["80 mm", "100 mm"]
+  gears.module: [9, 11]
+"""))
+    assert [p.overrides for p in z.points] == [["gears.face_width=80 mm", "gears.module=9"],
+                                               ["gears.face_width=100 mm", "gears.module=11"]]
+    text = """design: lhs
+samples: 8
+seed: 3
+parameters:
+  gears.face_width: {linspace: ["80 mm", "120 mm"]}
+  contact.max_damping: {logspace: ["1 N*s/mm", "100 N*s/mm"]}
+"""
+    a = load_study(write_study(tmp_path, text, "a.yaml"))
+    b = load_study(write_study(tmp_path, text, "b.yaml"))
+    assert [p.case_hash for p in a.points] == [p.case_hash for p in b.points]  # seeded
+    widths = sorted(p.values["gears.face_width [mm]"] for p in a.points)
+    assert 80 <= widths[0] and widths[-1] <= 120
+    # Latin hypercube: exactly one sample in each of the 8 equal strata
+    assert sorted(int((w - 80) / 5) for w in widths) == list(range(8))
+    o = load_study(write_study(tmp_path, """design: one_at_a_time
+parameters:
+  gears.face_width: ["80 mm", "120 mm"]
+  gears.module: [9, 11, 12]
+"""))
+    assert len(o.points) == 1 + 2 + 3 and o.points[0].overrides == []
+    assert o.points[1].values == {"gears.face_width [mm]": 80.0, "gears.module": 10.0}
+
+
+def test_mesh_frequency_sets_the_drive_speed(tmp_path):
+    s = load_study(write_study(tmp_path, """parameters:
+  mesh_frequency: ["170 Hz"]
+  gears.pinion.teeth: [17, 20]
+"""))
+    # f_z = z1 n1: 170 Hz with 17 teeth -> 10 rev/s = 3600 deg/s; with 20 teeth 3060 deg/s
+    assert s.points[0].overrides[0] == "drive.speed=STEP(time,0,0,0.1,3600)"
+    assert s.points[1].overrides[0] == "drive.speed=STEP(time,0,0,0.1,3060)"
+
+
+def test_with_overrides_take_the_value(tmp_path):
+    s = load_study(write_study(tmp_path, """parameters:
+  modifications.tip_relief.pinion.amount:
+    values: ["0.005 mm"]
+    with: {modifications.tip_relief.pinion.length: 8 mm,
+           modifications.tip_relief.gear.amount: "{value}",
+           modifications.tip_relief.gear.length: 8 mm}
+"""))
+    assert "modifications.tip_relief.gear.amount=0.005 mm" in s.points[0].overrides
+
+
+def _error(tmp_path, body: str) -> str:
+    with pytest.raises(CaseError) as exc:
+        load_study(write_study(tmp_path, body))
+    text = str(exc.value)
+    assert str(tmp_path / "study.yaml") in text.splitlines()[0]
+    return text
+
+
+def test_unknown_key_path_is_located(tmp_path):
+    text = _error(tmp_path, "parameters:\n  gears.modul: [9, 11]\n")
+    assert "study.yaml:8: parameters.gears.modul" in text
+    assert "did you mean 'module'" in text
+
+
+def test_unknown_key_in_set(tmp_path):
+    body = "parameters:\n  gears.module: [9]\n"
+    path = write_study(tmp_path, body)
+    path.write_text(path.read_text().replace("contact.max_damping", "contact.max_dampin"))
+    with pytest.raises(CaseError, match=r"study.yaml:6: set.contact.max_dampin: unknown key"):
+        load_study(path)
+
+
+def test_empty_list(tmp_path):
+    assert "empty list" in _error(tmp_path, "parameters:\n  gears.module: []\n")
+
+
+def test_wrong_unit(tmp_path):
+    text = _error(tmp_path, "parameters:\n  gears.face_width: [\"80 s\"]\n")
+    assert "parameters.gears.face_width" in text and "not a length" in text
+    text = _error(tmp_path, "parameters:\n  gears.face_width: {linspace: [\"80 mm\", \"1 s\"], "
+                  "num: 3}\n")
+    assert "wrong or inconsistent units" in text
+
+
+def test_grid_too_large_needs_yes(tmp_path):
+    body = ("parameters:\n  gears.face_width: {linspace: [80, 120], num: 40}\n"
+            "  contact.max_damping: {linspace: [1, 100], num: 30}\n")
+    text = _error(tmp_path, body)
+    assert f"1200 points (> {MAX_POINTS}); pass --yes" in text
+    assert len(load_study(write_study(tmp_path, body), allow_large=True).points) == 1200
+
+
+def test_base_case_invalid(tmp_path):
+    path = write_study(tmp_path, "parameters:\n  gears.module: [9]\n")
+    path.write_text(path.read_text().replace("0.4 s", "-1 s"))
+    with pytest.raises(CaseError, match="the base case is invalid: .*run.end_time"):
+        load_study(path)
+    path.write_text(path.read_text().replace("base: /", "base: /nonexistent/"))
+    with pytest.raises(CaseError, match="not found"):
+        load_study(path)
+
+
+def test_other_bad_inputs(tmp_path):
+    assert "unknown key" in _error(tmp_path, "parameter:\n  gears.module: [9]\n")
+    assert "unknown metric" in _error(tmp_path, "parameters:\n  gears.module: [9]\n"
+                                      "metrics: [force_max]\n")
+    assert "needs 'samples'" in _error(tmp_path, "design: lhs\nparameters:\n  gears.module: [9]\n")
+    assert "needs 'num'" in _error(tmp_path, "parameters:\n  gears.module: {linspace: [9, 11]}\n")
+    assert "one length" in _error(tmp_path, "design: zip\nparameters:\n  gears.module: [9, 11]\n"
+                                  "  gears.face_width: [80]\n")
