@@ -63,7 +63,7 @@ def _first_error(exc: ValidationError, src: Source) -> CaseError:
     """The first (by line) validation error as a located CaseError, with a count of the rest."""
     errors = []
     for err in exc.errors():
-        loc = _data_loc(tuple(err["loc"]), src.data)
+        loc = data_loc(tuple(err["loc"]), src.data)
         cause = err.get("ctx", {}).get("error")
         if isinstance(cause, FieldError):
             loc = (*loc, *cause.loc)
@@ -92,7 +92,7 @@ def _raw_value(data: object, loc: Loc) -> tuple[object, bool]:
     return data, True
 
 
-def _data_loc(loc: tuple, data: object) -> Loc:
+def data_loc(loc: tuple, data: object) -> Loc:
     """Drop pydantic's union/validator tags from ``loc`` so it follows the YAML keys."""
     out: list = []
     node = data

@@ -43,7 +43,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from gearcli import units
-from gearcli.case.load import validate_source
+from gearcli.case.load import data_loc, validate_source
 from gearcli.case.overrides import apply_overrides
 from gearcli.case.schema import Case
 from gearcli.case.yamlsrc import Source, parse_source, read_source
@@ -162,7 +162,7 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         spec = StudyFile.model_validate(src.data)
     except ValidationError as exc:
         err = sorted(exc.errors(), key=lambda e: e["type"] == "missing")[0]  # a typo first
-        loc = _yaml_loc(tuple(err["loc"]), src.data)
+        loc = data_loc(tuple(err["loc"]), src.data)
         msg = err["msg"].removeprefix("Value error, ")
         if err["type"] == "missing":
             msg = "missing required key"
@@ -211,21 +211,6 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
 
 def _yaml(value) -> str:
     return json.dumps(value) if not isinstance(value, str) else value
-
-
-def _yaml_loc(loc: tuple, data) -> tuple:
-    out, node = [], data
-    for part in loc:
-        if isinstance(node, dict) and part in node:
-            out.append(part)
-            node = node[part]
-        elif isinstance(node, list) and isinstance(part, int) and part < len(node):
-            out.append(part)
-            node = node[part]
-        elif isinstance(part, str) and part.isidentifier() and node is not None:
-            out.append(part)
-            node = None
-    return tuple(out)
 
 
 def _base_source(spec: StudyFile, src: Source, folder: Path) -> Source:
