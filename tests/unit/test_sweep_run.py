@@ -166,3 +166,15 @@ def test_tip_relief_sized_for_the_load_lowers_dte(tmp_path):
     deflection = base["force_static_N"] / base["single_pair_stiffness_N_mm"]
     assert 0.5 * deflection < 0.005 < 2.0 * deflection  # "sized for the load"
     assert relieved["dte_peak_to_peak_mm"] < 0.9 * base["dte_peak_to_peak_mm"]
+
+
+@pytest.mark.slow
+def test_dask_external_scheduler_address_gives_the_same_summary(small):
+    # An existing cluster reached by its tcp:// address (here one started on loopback).
+    distributed = pytest.importorskip("distributed")
+    study, folder, _ = small
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        assert cluster.scheduler_address.startswith("tcp://")
+        run_study(study, folder / "tcp", jobs=2, scheduler=cluster.scheduler_address)
+    assert _rows(folder / "tcp" / SUMMARY) == _rows(folder / "serial" / SUMMARY)
