@@ -55,13 +55,6 @@ def is_terminal() -> bool:
     return sys.stdout.isatty()
 
 
-def numba_cache_setup() -> None:
-    """Point numba's cache to a user folder keyed by the solver's sources (gearcli.numba_cache)."""
-    from gearcli.numba_cache import configure
-
-    configure()
-
-
 class _NoStatus:
     def __enter__(self):
         return None

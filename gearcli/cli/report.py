@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli import app
-from gearcli.cli.common import handle_errors, numba_cache_setup, status_reporter
+from gearcli.cli.common import handle_errors, status_reporter
 
 
 @app.command()
@@ -40,7 +40,6 @@ def run(
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors and the report path."),
 ) -> None:
     """simulate + analyze + report in one go; the exit code is analyze's (4: a check failed)."""
-    numba_cache_setup()
     from gearcli.cli.analyze import print_checks
     from gearcli.errors import CheckFailed
     from gearcli.io.outdir import check_target

@@ -9,7 +9,6 @@ import typer
 from gearcli.cli import app
 from gearcli.cli.common import (
     handle_errors,
-    numba_cache_setup,
     print_quantity_table,
     status_reporter,
 )
@@ -29,7 +28,6 @@ def simulate(
 ) -> None:
     """Integrate the 2-DOF tooth-contact model; write timeseries.csv, summary.json,
     manifest.json (atomically; never over earlier results without --force)."""
-    numba_cache_setup()
     import json
 
     from gearcli.io.outdir import check_target

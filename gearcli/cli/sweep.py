@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli import app
-from gearcli.cli.common import handle_errors, numba_cache_setup
+from gearcli.cli.common import handle_errors
 
 
 @app.command()
@@ -27,7 +27,6 @@ def sweep(
 ) -> None:
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
     failed points are recorded, never abort the study."""
-    numba_cache_setup()
     from gearcli.pipeline.sweep_run import run_study
     from gearcli.pipeline.sweep_study import load_study
     from gearcli.pipeline.sweep_trends import write_trends

@@ -1,12 +1,18 @@
 """numba options, set once for every kernel of :mod:`gearcli.core`.
 
-``cache=True`` writes compiled code next to the sources or, when site-packages is read-only,
-to ``NUMBA_CACHE_DIR`` (the CLI points that to a user cache folder).
+``cache=True`` writes compiled code to ``NUMBA_CACHE_DIR``, which :mod:`gearcli.numba_cache`
+points (before numba is imported, here, whoever imports the core first) to a user folder keyed
+by a hash of the core's sources: it survives read-only site-packages and never serves code
+compiled from older sources (numba issue #6845).
 """
 
 import functools
 
-import numba
+from gearcli.numba_cache import configure  # the one non-core import: configuration, no physics
+
+configure()
+
+import numba  # noqa: E402  (after the cache folder is set)
 
 #: Decorator for every compiled function of the core.
 jit = functools.partial(numba.njit, cache=True, fastmath=False, nogil=True, error_model="numpy")

@@ -35,37 +35,43 @@ def read_run(folder: str | Path) -> StoredRun:
     if missing:
         raise ResultsError(f"{p}: missing {', '.join(missing)}; expected a folder written by "
                            "gearcli simulate")
-    manifest = _json(p / "manifest.json")
+    manifest = read_json(p / "manifest.json")
     if not isinstance(manifest, dict) or manifest.get("gearcli_manifest") != 1:
         raise ResultsError(f"{p / 'manifest.json'}: not a gearcli manifest; expected a folder "
                            "written by gearcli simulate")
-    summary = _json(p / "summary.json")
+    summary = read_json(p / "summary.json")
     if not isinstance(summary, dict) or summary.get("status") != "ok" or "rows" not in summary:
         raise ResultsError(f"{p / 'summary.json'}: incomplete summary; expected a finished "
                            "gearcli simulate run")
-    columns = _csv(p / "timeseries.csv", int(summary["rows"]))
+    columns = read_columns(p / "timeseries.csv", "t_s", int(summary["rows"]))
     return StoredRun(p, manifest, summary, columns)
 
 
-def _json(path: Path):
+def read_json(path: Path, remedy: str = "expected gearcli output"):
+    """A JSON file of a results folder; unreadable -> ResultsError saying ``remedy``."""
     try:
         return json.loads(path.read_text())
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ResultsError(f"{path}: unreadable JSON ({exc}); expected gearcli output") from None
+        raise ResultsError(f"{path}: unreadable JSON ({exc}); {remedy}") from None
 
 
-def _csv(path: Path, rows: int) -> dict[str, np.ndarray]:
+def read_columns(path: Path, key: str, rows: int | None = None) -> dict[str, np.ndarray]:
+    """A CSV table written by gearcli (header of names, finite numbers) as named columns.
+
+    ``key`` must be one of the columns; ``rows``, when given, is the expected row count (a
+    shorter file was truncated).
+    """
     try:
         text = path.read_text()
     except (OSError, UnicodeDecodeError) as exc:
         raise ResultsError(f"{path}: unreadable ({exc})") from None
     lines = text.splitlines()
     if not lines:
-        raise ResultsError(f"{path}: empty; expected the time series of a run")
+        raise ResultsError(f"{path}: empty; expected a table written by gearcli")
     names = lines[0].split(",")
-    if "t_s" not in names:
-        raise ResultsError(f"{path}: no t_s column; expected gearcli's time series")
-    if len(lines) - 1 != rows or not text.endswith("\n"):
+    if key not in names:
+        raise ResultsError(f"{path}: no {key} column; expected a table written by gearcli")
+    if rows is not None and (len(lines) - 1 != rows or not text.endswith("\n")):
         raise ResultsError(f"{path}: {len(lines) - 1} rows, summary.json says {rows}; the file "
                            "is truncated or was edited")
     try:

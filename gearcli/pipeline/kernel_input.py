@@ -17,6 +17,7 @@ from gearcli.case.schema import Case, PitchDeviation
 from gearcli.case.schema import Relief as CaseRelief
 from gearcli.core import layout
 from gearcli.model.gap import GapTables, Modifications, Relief, coast_phase_mm, gap_tables
+from gearcli.model.geometry import mesh_frequencies
 from gearcli.model.mesh import MeshMode, mesh_mode
 from gearcli.model.stiffness import derived_pair_stiffness
 from gearcli.pipeline.geometry import GeometryResult
@@ -147,7 +148,7 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     s1c_0 = (-coast_phase_mm(g) - (x_c - tables.x_lo)) % g.p_b_mm
 
     speed = geo.pinion_speed_rad_s
-    f_z = g.pinion.teeth * speed / (2.0 * math.pi) if speed else None
+    f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None
     t_out, rate = output_times(case, f_z)
 
     alpha_w = g.alpha_w_rad

@@ -76,9 +76,6 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
 
     ``status`` is an optional callable(str) told what is happening (compiling, integrating).
     """
-    from gearcli.numba_cache import configure
-
-    configure()
     from gearcli.core.integrate import simulate
 
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)

@@ -8,10 +8,9 @@ measured gear-mesh frequency f_z = z1 n1).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from gearcli.model.geometry import mesh_frequencies
 from gearcli.pipeline.spectrum import amplitude_spectrum, measure_line
 
 #: Scalars copied from the simulation summary, in column order.
@@ -38,8 +37,8 @@ def point_metrics(res) -> dict[str, float | None]:
     t = k.column("t_s")
     sel = (t >= res.window.t0_s - 1e-12) & (t <= res.window.t1_s + 1e-12)
     rate = res.kernel_input.output_rate_Hz
-    teeth = res.geometry.geometry.pinion.teeth
-    f_z = teeth * float(k.column("omega1_rad_s")[sel].mean()) / (2.0 * math.pi)
+    g = res.geometry.geometry
+    f_z = mesh_frequencies(g.pinion.teeth, float(k.column("omega1_rad_s")[sel].mean()), g.ratio)[0]
     for name, column in LINE_METRICS:
         freq, amp = amplitude_spectrum(k.column(column)[sel], rate)
         line = measure_line(freq, amp, f_z)

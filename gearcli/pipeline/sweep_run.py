@@ -84,10 +84,7 @@ def _case_from_json(text: str, name: str):
 
 
 def _warm_up() -> None:
-    """Worker initializer: import the pipeline and point numba at its cache once."""
-    from gearcli.numba_cache import configure
-
-    configure()
+    """Worker initializer: import the pipeline (and load the compiled solver) once."""
     import gearcli.pipeline.simulate  # noqa: F401
 
 

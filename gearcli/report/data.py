@@ -12,7 +12,7 @@ import numpy as np
 from gearcli.case.build import pair_spec
 from gearcli.case.load import load_case_text
 from gearcli.errors import GearcliError, ResultsError
-from gearcli.io.results import StoredRun, read_run
+from gearcli.io.results import StoredRun, read_columns, read_json, read_run
 from gearcli.model.geometry import PairGeometry, compute_pair_geometry
 
 
@@ -83,13 +83,12 @@ def load_report_data(folder: str | Path) -> ReportData:
     if not path.is_file():
         raise ResultsError(f"{run.folder}: no analysis.json; run gearcli analyze {run.folder} "
                            "first")
-    try:
-        analysis = json.loads(path.read_text())
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ResultsError(f"{path}: unreadable JSON ({exc}); run gearcli analyze again") from None
+    analysis = read_json(path, "run gearcli analyze again")
     if not isinstance(analysis, dict) or "checks" not in analysis or "metrics" not in analysis:
         raise ResultsError(f"{path}: not an analysis of gearcli analyze; run it again")
-    spectrum = _spectrum(run.folder / "spectrum.csv")
+    if not (run.folder / "spectrum.csv").is_file():
+        raise ResultsError(f"{run.folder}: no spectrum.csv; run gearcli analyze first")
+    spectrum = read_columns(run.folder / "spectrum.csv", "frequency_Hz")
     try:
         loaded = load_case_text(json.dumps(run.manifest["resolved_case"]),
                                 str(run.folder / "manifest.json"))
@@ -98,26 +97,8 @@ def load_report_data(folder: str | Path) -> ReportData:
         geometry, error = None, f"{type(exc).__name__}: {exc}"
     stress = None
     if (run.folder / "stress.json").is_file():
-        try:
-            stress = json.loads((run.folder / "stress.json").read_text())
-        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-            raise ResultsError(f"{run.folder / 'stress.json'}: unreadable JSON ({exc}); run "
-                               "gearcli stress again") from None
+        stress = read_json(run.folder / "stress.json", "run gearcli stress again")
     return ReportData(run, analysis, spectrum, geometry, error, stress)
-
-
-def _spectrum(path: Path) -> dict[str, np.ndarray]:
-    if not path.is_file():
-        raise ResultsError(f"{path.parent}: no spectrum.csv; run gearcli analyze first")
-    try:
-        with path.open() as fh:
-            names = fh.readline().strip().split(",")
-            data = np.loadtxt(fh, delimiter=",", ndmin=2)
-    except (OSError, UnicodeDecodeError, ValueError) as exc:
-        raise ResultsError(f"{path}: unreadable ({exc}); run gearcli analyze again") from None
-    if data.shape[1] != len(names) or "frequency_Hz" not in names:
-        raise ResultsError(f"{path}: malformed spectrum; run gearcli analyze again")
-    return {n: data[:, i] for i, n in enumerate(names)}
 
 
 # --- the stored case for display: values are "number unit" strings in internal units -------

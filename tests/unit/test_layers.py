@@ -56,7 +56,8 @@ def test_core_imports_only_numpy_numba_math():
         for mod in _imports(f):
             top = mod.split(".")[0]
             assert top in STDLIB_OK_IN_CORE, f"{f.relative_to(PKG)} imports {mod}"
-            if top == "gearcli":
+            # the one exception: jit.py sets numba's cache folder before importing numba
+            if top == "gearcli" and mod != "gearcli.numba_cache":
                 assert mod.startswith("gearcli.core"), f"{f.relative_to(PKG)} imports {mod}"
 
 
