@@ -20,6 +20,7 @@ from gearcli.case.types import (
     Inertia,
     Length,
     LinearDamping,
+    LinearStiffness,
     Mass,
     QuadraticDamping,
     SpeedFunction,
@@ -180,8 +181,8 @@ class Friction(Section):
 
 
 # --- §6 drive, load, bearings -------------------------------------------------------------------
-class DriveShaft(Section):
-    """Torsional drive shaft between the prescribed motor angle and the pinion."""
+class Shaft(Section):
+    """A torsional shaft: the drive shaft (motor to pinion) or the load shaft (gear to load)."""
 
     stiffness: TorsionalStiffness = qfield(units.TORSIONAL_STIFFNESS, ..., "shaft stiffness", gt=0)
     damping: TorsionalDamping = qfield(units.TORSIONAL_DAMPING, 0.0, "shaft damping", ge=0)
@@ -203,8 +204,11 @@ class Drive(Section):
     )
     speed: SpeedFunction | None = time_field(units.ANGULAR_VELOCITY, "pinion/motor speed", None)
     torque: TorqueFunction | None = time_field(units.TORQUE, "drive torque (type torque)", None)
-    shaft: DriveShaft | None = None
+    shaft: Shaft | None = None
     motor_curve: MotorCurve | None = None
+    motor_inertia: Inertia | None = qfield(
+        units.INERTIA, None, "motor rotor inertia J_m; with type 'torque' and a 'shaft' the "
+        "torque drives it and the shaft connects it to the pinion", gt=0)
     initial_speed: AngularVelocity = qfield(units.ANGULAR_VELOCITY, 0.0, "initial pinion speed")
     reference_speed: AngularVelocity | None = qfield(
         units.ANGULAR_VELOCITY, None, "pinion speed for frequencies with a torque drive", gt=0
@@ -219,8 +223,18 @@ class Drive(Section):
         if self.type != "torque" and (self.torque is not None or self.motor_curve is not None):
             key = "torque" if self.torque is not None else "motor_curve"
             raise FieldError((key,), f"only applies to drive type 'torque', not '{self.type}'")
-        if self.type != "shaft" and self.shaft is not None:
-            raise FieldError(("shaft",), "'shaft' only applies to drive type 'shaft'")
+        if self.type == "speed" and self.shaft is not None:
+            raise FieldError(("shaft",), "'shaft' needs drive type 'shaft' (prescribed motor "
+                             "speed) or 'torque' (with a motor_inertia); the pinion of type "
+                             "'speed' is prescribed")
+        if self.type == "torque" and (self.shaft is None) != (self.motor_inertia is None):
+            key = "motor_inertia" if self.motor_inertia is None else "shaft"
+            raise FieldError((key,), "a torque drive through a shaft needs both 'shaft' and "
+                             "'motor_inertia' (the torque acts on the motor inertia)")
+        if self.type != "torque" and self.motor_inertia is not None:
+            raise FieldError(("motor_inertia",), "only applies to drive type 'torque' with a "
+                             f"'shaft', not '{self.type}' (a prescribed motion has no inertia "
+                             "effect)")
         return self
 
 
@@ -231,12 +245,38 @@ class Load(Section):
     torque: TorqueFunction = time_field(units.TORQUE, "load torque", 0.0)
     viscous: TorsionalDamping = qfield(units.TORSIONAL_DAMPING, 0.0, "viscous coefficient", ge=0)
     quadratic: QuadraticDamping = qfield(units.QUADRATIC_DAMPING, 0.0, "quadratic coeff.", ge=0)
+    shaft: Shaft | None = Field(None, description="load shaft from the gear to the load inertia")
+    inertia: Inertia | None = qfield(
+        units.INERTIA, None, "load inertia J_L at the end of the load shaft; the load torque "
+        "and the viscous/quadratic terms then act on it", gt=0)
+
+    @model_validator(mode="after")
+    def _shaft_and_inertia(self):
+        if (self.shaft is None) != (self.inertia is None):
+            key = "inertia" if self.inertia is None else "shaft"
+            raise FieldError((key,), "a load shaft and a load inertia go together: give both "
+                             "'shaft' and 'inertia' (or neither: the load acts on the gear)")
+        return self
 
 
 class Bearing(Section):
     """Bearing of one gear; torsional viscous damping to ground."""
 
     damping: TorsionalDamping = qfield(units.TORSIONAL_DAMPING, 0.0, "bearing damping c", ge=0)
+    # Lateral support (model 'lateral-torsional'): x along the line of centres from the pinion
+    # to the gear, y perpendicular, in the direction the pinion's pitch point moves.
+    stiffness_x: LinearStiffness | None = qfield(
+        units.LINEAR_STIFFNESS, None, "bearing stiffness along the line of centres", gt=0)
+    stiffness_y: LinearStiffness | None = qfield(
+        units.LINEAR_STIFFNESS, None, "bearing stiffness across the line of centres", gt=0)
+    damping_x: LinearDamping = qfield(units.LINEAR_DAMPING, 0.0, "bearing damping along x", ge=0)
+    damping_y: LinearDamping = qfield(units.LINEAR_DAMPING, 0.0, "bearing damping along y", ge=0)
+
+    @property
+    def lateral(self) -> bool:
+        """True when any lateral bearing value is given."""
+        return (self.stiffness_x is not None or self.stiffness_y is not None
+                or self.damping_x != 0.0 or self.damping_y != 0.0)
 
 
 class Bearings(Section):
@@ -347,6 +387,11 @@ class Case(Section):
 
     name: str | None = Field(None, description="case name (default: file stem)")
     description: str = Field("", description="free text")
+    model: Literal["torsional", "lateral-torsional"] = Field(
+        "torsional",
+        description="'torsional' (default: gears rotate about fixed centres) or "
+        "'lateral-torsional' (each gear also moves in x and y on its bearings)",
+    )
     gears: Gears
     material: Material = Field(default_factory=Material)
     contact: Contact = Field(default_factory=Contact)
@@ -361,6 +406,20 @@ class Case(Section):
 
     @model_validator(mode="after")
     def _cross_checks(self):
+        for name in ("pinion", "gear"):
+            b = getattr(self.bearings, name)
+            if self.model == "lateral-torsional":
+                for key in ("stiffness_x", "stiffness_y"):
+                    if getattr(b, key) is None:
+                        raise FieldError(("bearings", name, key),
+                                         "missing; model 'lateral-torsional' needs the lateral "
+                                         "bearing stiffness of both gears in x and y")
+            elif b.lateral:
+                key = next(k for k in ("stiffness_x", "stiffness_y", "damping_x", "damping_y")
+                           if getattr(b, k) not in (None, 0.0))
+                raise FieldError(("bearings", name, key),
+                                 "only used with 'model: lateral-torsional' (the model is "
+                                 "'torsional': gear centres are fixed)")
         if self.load.applied_to == "pinion" and self.drive.type == "speed":
             raise FieldError(
                 ("load", "applied_to"),

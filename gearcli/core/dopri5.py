@@ -19,6 +19,7 @@ import math
 import numpy as np
 
 from gearcli.core.jit import jit
+from gearcli.core.layout import N_STATE_BASE
 from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
 #: Step-size controller (HNW II.4, eq. 4.13; scipy.integrate._ivp.rk constants).
@@ -76,7 +77,8 @@ def solution(y, K, h, out, lo):
 
 @jit_noalloc_inline
 def error_norm(y, y_new, K, h, first, count, atol, rtol):
-    """RMS of the scaled error estimate over components ``first .. first + count - 1``.
+    """RMS of the scaled error estimate over components ``first .. first + count - 1`` and the
+    optional degrees of freedom ``N_STATE_BASE ..`` (layout.py) when the state has them.
 
     ``err_i = h sum_k E[k] K[k, i]``, ``scale_i = atol[i] + rtol max(|y_i|, |y_new_i|)``
     (HNW II.4, eq. 4.11). A non-finite result means the step produced NaN or overflow.
@@ -88,7 +90,13 @@ def error_norm(y, y_new, K, h, first, count, atol, rtol):
             err += E[k] * K[k, i]
         scale = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
         acc += (h * err / scale) ** 2
-    return math.sqrt(acc / count)
+    for i in range(N_STATE_BASE, y.shape[0]):  # optional degrees of freedom (layout.py)
+        err = 0.0
+        for k in range(N_STAGES + 1):
+            err += E[k] * K[k, i]
+        scale = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
+        acc += (h * err / scale) ** 2
+    return math.sqrt(acc / (count + max(0, y.shape[0] - N_STATE_BASE)))
 
 
 @jit_noalloc
@@ -134,7 +142,9 @@ def scaled_rms(v, y, first, count, atol, rtol):
     acc = 0.0
     for i in range(first, first + count):
         acc += (v[i] / (atol[i] + rtol * abs(y[i]))) ** 2
-    return math.sqrt(acc / count)
+    for i in range(N_STATE_BASE, y.shape[0]):
+        acc += (v[i] / (atol[i] + rtol * abs(y[i]))) ** 2
+    return math.sqrt(acc / (count + max(0, y.shape[0] - N_STATE_BASE)))
 
 
 @jit_noalloc

@@ -79,6 +79,26 @@ _PARAM_SPEC = (
     ("shaft_k", "N*mm/rad", 0.0),
     ("shaft_c", "N*mm*s/rad", 0.0),
     ("motor_omega0", "rad/s", 0.0),  # torque mode: T (1 - omega1/omega0); 0 = no motor curve
+    # drive side body (torque drive through the drive shaft; 0 = none): motor inertia
+    ("motor_J", "t*mm^2", 0.0),
+    # load side (0 = none): load inertia on a load shaft from the gear
+    ("load_J", "t*mm^2", 0.0),
+    ("load_k", "N*mm/rad", 0.0),
+    ("load_c", "N*mm*s/rad", 0.0),
+    # lateral-torsional model (model/structure.py: frame, line-of-action vectors)
+    ("lateral", "-", 0.0),  # 1 = gear centres move in x, y on their bearings
+    ("m1", "t", 0.0),  # gear body masses
+    ("m2", "t", 0.0),
+    ("sin_aw", "-", 0.0),  # sin, cos of the operating pressure angle
+    ("cos_aw", "-", 1.0),
+    ("kx1", "N/mm", 0.0),  # bearing stiffness and damping per direction
+    ("ky1", "N/mm", 0.0),
+    ("cx1", "N*s/mm", 0.0),
+    ("cy1", "N*s/mm", 0.0),
+    ("kx2", "N/mm", 0.0),
+    ("ky2", "N/mm", 0.0),
+    ("cx2", "N*s/mm", 0.0),
+    ("cy2", "N*s/mm", 0.0),
     # losses
     ("c1", "N*mm*s/rad", 0.0),  # bearing viscous damping, pinion
     ("c2", "N*mm*s/rad", 0.0),  # bearing viscous damping, gear
@@ -143,10 +163,26 @@ STATE_NAMES = (
     "loss_bearing",  # viscous/quadratic load terms and bearing damping [N*mm]
     "loss_damping",  # contact damping dissipation [N*mm]
     "loss_friction",  # friction dissipation [N*mm]
+    # Optional degrees of freedom: integrated only when the model has them (N_STATE_BASE ..)
+    "x1",  # pinion centre displacement [mm] (lateral model)
+    "y1",
+    "x2",  # gear centre
+    "y2",
+    "vx1",  # their rates [mm/s]
+    "vy1",
+    "vx2",
+    "vy2",
+    "tw_m",  # drive-shaft twist theta_m - theta1 [rad] (motor inertia)
+    "tw_m_dot",  # [rad/s]
+    "tw_l",  # load-shaft twist theta2 - theta_L [rad] (load inertia)
+    "tw_l_dot",  # [rad/s]
 )
 StateIndex = NamedTuple("StateIndex", [(n, int) for n in STATE_NAMES])
 S = StateIndex(*range(len(STATE_NAMES)))
 N_STATE = len(STATE_NAMES)
+#: States of the 2-DOF torsional model (the optional ones follow); a run integrates either
+#: these or all N_STATE.
+N_STATE_BASE = S.x1
 
 # --------------------------------------------------------------------------------------------
 # Auxiliary results of one right-hand-side evaluation (rhs.py writes them).
@@ -164,6 +200,15 @@ AUX_NAMES = (
     "load_torque",  # T_load(t) on the gear [N*mm]
     "contact_energy",  # sum of k p^(e+1)/(e+1) [N*mm]
     "max_penetration",  # largest penetration over all contacts [mm] (0 if none)
+    "spring_energy",  # shafts and bearings: sum of k q^2 / 2 [N*mm]
+    "bearing_fx1",  # force of the pinion on its bearings, k x + c xdot [N]
+    "bearing_fy1",
+    "bearing_fx2",  # of the gear
+    "bearing_fy2",
+    "motor_speed",  # [rad/s] (motor inertia or prescribed motor; else omega1)
+    "drive_shaft_torque",  # torque the drive shaft applies to the pinion [N*mm]
+    "load_speed",  # [rad/s] (load inertia; else omega2)
+    "load_shaft_torque",  # torque the load shaft takes from the gear [N*mm]
 )
 AuxIndex = NamedTuple("AuxIndex", [(n, int) for n in AUX_NAMES])
 A = AuxIndex(*range(len(AUX_NAMES)))
@@ -214,14 +259,40 @@ COLUMN_NAMES = (
     "friction_power_mW",  # sum of f_j v_j [N*mm/s = mW], <= 0
     "drive_torque_Nmm",  # torque into the pinion (speed mode: the torque needed)
     "load_torque_Nmm",  # T_load(t)
-    "kinetic_energy_mJ",  # 1/2 J1 w1^2 + 1/2 J2 w2^2 [N*mm = mJ]
+    "kinetic_energy_mJ",  # 1/2 J w^2 + 1/2 m v^2 of every body [N*mm = mJ]
     "contact_energy_mJ",  # sum of k p^(e+1)/(e+1)
+    "spring_energy_mJ",  # shafts and lateral bearings, sum of k q^2 / 2
     "work_in_mJ",  # integral of T_drive omega1
     "work_load_mJ",  # integral of T_load omega2
     "loss_bearing_mJ",  # load_cv, load_cq, c1, c2 losses
     "loss_damping_mJ",  # contact damping (IMPACT) dissipation
     "loss_friction_mJ",  # friction dissipation
+    # lateral-torsional model: gear centre displacements and bearing forces
+    "x1_mm",
+    "y1_mm",
+    "x2_mm",
+    "y2_mm",
+    "bearing_force_x1_N",  # force of the pinion on its bearings (k x + c xdot)
+    "bearing_force_y1_N",
+    "bearing_force_x2_N",  # of the gear
+    "bearing_force_y2_N",
+    # shafts
+    "omega_motor_rad_s",
+    "drive_shaft_torque_Nmm",  # torque the drive shaft applies to the pinion
+    "omega_load_rad_s",
+    "load_shaft_torque_Nmm",  # torque the load shaft takes from the gear
 )
+#: Columns that only mean something for some models: (column, needs) with needs one of
+#: 'lateral', 'drive_shaft', 'load_shaft' (the pipeline leaves them out otherwise).
+OPTIONAL_COLUMNS = {
+    **{n: "lateral" for n in ("x1_mm", "y1_mm", "x2_mm", "y2_mm", "bearing_force_x1_N",
+                               "bearing_force_y1_N", "bearing_force_x2_N",
+                               "bearing_force_y2_N")},
+    "omega_motor_rad_s": "drive_shaft",
+    "drive_shaft_torque_Nmm": "drive_shaft",
+    "omega_load_rad_s": "load_shaft",
+    "load_shaft_torque_Nmm": "load_shaft",
+}
 ColumnIndex = NamedTuple("ColumnIndex", [(n, int) for n in COLUMN_NAMES])
 C = ColumnIndex(*range(len(COLUMN_NAMES)))
 N_COLUMNS = len(COLUMN_NAMES)
@@ -243,7 +314,9 @@ EXTREMA_NAMES = (
     "delta_min_t_s",
     "penetration_max_mm",
     "penetration_max_t_s",
-    "energy_initial_mJ",  # kinetic + contact energy at t_start (E_0 of the energy balance)
+    "bearing_force_max_1_N",  # largest |bearing force| of the pinion (lateral model)
+    "bearing_force_max_2_N",  # of the gear
+    "energy_initial_mJ",  # kinetic + contact + spring energy at t_start (E_0 of the energy balance)
     "t_reached_s",  # time the integration reached (t_end unless the status is an error)
 )
 ExtremaIndex = NamedTuple("ExtremaIndex", [(n, int) for n in EXTREMA_NAMES])

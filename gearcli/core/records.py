@@ -1,21 +1,30 @@
 """What the time loop keeps: output rows at the sample times and extrema at the solver's steps.
 
 Pure bookkeeping on the arrays of :mod:`gearcli.core.layout`; no physics beyond the kinetic
-energy 1/2 J1 omega1^2 + 1/2 J2 omega2^2 [t*mm^2/s^2 = N*mm = mJ].
+energy sum 1/2 J omega^2 + 1/2 m v^2 of the bodies [t*mm^2/s^2 = N*mm = mJ].
 """
 
 import math
 
-from gearcli.core.layout import A, C, P, S, X
+from gearcli.core.layout import N_STATE_BASE, A, C, P, S, X
 from gearcli.core.nrt import jit_noalloc
 
 
 @jit_noalloc
-def kinetic_energy(prm, s1dot, deltadot):
-    """Kinetic energy [N*mm] from the pinion roll rate and the DTE rate [mm/s]."""
+def kinetic_energy(prm, s1dot, y):
+    """Kinetic energy [N*mm] of every body from the pinion roll rate [mm/s] and the state."""
     omega1 = s1dot / prm[P.r_b1]
-    omega2 = (s1dot - deltadot) / prm[P.r_b2]
-    return 0.5 * prm[P.J1] * omega1 * omega1 + 0.5 * prm[P.J2] * omega2 * omega2
+    omega2 = (s1dot - y[S.deltadot]) / prm[P.r_b2]
+    e = 0.5 * prm[P.J1] * omega1 * omega1 + 0.5 * prm[P.J2] * omega2 * omega2
+    if y.shape[0] > N_STATE_BASE:
+        if prm[P.lateral] != 0.0:
+            e += 0.5 * prm[P.m1] * (y[S.vx1] ** 2 + y[S.vy1] ** 2) \
+                + 0.5 * prm[P.m2] * (y[S.vx2] ** 2 + y[S.vy2] ** 2)
+        if prm[P.motor_J] > 0.0:
+            e += 0.5 * prm[P.motor_J] * (omega1 + y[S.tw_m_dot]) ** 2
+        if prm[P.load_J] > 0.0:
+            e += 0.5 * prm[P.load_J] * (omega2 - y[S.tw_l_dot]) ** 2
+    return e
 
 
 @jit_noalloc
@@ -44,13 +53,27 @@ def write_row(series, slot_out, slot_out_coast, i, t, y, aux, slot_force, slot_f
     row[C.friction_power_mW] = aux[A.friction_power]
     row[C.drive_torque_Nmm] = aux[A.drive_torque]
     row[C.load_torque_Nmm] = aux[A.load_torque]
-    row[C.kinetic_energy_mJ] = kinetic_energy(prm, v1, deltadot)
+    row[C.kinetic_energy_mJ] = kinetic_energy(prm, v1, y)
     row[C.contact_energy_mJ] = aux[A.contact_energy]
+    row[C.spring_energy_mJ] = aux[A.spring_energy]
     row[C.work_in_mJ] = y[S.work_in]
     row[C.work_load_mJ] = y[S.work_load]
     row[C.loss_bearing_mJ] = y[S.loss_bearing]
     row[C.loss_damping_mJ] = y[S.loss_damping]
     row[C.loss_friction_mJ] = y[S.loss_friction]
+    lateral = prm[P.lateral] != 0.0
+    row[C.x1_mm] = y[S.x1] if lateral else 0.0
+    row[C.y1_mm] = y[S.y1] if lateral else 0.0
+    row[C.x2_mm] = y[S.x2] if lateral else 0.0
+    row[C.y2_mm] = y[S.y2] if lateral else 0.0
+    row[C.bearing_force_x1_N] = aux[A.bearing_fx1] if lateral else 0.0
+    row[C.bearing_force_y1_N] = aux[A.bearing_fy1] if lateral else 0.0
+    row[C.bearing_force_x2_N] = aux[A.bearing_fx2] if lateral else 0.0
+    row[C.bearing_force_y2_N] = aux[A.bearing_fy2] if lateral else 0.0
+    row[C.omega_motor_rad_s] = aux[A.motor_speed]
+    row[C.drive_shaft_torque_Nmm] = aux[A.drive_shaft_torque]
+    row[C.omega_load_rad_s] = aux[A.load_speed]
+    row[C.load_shaft_torque_Nmm] = aux[A.load_shaft_torque]
     for j in range(slot_force.shape[0]):
         slot_out[i, j] = slot_force[j]
         slot_out_coast[i, j] = slot_force_coast[j]
@@ -67,6 +90,8 @@ def init_extrema(extrema, slot_extrema):
     extrema[X.delta_max_mm] = -math.inf
     extrema[X.delta_min_mm] = math.inf
     extrema[X.penetration_max_mm] = -math.inf
+    extrema[X.bearing_force_max_1_N] = -math.inf
+    extrema[X.bearing_force_max_2_N] = -math.inf
     for j in range(slot_extrema.shape[1]):
         slot_extrema[0, j] = -math.inf
         slot_extrema[1, j] = math.nan
@@ -74,8 +99,15 @@ def init_extrema(extrema, slot_extrema):
 
 
 @jit_noalloc
-def update_extrema(extrema, slot_extrema, t, y, aux, slot_force):
+def update_extrema(extrema, slot_extrema, t, y, aux, slot_force, lateral):
     """Fold the state and forces of one accepted step end (time ``t`` [s]) into the extrema."""
+    if lateral:
+        b1 = math.hypot(aux[A.bearing_fx1], aux[A.bearing_fy1])
+        b2 = math.hypot(aux[A.bearing_fx2], aux[A.bearing_fy2])
+        if b1 > extrema[X.bearing_force_max_1_N]:
+            extrema[X.bearing_force_max_1_N] = b1
+        if b2 > extrema[X.bearing_force_max_2_N]:
+            extrema[X.bearing_force_max_2_N] = b2
     f = aux[A.force_drive]
     if f > extrema[X.force_total_max_N]:
         extrema[X.force_total_max_N] = f

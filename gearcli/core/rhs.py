@@ -1,4 +1,4 @@
-"""Right-hand side of the 2-DOF torsional spur-pair model (model.md §1, §3-6).
+"""Right-hand side of the spur-pair model (model.md §1, §3-6; model/structure.py).
 
 Coordinates [mm]: roll distances s1 = r_b1 theta1, s2 = r_b2 theta2 and the DTE
 delta = s1 - s2 (> 0 compresses the drive flanks). Integrated state: see layout.STATE_NAMES.
@@ -49,6 +49,22 @@ with Theta the antiderivative of omega1(t), alpha1 = omega1'(t); T_drive = J1 al
 c1 omega1 is the torque needed (reported). Shaft - the motor angle theta_m(t) is built the same
 way; T_drive = k_s (theta_m - theta1) + c_s (omega_m - omega1). Torque - T_drive = T(t)
 (1 - omega1/omega0), the factor only when omega0 > 0.
+
+Optional bodies (model/structure.py; states after N_STATE_BASE, integrated only when present):
+- motor inertia J_m (torque drive through the drive shaft), twist tw_m = theta_m - theta1:
+      J_m alpha_m = T(t) (1 - omega_m/omega0) - T_s,   T_s = k_s tw_m + c_s tw_m'
+  and T_s replaces T_drive on the pinion; tw_m'' = alpha_m - alpha1.
+- load inertia J_L on the load shaft, twist tw_l = theta2 - theta_L:
+      J_L alpha_L = T_L - T_load(t) - (cv + cq |omega_L|) omega_L,   T_L = k_L tw_l + c_L tw_l'
+  and the gear sees -T_L instead of the load terms; tw_l'' = alpha2 - alpha_L.
+- lateral-torsional model: the centres u_i = (x_i, y_i) move on bearings (k, c per direction),
+      m_i u_i'' = F_mesh,i - K_i u_i - C_i u_i',
+  the approach (u1 - u2) . n adds to every pair's penetration on the flank family with line
+  of action n (n_d, n_c), its rate to pdot, (u1' - u2') . t to the sliding speed; the mesh
+  force on the pinion centre is -F_d n_d - F_c n_c + f_d t_d + f_c t_c, the gear gets the
+  opposite (Kahraman & Singh, J. Sound Vib. 146(1), 1991: the 6-DOF spur-pair model).
+Energy: shafts and bearings store sum k q^2/2 (aux spring_energy), their dampers and the load
+terms dissipate into loss_bearing, so the energy balance closes for every model.
 """
 
 import math
@@ -64,13 +80,14 @@ from gearcli.core.gaptable import (
     table_floor,
 )
 from gearcli.core.jit import jit
-from gearcli.core.layout import DRIVE_SHAFT, DRIVE_SPEED, A, D, P, S
+from gearcli.core.layout import DRIVE_SHAFT, DRIVE_SPEED, N_STATE_BASE, A, D, P, S
 from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
 
 @jit_noalloc_inline
 def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, offset,
-          k1, k2, t1, t2, g1, g2, overlap_max, prm, derived, tables, tooth_offsets, slot_force):
+          lat, lat_rate, slide, k1, k2, t1, t2, g1, g2, overlap_max, prm, derived, tables,
+          tooth_offsets, slot_force):
     """Forces of all pair slots of one flank family (drive: sigma = +1, coast: sigma = -1).
 
     Parameters
@@ -89,6 +106,10 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
         s1_0 or s1c_0 [mm].
     offset : float
         0 (drive) or the normal backlash j_n (coast) [mm].
+    lat, lat_rate, slide : float
+        Lateral model: approach (u1 - u2) . n of the gear centres along this flank's line of
+        action [mm], its rate [mm/s], and their relative speed (u1' - u2') . t across it
+        [mm/s], added to the sliding speed (model/structure.py); 0 in the torsional model.
     k1, k2 : int
         Tooth index offsets; t1, t2 rows of ``tooth_offsets`` (per-tooth flank offsets [mm]).
     g1, g2 : int
@@ -122,7 +143,7 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
     """
     for j in range(slot_force.shape[0]):
         slot_force[j] = 0.0
-    if sigma * delta - offset + overlap_max <= 0.0:  # no slot can touch
+    if sigma * delta + lat - offset + overlap_max <= 0.0:  # no slot can touch
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0
     p_b = prm[P.p_b]
     x_lo = prm[P.x_lo]
@@ -202,7 +223,7 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
             dgap2 = 0.0
         else:
             _, gap2, dgap2 = hermite(tables, g2, x_lo, x_hi, h_grid, inv_h, x2)
-        pen = sigma * delta - offset - gap1 - gap2 - e1 - e2
+        pen = sigma * delta + lat - offset - gap1 - gap2 - e1 - e2
         if use_offsets:
             pen -= tooth_offsets[t1, i1] + tooth_offsets[t2, i2]
         if pen <= 0.0:
@@ -211,7 +232,7 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
             pen_max = pen
         dp1 = sigma * (1.0 - dgap1) - de1  # dp/ds1 [-]
         dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
-        pdot = dp1 * v1 + dp2 * v2
+        pdot = dp1 * v1 + dp2 * v2 + lat_rate
         force, fel = impact_force(pen, pdot, k, ex, c_max, d_max)
         pot += fel * pen * inv_e1  # k p^(e+1)/(e+1), contact.impact_potential
         # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0
@@ -226,7 +247,7 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
         if use_friction:
             rho1 = prm[P.T1A] + x1
             rho2 = prm[P.T1T2] - rho1
-            vs = omega1 * rho1 - omega2 * rho2
+            vs = omega1 * rho1 - omega2 * rho2 + slide
             f = adams_mu(vs, mu_s, mu_d, prm[P.v_s], prm[P.v_d]) * force
             m1f += f * rho1
             m2f -= f * rho2
@@ -396,22 +417,46 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
     omega1 = v1 * inv_r_b1
     omega2 = v2 * inv_r_b2
 
+    lateral = prm[P.lateral] != 0.0
+    lat_d = 0.0  # approach of the gear centres along the drive / coast LoA [mm]
+    lat_c = 0.0
+    lat_d_rate = 0.0
+    lat_c_rate = 0.0
+    slide_d = 0.0  # their relative speed across the LoA [mm/s] (friction)
+    slide_c = 0.0
+    sa = prm[P.sin_aw]
+    ca = prm[P.cos_aw]
+    if lateral:  # n_d = (sa, ca), n_c = (sa, -ca), t_d = (-ca, sa), t_c = (ca, sa)
+        dxc = y[S.x1] - y[S.x2]
+        dyc = y[S.y1] - y[S.y2]
+        dvx = y[S.vx1] - y[S.vx2]
+        dvy = y[S.vy1] - y[S.vy2]
+        lat_d = dxc * sa + dyc * ca
+        lat_c = dxc * sa - dyc * ca
+        lat_d_rate = dvx * sa + dvy * ca
+        lat_c_rate = dvx * sa - dvy * ca
+        slide_d = -dvx * ca + dvy * sa
+        slide_c = dvx * ca + dvy * sa
+
     e1, de1 = runout(prm[P.ecc1], prm[P.phase1], theta1, inv_r_b1)
     e2, de2 = runout(prm[P.ecc2], prm[P.phase2], theta2, inv_r_b2)
     q1, q2, m1f, m2f, fd, nd, ffd, fpd, pdd, potd, pend = flank(
         1.0, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, prm[P.s1_0], 0.0,
-        int(prm[P.tooth_k1]), int(prm[P.tooth_k2]), 0, 1, TABLE_G1, TABLE_G2,
-        derived[D.overlap_drive], prm, derived, tables, tooth_offsets, slot_force)
+        lat_d, lat_d_rate, slide_d, int(prm[P.tooth_k1]), int(prm[P.tooth_k2]), 0, 1,
+        TABLE_G1, TABLE_G2, derived[D.overlap_drive], prm, derived, tables, tooth_offsets,
+        slot_force)
     fc = 0.0
     nc = 0
+    ffc = 0.0
+    ff_drive = ffd
     if prm[P.coast_flanks] != 0.0:
         e1, de1 = runout(prm[P.ecc1], prm[P.phase1_coast], theta1, inv_r_b1)
         e2, de2 = runout(prm[P.ecc2], prm[P.phase2_coast], theta2, inv_r_b2)
         q1c, q2c, m1c, m2c, fc, nc, ffc, fpc, pdc, potc, penc = flank(
             -1.0, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, prm[P.s1c_0],
-            prm[P.backlash_n], int(prm[P.tooth_k1_coast]), int(prm[P.tooth_k2_coast]), 2, 3,
-            TABLE_G1_COAST, TABLE_G2_COAST, derived[D.overlap_coast], prm, derived, tables,
-            tooth_offsets, slot_force_coast)
+            prm[P.backlash_n], lat_c, lat_c_rate, slide_c, int(prm[P.tooth_k1_coast]),
+            int(prm[P.tooth_k2_coast]), 2, 3, TABLE_G1_COAST, TABLE_G2_COAST,
+            derived[D.overlap_coast], prm, derived, tables, tooth_offsets, slot_force_coast)
         q1 += q1c
         q2 += q2c
         m1f += m1c
@@ -430,27 +475,127 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
     m2 = r_b2 * q2 + m2f  # on the gear
     t_load = load_torque
     c1w = prm[P.c1] * omega1
-    gear_loss = (prm[P.load_cv] + prm[P.c2] + prm[P.load_cq] * abs(omega2)) * omega2
-    alpha2 = (m2 - t_load - gear_loss) * derived[D.inv_J2]
+    loss = c1w * omega1  # dissipation rate of bearings, shafts and load terms [N*mm/s]
+    spring = 0.0  # potential of shafts and bearings [N*mm]
+
+    # load side: the load terms act on the load inertia behind the load shaft, or on the gear
+    load_J = prm[P.load_J]
+    alpha_l = 0.0
+    if load_J > 0.0:
+        tw_l = y[S.tw_l]
+        tw_l_dot = y[S.tw_l_dot]
+        omega_l = omega2 - tw_l_dot
+        t_lshaft = prm[P.load_k] * tw_l + prm[P.load_c] * tw_l_dot  # taken from the gear
+        load_terms = (prm[P.load_cv] + prm[P.load_cq] * abs(omega_l)) * omega_l
+        alpha_l = (t_lshaft - t_load - load_terms) / load_J
+        c2w = prm[P.c2] * omega2
+        alpha2 = (m2 - t_lshaft - c2w) * derived[D.inv_J2]
+        loss += load_terms * omega_l + c2w * omega2 + prm[P.load_c] * tw_l_dot * tw_l_dot
+        spring += 0.5 * prm[P.load_k] * tw_l * tw_l
+        work_load_rate = t_load * omega_l
+    else:
+        omega_l = omega2
+        t_lshaft = 0.0
+        gear_loss = (prm[P.load_cv] + prm[P.c2] + prm[P.load_cq] * abs(omega2)) * omega2
+        alpha2 = (m2 - t_load - gear_loss) * derived[D.inv_J2]
+        loss += gear_loss * omega2
+        work_load_rate = t_load * omega2
+
+    # drive side
+    motor_J = prm[P.motor_J]
+    omega_m = omega1
+    t_dshaft = 0.0
+    t_pinion = 0.0
     if mode == DRIVE_SPEED:
         t_drive = J1 * a1 * inv_r_b1 - m1 + c1w
+        work_in_rate = t_drive * omega1
     else:
-        if mode == DRIVE_SHAFT:
-            t_drive = prm[P.shaft_k] * (drive_angle - theta1) \
+        if mode == DRIVE_SHAFT:  # prescribed motor angle and speed
+            omega_m = drive_value
+            t_dshaft = prm[P.shaft_k] * (drive_angle - theta1) \
                 + prm[P.shaft_c] * (drive_value - omega1)
+            t_drive = t_dshaft
+            t_pinion = t_dshaft
+        elif motor_J > 0.0:  # torque on the motor inertia, drive shaft to the pinion
+            tw_m = y[S.tw_m]
+            tw_m_dot = y[S.tw_m_dot]
+            omega_m = omega1 + tw_m_dot
+            t_drive = drive_value
+            if prm[P.motor_omega0] > 0.0:
+                t_drive *= 1.0 - omega_m / prm[P.motor_omega0]
+            t_dshaft = prm[P.shaft_k] * tw_m + prm[P.shaft_c] * tw_m_dot
+            t_pinion = t_dshaft
+            loss += prm[P.shaft_c] * tw_m_dot * tw_m_dot
+            spring += 0.5 * prm[P.shaft_k] * tw_m * tw_m
         else:
             t_drive = drive_value
             if prm[P.motor_omega0] > 0.0:
                 t_drive *= 1.0 - omega1 / prm[P.motor_omega0]
-        a1 = r_b1 * (t_drive + m1 - c1w) * derived[D.inv_J1]
+            t_pinion = t_drive
+        a1 = r_b1 * (t_pinion + m1 - c1w) * derived[D.inv_J1]
+        # the system's boundary: the motor inertia if modelled, else the pinion (a prescribed
+        # motor's shaft is outside: its torque is the input, its spring energy not counted)
+        work_in_rate = t_drive * (omega_m if motor_J > 0.0 else omega1)
 
     dy[S.s1] = v1
     dy[S.v1] = a1
     dy[S.delta] = deltadot
     dy[S.deltadot] = a1 - r_b2 * alpha2
-    dy[S.work_in] = t_drive * omega1
-    dy[S.work_load] = t_load * omega2
-    dy[S.loss_bearing] = c1w * omega1 + gear_loss * omega2
+    if y.shape[0] > N_STATE_BASE:  # optional degrees of freedom
+        if motor_J > 0.0:
+            dy[S.tw_m] = y[S.tw_m_dot]
+            dy[S.tw_m_dot] = (t_drive - t_dshaft) / motor_J - a1 * inv_r_b1
+        else:
+            dy[S.tw_m] = 0.0
+            dy[S.tw_m_dot] = 0.0
+        if load_J > 0.0:
+            dy[S.tw_l] = y[S.tw_l_dot]
+            dy[S.tw_l_dot] = alpha2 - alpha_l
+        else:
+            dy[S.tw_l] = 0.0
+            dy[S.tw_l_dot] = 0.0
+        bfx1 = 0.0
+        bfy1 = 0.0
+        bfx2 = 0.0
+        bfy2 = 0.0
+        if lateral:
+            # mesh force on the pinion centre: -F_d n_d - F_c n_c + f_d t_d + f_c t_c
+            fx1 = -(fd + fc) * sa + (ffc - ff_drive) * ca
+            fy1 = (fc - fd) * ca + (ff_drive + ffc) * sa
+            x1 = y[S.x1]
+            y1 = y[S.y1]
+            x2 = y[S.x2]
+            y2 = y[S.y2]
+            vx1 = y[S.vx1]
+            vy1 = y[S.vy1]
+            vx2 = y[S.vx2]
+            vy2 = y[S.vy2]
+            bfx1 = prm[P.kx1] * x1 + prm[P.cx1] * vx1
+            bfy1 = prm[P.ky1] * y1 + prm[P.cy1] * vy1
+            bfx2 = prm[P.kx2] * x2 + prm[P.cx2] * vx2
+            bfy2 = prm[P.ky2] * y2 + prm[P.cy2] * vy2
+            dy[S.x1] = vx1
+            dy[S.y1] = vy1
+            dy[S.x2] = vx2
+            dy[S.y2] = vy2
+            dy[S.vx1] = (fx1 - bfx1) / prm[P.m1]
+            dy[S.vy1] = (fy1 - bfy1) / prm[P.m1]
+            dy[S.vx2] = (-fx1 - bfx2) / prm[P.m2]
+            dy[S.vy2] = (-fy1 - bfy2) / prm[P.m2]
+            loss += prm[P.cx1] * vx1 * vx1 + prm[P.cy1] * vy1 * vy1 \
+                + prm[P.cx2] * vx2 * vx2 + prm[P.cy2] * vy2 * vy2
+            spring += 0.5 * (prm[P.kx1] * x1 * x1 + prm[P.ky1] * y1 * y1
+                             + prm[P.kx2] * x2 * x2 + prm[P.ky2] * y2 * y2)
+        else:
+            for i in range(S.x1, S.vy2 + 1):
+                dy[i] = 0.0
+        aux[A.bearing_fx1] = bfx1
+        aux[A.bearing_fy1] = bfy1
+        aux[A.bearing_fx2] = bfx2
+        aux[A.bearing_fy2] = bfy2
+    dy[S.work_in] = work_in_rate
+    dy[S.work_load] = work_load_rate
+    dy[S.loss_bearing] = loss
     dy[S.loss_damping] = pdd
     dy[S.loss_friction] = -fpd
 
@@ -466,3 +611,8 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
     aux[A.load_torque] = t_load
     aux[A.contact_energy] = potd
     aux[A.max_penetration] = pend
+    aux[A.spring_energy] = spring
+    aux[A.motor_speed] = omega_m
+    aux[A.drive_shaft_torque] = t_dshaft
+    aux[A.load_speed] = omega_l
+    aux[A.load_shaft_torque] = t_lshaft

@@ -48,6 +48,7 @@ from gearcli.core.layout import (
     N_EXTREMA,
     N_SLOT_EXTREMA,
     N_STATE,
+    N_STATE_BASE,
     STATUS_MAX_STEPS,
     STATUS_NAN,
     STATUS_OK,
@@ -225,11 +226,22 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
     err_bound = derived[D.error_bound] + 10.0 * prm[P.atol_delta]
 
+    lateral = prm[P.lateral] != 0.0
+    # optional degrees of freedom (layout.STATE_NAMES): all of them or none are integrated
+    extra = lateral or prm[P.motor_J] > 0.0 or prm[P.load_J] > 0.0
+    n_state = N_STATE if extra else N_STATE_BASE
     atol = np.zeros(N_STATE)
     atol[S.s1] = prm[P.atol_delta]
     atol[S.v1] = prm[P.atol_deltadot]
     atol[S.delta] = prm[P.atol_delta]
     atol[S.deltadot] = prm[P.atol_deltadot]
+    for i in range(S.x1, S.y2 + 1):  # centre displacements: like the DTE
+        atol[i] = prm[P.atol_delta]
+        atol[i + 4] = prm[P.atol_deltadot]
+    atol[S.tw_m] = prm[P.atol_delta] / prm[P.r_b1]  # twists [rad]: the same at the base radius
+    atol[S.tw_m_dot] = prm[P.atol_deltadot] / prm[P.r_b1]
+    atol[S.tw_l] = prm[P.atol_delta] / prm[P.r_b2]
+    atol[S.tw_l_dot] = prm[P.atol_deltadot] / prm[P.r_b2]
     first = S.delta if speed_mode else S.s1  # controlled components: first .. S.deltadot
     count = S.deltadot + 1 - first
 
@@ -238,14 +250,14 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     # slower depending on the build (measured on the seed case; cache-line/aliasing effects).
     vec = 16 * ((max(N_STATE, N_AUX, n_slots) + 15) // 16)
     work = np.zeros((7 + N_STAGES + 1) * vec)
-    y = work[0:N_STATE]
-    dy = work[vec:vec + N_STATE]
-    ys = work[2 * vec:2 * vec + N_STATE]
-    y_new = work[3 * vec:3 * vec + N_STATE]
+    y = work[0:n_state]
+    dy = work[vec:vec + n_state]
+    ys = work[2 * vec:2 * vec + n_state]
+    y_new = work[3 * vec:3 * vec + n_state]
     aux = work[4 * vec:4 * vec + N_AUX]
     sf = work[5 * vec:5 * vec + n_slots]
     sfc = work[6 * vec:6 * vec + n_slots]
-    K = work[7 * vec:].reshape((N_STAGES + 1, vec))[:, :N_STATE]  # K[0] = f(t, y) (FSAL)
+    K = work[7 * vec:].reshape((N_STAGES + 1, vec))[:, :n_state]  # K[0] = f(t, y) (FSAL)
     y[S.s1] = prm[P.r_b1] * prm[P.theta1_init]
     y[S.v1] = prm[P.r_b1] * prm[P.omega1_init]
     y[S.delta] = prm[P.delta_init]
@@ -258,15 +270,15 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     if speed_mode:  # prescribed: keep the (uncontrolled) integrated copies exact
         y[S.s1] = aux[A.s1]
         y[S.v1] = aux[A.v1]
-    extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y[S.deltadot]) \
-        + aux[A.contact_energy]
+    extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y) \
+        + aux[A.contact_energy] + aux[A.spring_energy]
     extrema[X.t_reached_s] = t
     if not (_all_finite(y) and _all_finite(dy) and _all_finite(aux)):
         finish_extrema(extrema, slot_extrema)
         return STATUS_NAN, counters, series, slot_out, slot_out_coast, extrema, \
             slot_extrema, 0
     if t >= ext_start:
-        update_extrema(extrema, slot_extrema, t, y, aux, sf)
+        update_extrema(extrema, slot_extrema, t, y, aux, sf, lateral)
     i_out = 0
     while i_out < n_out and t_out[i_out] <= t:
         write_row(series, slot_out, slot_out_coast, i_out, t_out[i_out], y, aux, sf, sfc, prm)
@@ -298,9 +310,12 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
             break
         if predict:
             predict = False
+            margin = err_bound + 0.1 * abs(y[S.delta])
+            if lateral:  # the centres' approach along either line of action, at most
+                margin += abs(y[S.x1] - y[S.x2]) + abs(y[S.y1] - y[S.y2])
             tau = next_crossing(y[S.s1], y[S.v1], K[0, S.v1], y[S.delta], y[S.deltadot],
                                 K[0, S.deltadot], prm, derived, tables, max(h, hop_limit),
-                                err_bound + 0.1 * abs(y[S.delta]))
+                                margin)
             t_event = t + tau
             if tau <= max(hop_limit, 100.0 * h_min):
                 # Hop over the discontinuity with one Euler step ending just past it.
@@ -308,7 +323,7 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
                 t_hop = t + hop
                 while i_out < n_out and t_out[i_out] <= t_hop:
                     ts = t_out[i_out]
-                    for i in range(N_STATE):
+                    for i in range(n_state):
                         ys[i] = y[i] + (ts - t) * K[0, i]
                     _evaluate(ts, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
                               theta_offset, drive_pp, angle_pp, load_pp)
@@ -316,9 +331,9 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
                     write_row(series, slot_out, slot_out_coast, i_out, ts, ys, aux, sf, sfc,
                               prm)
                     if ts >= ext_start:
-                        update_extrema(extrema, slot_extrema, ts, ys, aux, sf)
+                        update_extrema(extrema, slot_extrema, ts, ys, aux, sf, lateral)
                     i_out += 1
-                for i in range(N_STATE):
+                for i in range(n_state):
                     y[i] += hop * K[0, i]
                 t = t_hop
                 _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
@@ -329,7 +344,7 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
                     y[S.s1] = aux[A.s1]
                     y[S.v1] = aux[A.v1]
                 if t >= ext_start:
-                    update_extrema(extrema, slot_extrema, t, y, aux, sf)
+                    update_extrema(extrema, slot_extrema, t, y, aux, sf, lateral)
                 # the jump starts a new transient: restart below the last step size
                 h = EVENT_RESTART * min(h, h_cut)
                 hop_limit = 0.0
@@ -368,7 +383,7 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
             y_new[S.s1] = aux[A.s1]
             y_new[S.v1] = aux[A.v1]
         if t_new >= ext_start:
-            update_extrema(extrema, slot_extrema, t_new, y_new, aux, sf)
+            update_extrema(extrema, slot_extrema, t_new, y_new, aux, sf, lateral)
         runaway = aux[A.max_penetration] > pen_limit
         while i_out < n_out and t_out[i_out] <= t_new:
             ts = t_out[i_out]
@@ -378,12 +393,12 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
             counters[3] += 1
             write_row(series, slot_out, slot_out_coast, i_out, ts, ys, aux, sf, sfc, prm)
             if ts >= ext_start:  # samples are points of the solution too
-                update_extrema(extrema, slot_extrema, ts, ys, aux, sf)
+                update_extrema(extrema, slot_extrema, ts, ys, aux, sf, lateral)
             i_out += 1
         factor = step_factor(err, rejected_before)
         rejected_before = False
         t = t_new
-        for i in range(N_STATE):
+        for i in range(n_state):
             y[i] = y_new[i]
             K[0, i] = K[N_STAGES, i]
         if runaway:

@@ -20,7 +20,9 @@ from gearcli.model.gap import GapTables, Modifications, Relief, coast_phase_mm, 
 from gearcli.model.geometry import mesh_frequencies
 from gearcli.model.mesh import MeshMode, mesh_mode
 from gearcli.model.stiffness import derived_pair_stiffness
+from gearcli.model.structure import Structure
 from gearcli.pipeline.geometry import GeometryResult
+from gearcli.pipeline.structure import build_structure
 
 #: Output sampling: the analysed band reaches 10 mesh harmonics (issue 3); 2.56 samples per
 #: period of the highest one is the usual anti-aliasing margin of vibration analysers.
@@ -128,6 +130,19 @@ def _gap_tables(geometry, mods, engagement: str, cap_mm: float) -> GapTables:
     return gap_tables(geometry, mods, engagement, cap_mm=cap_mm)
 
 
+def _structure_params(st: Structure) -> dict[str, float]:
+    """Kernel parameters of the optional bodies: motor and load inertias, lateral supports."""
+    out = {"motor_J": st.motor_inertia_t_mm2, "load_J": st.load_inertia_t_mm2,
+           "load_k": st.load_shaft_stiffness_Nmm_rad, "load_c": st.load_shaft_damping_Nmms_rad,
+           "sin_aw": math.sin(st.alpha_w_rad), "cos_aw": math.cos(st.alpha_w_rad)}
+    if st.lateral:
+        out.update(lateral=1.0, m1=st.m1_t, m2=st.m2_t)
+        for i, sup in ((1, st.pinion_support), (2, st.gear_support)):
+            out.update({f"kx{i}": sup.stiffness_x_N_mm, f"ky{i}": sup.stiffness_y_N_mm,
+                        f"cx{i}": sup.damping_x_Ns_mm, f"cy{i}": sup.damping_y_Ns_mm})
+    return out
+
+
 def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     """Assemble the kernel's inputs from a validated case and its checked geometry."""
     g = geo.geometry
@@ -191,6 +206,7 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
         shaft_c=dr.shaft.damping if dr.shaft else 0.0,
         motor_omega0=dr.motor_curve.no_load_speed if dr.motor_curve else 0.0,
         c1=bearing.pinion.damping, c2=bearing.gear.damping,
+        **_structure_params(build_structure(case, geo)),
         load_cv=case.load.viscous, load_cq=case.load.quadratic,
         rtol=case.run.rtol,
         atol_delta=case.run.atol,

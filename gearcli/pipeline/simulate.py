@@ -36,11 +36,16 @@ class SimulationResult:
 
     def columns(self) -> dict[str, np.ndarray]:
         """Output columns in file order; names carry units."""
-        from gearcli.core.layout import COLUMN_NAMES
+        from gearcli.core.layout import COLUMN_NAMES, DRIVE_SHAFT, OPTIONAL_COLUMNS, P
 
         k = self.kernel
+        prm = self.kernel_input.params
+        has = {"lateral": prm[P.lateral] != 0.0,
+               "drive_shaft": prm[P.motor_J] > 0.0 or prm[P.drive_mode] == DRIVE_SHAFT,
+               "load_shaft": prm[P.load_J] > 0.0}
+        names = [n for n in COLUMN_NAMES if n not in OPTIONAL_COLUMNS or has[OPTIONAL_COLUMNS[n]]]
         cols = {name: k.series[:, i] for i, name in enumerate(COLUMN_NAMES)}
-        out = {n: cols[n] for n in COLUMN_NAMES if not n.endswith("_mJ")
+        out = {n: cols[n] for n in names if not n.endswith("_mJ")
                and n not in ("friction_power_mW",)}
         for j in range(k.slot_force.shape[1]):
             out[f"force_slot{j}_N"] = k.slot_force[:, j]
@@ -48,7 +53,7 @@ class SimulationResult:
         out["mesh_cycle"] = cycle
         for j in range(x.shape[1]):
             out[f"x_slot{j}_mm"] = x[:, j]
-        for n in COLUMN_NAMES:
+        for n in names:
             if n.endswith("_mJ") or n == "friction_power_mW":
                 out[n] = cols[n]
         return out
@@ -164,13 +169,15 @@ def summarize(res: SimulationResult) -> dict:
 
 
 def energy_balance(k) -> dict:
-    """ΔE_kin + ΔV_contact against the net work in, over the run [N·mm = mJ].
+    """ΔE_kin + ΔV (contact, shafts, bearings) against the net work in, over the run
+    [N·mm = mJ].
 
     residual = (ΔE_kin + ΔV) − (W_in − W_load − losses); relative to the largest term.
     """
     col = k.column
     d_kin = col("kinetic_energy_mJ")[-1] - col("kinetic_energy_mJ")[0]
     d_pot = col("contact_energy_mJ")[-1] - col("contact_energy_mJ")[0]
+    d_spring = col("spring_energy_mJ")[-1] - col("spring_energy_mJ")[0]
     terms = {
         "work_in_mJ": col("work_in_mJ")[-1],
         "work_load_mJ": col("work_load_mJ")[-1],
@@ -180,10 +187,11 @@ def energy_balance(k) -> dict:
     }
     net = terms["work_in_mJ"] - terms["work_load_mJ"] - terms["loss_bearing_mJ"] \
         - terms["loss_damping_mJ"] - terms["loss_friction_mJ"]
-    residual = d_kin + d_pot - net
-    scale = max(abs(v) for v in (*terms.values(), d_kin, d_pot, 1e-300))
+    residual = d_kin + d_pot + d_spring - net
+    scale = max(abs(v) for v in (*terms.values(), d_kin, d_pot, d_spring, 1e-300))
     return {**{k_: float(v) for k_, v in terms.items()},
             "delta_kinetic_mJ": float(d_kin), "delta_contact_mJ": float(d_pot),
+            "delta_spring_mJ": float(d_spring),
             "residual_mJ": float(residual), "relative_residual": float(abs(residual) / scale)}
 
 
