@@ -23,8 +23,9 @@ def modal(
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
 ) -> None:
-    """Modes of the linearised torsional model that `simulate` integrates, crossings of the
-    mesh harmonics and shaft orders, and the resonance-margin check at the case speed.
+    """Modes of the linearised model that `simulate` integrates (case key `model`: torsional
+    or lateral-torsional), crossings of the mesh harmonics and shaft orders, and the
+    resonance-margin check at the case speed.
 
     Exit codes: 0 ok, 4 the margin check failed, 1 bad input.
     """
@@ -55,19 +56,23 @@ def _print(doc: dict) -> None:
     console = Console()
     lin = doc["linearisation"]
     console.print(
-        f"[bold]{doc['case']}[/bold]: torsional model, drive '{doc['drive']}', "
+        f"[bold]{doc['case']}[/bold]: {doc['model']} model, drive '{doc['drive']}', "
         f"linearised at F = {lin['static_force_N']:.1f} N: k_mesh = "
         f"{lin['mesh_stiffness_N_mm']:.4g} N/mm (single pair "
         f"{lin['single_pair_stiffness_N_mm']:.4g}, double pair "
         f"{lin['double_pair_stiffness_N_mm']:.4g}), c_mesh = "
         f"{lin['mesh_damping_Ns_mm']:.4g} N*s/mm, friction off")
     t = Table(title="Modes", title_justify="left")
-    for col in ("mode", "f [Hz]", "zeta", "description", "shape " + ", ".join(doc["dofs"])):
+    for col in ("mode", "f [Hz]", "zeta", "description",
+                "shape (largest = 1): " + ", ".join(doc["dofs"])):
         t.add_column(col)
     for m in doc["modes"]:
         f = "rigid body" if m["rigid_body"] else format_value(m["natural_frequency_Hz"])
+        zeta = m["damping_ratio"]
+        z = format_value(zeta) if zeta is None or zeta <= 1.0 else \
+            f"{format_value(zeta)} (overdamped)"
         shape = ", ".join(f"{v:+.3f}" for v in m["shape"].values())
-        t.add_row(str(m["mode"]), f, format_value(m["damping_ratio"]), m["description"], shape)
+        t.add_row(str(m["mode"]), f, z, m["description"], shape)
     console.print(t)
     lo, hi = doc["speed_range_deg_s"]
     c = Table(title=f"Crossings (pinion speed, {lo:g}-{hi:g} deg/s)", title_justify="left")

@@ -34,6 +34,13 @@ _PARAM_SPEC = (
     ("omega1_init", "rad/s", 0.0),  # pinion speed at t_start (torque and shaft modes)
     ("delta_init", "mm", 0.0),  # DTE along the drive LoA at t_start
     ("deltadot_init", "mm/s", 0.0),
+    # initial values of the optional states (layout.STATE_NAMES after N_STATE_BASE; rates 0)
+    ("x1_init", "mm", 0.0),
+    ("y1_init", "mm", 0.0),
+    ("x2_init", "mm", 0.0),
+    ("y2_init", "mm", 0.0),
+    ("tw_m_init", "rad", 0.0),
+    ("tw_l_init", "rad", 0.0),
     # bodies
     ("r_b1", "mm", None),  # base radius, pinion
     ("r_b2", "mm", None),  # base radius, gear

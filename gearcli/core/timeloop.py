@@ -262,6 +262,13 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     y[S.v1] = prm[P.r_b1] * prm[P.omega1_init]
     y[S.delta] = prm[P.delta_init]
     y[S.deltadot] = prm[P.deltadot_init]
+    if extra:
+        y[S.x1] = prm[P.x1_init]
+        y[S.y1] = prm[P.y1_init]
+        y[S.x2] = prm[P.x2_init]
+        y[S.y2] = prm[P.y2_init]
+        y[S.tw_m] = prm[P.tw_m_init]
+        y[S.tw_l] = prm[P.tw_l_init]
 
     _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
               theta_offset, drive_pp, angle_pp, load_pp)

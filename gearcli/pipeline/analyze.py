@@ -166,6 +166,54 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
     }
 
 
+def _resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
+    """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (model.md §7; issue 5).
+
+    summary["modes"] (gearcli.pipeline.modal.modes_summary: every mode of the linearised model,
+    the same as `gearcli modal`) when the run has it, else the mesh mode of older results
+    folders. Modes without a resonant peak (ζ >= 1/√2, gearcli.model.modal) are not checked.
+    Sets m["resonance_margins_percent"] (per harmonic, to the nearest mode) and, with modes,
+    m["resonance_margins"] (every harmonic against every mode, nearest first).
+    """
+    if s.get("modes"):  # an empty list (no modal result stored) counts as absent
+        modes = [(md["mode"], md["natural_frequency_Hz"], md["damping_ratio"])
+                 for md in s["modes"] if not md["rigid_body"] and md["natural_frequency_Hz"]]
+    else:
+        modes = [(None, m["mesh_natural_frequency_Hz"], m["mesh_damping_ratio"])]
+    limit = f">= {ck.resonance_margin_percent:g} %"
+    if not modes:
+        m["resonance_margins_percent"] = []
+        return Check("resonance_margin_percent", None, limit, True, "no elastic mode")
+    rows = sorted(({"harmonic": k, "mode": num, "excitation_Hz": k * f_z, "mode_Hz": f_n,
+                    "margin_percent": abs(k * f_z - f_n) / f_n * 100.0,
+                    "resonant_peak": has_resonant_peak(zeta)}
+                   for num, f_n, zeta in modes for k in range(1, ck.harmonics + 1)),
+                  key=lambda r: r["margin_percent"])
+    m["resonance_margins_percent"] = [min(r["margin_percent"] for r in rows
+                                          if r["harmonic"] == k)
+                                      for k in range(1, ck.harmonics + 1)]
+    if s.get("modes"):
+        m["resonance_margins"] = rows
+    near = rows[0]
+    name = "mesh mode" if near["mode"] is None else f"mode {near['mode']}"
+    note = (f"nearest: {near['harmonic']} x f_z = {near['excitation_Hz']:.1f} Hz vs {name} "
+            f"{near['mode_Hz']:.1f} Hz")
+    # A mode with zeta >= 1/sqrt(2) has no resonant peak (one rule: gearcli.model.modal).
+    no_peak = [(num, zeta) for num, _, zeta in modes if not has_resonant_peak(zeta)]
+    if no_peak and near["mode"] is None:
+        note += f"; the mode has no resonant peak (damping ratio {no_peak[0][1]:.2f} >= 0.707)"
+    elif no_peak:
+        note += (f"; mode(s) {', '.join(str(n) for n, _ in no_peak)} have no resonant peak "
+                 "(damping ratio >= 0.707) and are not checked")
+    peaked = [r for r in rows if r["resonant_peak"]]
+    ok = not peaked or peaked[0]["margin_percent"] >= ck.resonance_margin_percent
+    if peaked and not ok and near["mode"] is not None:
+        p = peaked[0]
+        note += (f"; violated by {p['harmonic']} x f_z vs mode {p['mode']} "
+                 f"({p['margin_percent']:.1f} %)")
+    return Check("resonance_margin_percent", near["margin_percent"], limit, ok, note)
+
+
 def _checks(res: Analysis, case, s) -> list[Check]:
     m, ck = res.metrics, case.checks
     f_z, rate = m["gear_mesh_frequency_Hz"], m["output_rate_Hz"]
@@ -191,18 +239,7 @@ def _checks(res: Analysis, case, s) -> list[Check]:
     out.append(Check("gmf_line_present", gmf.measured_Hz if gmf.resolvable else None,
                      f"line at f_z = {f_z:.3f} Hz +- 1 bin, > {LINE_PROMINENCE:g} x floor",
                      bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"))
-    f_n, zeta = m["mesh_natural_frequency_Hz"], m["mesh_damping_ratio"]
-    margins = [abs(k * f_z - f_n) / f_n * 100.0 for k in range(1, ck.harmonics + 1)]
-    k_min = int(np.argmin(margins)) + 1
-    m["resonance_margins_percent"] = margins
-    note = f"nearest: {k_min} x f_z = {k_min * f_z:.1f} Hz vs mesh mode {f_n:.1f} Hz"
-    # A mode with zeta >= 1/sqrt(2) has no resonant peak (one rule: gearcli.model.modal).
-    no_peak = not has_resonant_peak(zeta)
-    if no_peak:
-        note += f"; the mode has no resonant peak (damping ratio {zeta:.2f} >= 0.707)"
-    out.append(Check("resonance_margin_percent", min(margins),
-                     f">= {ck.resonance_margin_percent:g} %",
-                     no_peak or min(margins) >= ck.resonance_margin_percent, note))
+    out.append(_resonance_check(m, s, f_z, ck))
     if ck.dynamic_factor_max is not None and m["dynamic_factor"] is not None:
         out.append(Check("dynamic_factor", m["dynamic_factor"], f"<= {ck.dynamic_factor_max:g}",
                          m["dynamic_factor"] <= ck.dynamic_factor_max))

@@ -1,9 +1,10 @@
-"""`gearcli modal`: the linearised torsional model of `simulate`, its modes and resonance map.
+"""`gearcli modal`: the linearised model of `simulate`, its modes and resonance map.
 
-The model is exactly the one the kernel integrates (core/rhs.py; model.md §6) linearised at the
-static load (gearcli.model.mesh, as kernel_input builds it), friction off. Not yet modelled
-(issue 5): motor/load inertias and a load shaft, the lateral-torsional option — the kernel
-lacks them, and modal must describe the same model as simulate.
+The model is the one the kernel integrates: bodies, shafts and supports from
+gearcli.pipeline.structure.build_structure (the same Structure core/rhs.py gets), the mesh
+linearised at the static load (gearcli.model.mesh.mesh_mode, as kernel_input builds it),
+friction off; torsional or lateral-torsional (case key ``model``). See gearcli.model.modal.
+:func:`case_modes` and :func:`modes_summary` give `simulate` the same modes for its summary.
 """
 
 from __future__ import annotations
@@ -13,22 +14,25 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from gearcli.case.load import LoadedCase, load_case
+from gearcli.case.schema import Case
 from gearcli.errors import CaseError
 from gearcli.model.mesh import MeshMode, mesh_mode
 from gearcli.model.modal import (
     NO_PEAK_DAMPING_RATIO,
     Crossing,
+    LinearSystem,
     Margin,
     ModalResult,
     Order,
-    TorsionalSystem,
     crossings,
     excitation_orders,
+    linear_modes,
+    linearised_dampers,
     margins,
-    torsional_modes,
 )
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import contact_stiffness, static_force_N
+from gearcli.pipeline.structure import build_structure
 
 DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
@@ -48,7 +52,7 @@ class ModalCheck:
 class ModalAnalysis:
     loaded: LoadedCase
     geometry: GeometryResult
-    system: TorsionalSystem
+    system: LinearSystem
     mesh: MeshMode
     result: ModalResult
     orders: tuple[Order, ...]
@@ -67,30 +71,59 @@ class ModalAnalysis:
         return all(c.passed for c in self.checks)
 
 
-def torsional_system(loaded: LoadedCase, geo: GeometryResult, mesh: MeshMode,
-                     pinion_speed_rad_s: float | None) -> TorsionalSystem:
-    """The case's linearised torsional model (gearcli.model.modal docstring)."""
-    case, g = loaded.case, geo.geometry
+def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
+    """The mesh linearised at the static load, as kernel_input builds it (model.md §4)."""
+    g, ct = geo.geometry, case.contact
+    return mesh_mode(static_force_N(case, geo), g.eps_alpha, contact_stiffness(case, geo),
+                     ct.exponent, ct.max_damping, ct.penetration_depth, g.pinion.r_b_mm,
+                     g.gear.r_b_mm, geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,
+                     pinion_free=case.drive.type != "speed")
+
+
+def _final_drive_torque_Nmm(case: Case) -> float:
+    """The drive torque at the end of its ramps (torque drive), else 0 [N·mm]."""
     dr = case.drive
-    c_motor = 0.0
-    if dr.type == "torque" and dr.motor_curve is not None:
-        # T = T(t) (1 - ω1/ω0): -∂T/∂ω1 = T/ω0 at the final drive torque.
-        t_final = dr.torque.pp.final_value()
-        t_final = t_final if t_final is not None else float(dr.torque.pp(case.run.end_time))
-        c_motor = abs(t_final) / dr.motor_curve.no_load_speed
-    omega2 = abs(pinion_speed_rad_s or 0.0) * g.pinion.teeth / g.gear.teeth
-    c_load = case.load.viscous + 2.0 * case.load.quadratic * omega2
-    return TorsionalSystem(
-        J1_t_mm2=geo.mass[0].inertia_t_mm2, J2_t_mm2=geo.mass[1].inertia_t_mm2,
-        r_b1_mm=g.pinion.r_b_mm, r_b2_mm=g.gear.r_b_mm,
-        mesh_stiffness_N_mm=mesh.mesh_stiffness_N_mm,
-        mesh_damping_Ns_mm=mesh.mesh_damping_Ns_mm,
-        drive=dr.type,
-        shaft_stiffness_Nmm_rad=dr.shaft.stiffness if dr.shaft else 0.0,
-        shaft_damping_Nmms_rad=dr.shaft.damping if dr.shaft else 0.0,
-        pinion_damping_Nmms_rad=case.bearings.pinion.damping + c_motor,
-        gear_damping_Nmms_rad=case.bearings.gear.damping + c_load,
-    )
+    if dr.type != "torque" or dr.torque is None:
+        return 0.0
+    final = dr.torque.pp.final_value()
+    return final if final is not None else float(dr.torque.pp(case.run.end_time))
+
+
+def linear_system(case: Case, geo: GeometryResult, mesh: MeshMode,
+                  pinion_speed_rad_s: float | None) -> LinearSystem:
+    """The case's linearised model (gearcli.model.modal docstring): the Structure of
+    build_structure, the mesh k_mesh, c_mesh, and the motor curve and quadratic load term
+    linearised at the final drive torque and the pinion speed [rad/s] (None: 0)."""
+    structure = build_structure(case, geo)
+    c_motor, c_quad = linearised_dampers(structure, _final_drive_torque_Nmm(case),
+                                         pinion_speed_rad_s)
+    return LinearSystem(structure, mesh.mesh_stiffness_N_mm, mesh.mesh_damping_Ns_mm,
+                        motor_curve_damping_Nmms_rad=c_motor,
+                        load_quadratic_damping_Nmms_rad=c_quad)
+
+
+def case_modes(case: Case, geo: GeometryResult, mesh: MeshMode,
+               pinion_speed_rad_s: float | None) -> ModalResult:
+    """Modes of the case's linearised model (for `simulate`'s summary: see modes_summary).
+
+    A model the schema let through but that cannot be solved raises CaseError (exit 1).
+    """
+    return _solve(linear_system(case, geo, mesh, pinion_speed_rad_s))
+
+
+def _solve(system: LinearSystem, file: str | None = None) -> ModalResult:
+    try:
+        return linear_modes(system)
+    except ValueError as err:  # the schema admits only physical values: a bug or a new field
+        raise CaseError(f"modal model: {err}", file=file) from err
+
+
+def modes_summary(result: ModalResult) -> list[dict]:
+    """JSON-ready list of the modes, one dict each: mode, natural_frequency_Hz, damping_ratio,
+    description, rigid_body (frequency and damping ratio None for rigid-body modes)."""
+    return [{"mode": m.number, "natural_frequency_Hz": m.natural_frequency_Hz,
+             "damping_ratio": m.damping_ratio, "description": m.description,
+             "rigid_body": m.rigid} for m in result.modes]
 
 
 def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = None,
@@ -100,14 +133,10 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     case = loaded.case
     geo = run_geometry(loaded)
     g = geo.geometry
-    ct = case.contact
-    mesh = mesh_mode(static_force_N(case, geo), g.eps_alpha, contact_stiffness(case, geo),
-                     ct.exponent, ct.max_damping, ct.penetration_depth, g.pinion.r_b_mm,
-                     g.gear.r_b_mm, geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,
-                     pinion_free=case.drive.type != "speed")
+    mesh = case_mesh(case, geo)
     speed = geo.pinion_speed_rad_s
-    system = torsional_system(loaded, geo, mesh, speed)
-    result = torsional_modes(system)
+    system = linear_system(case, geo, mesh, speed)
+    result = _solve(system, loaded.source.file)
     orders = excitation_orders(g.pinion.teeth, g.gear.teeth, case.checks.harmonics)
     cross = crossings(result.modes, orders)
     case_deg_s = abs(speed) * DEG if speed else None
@@ -153,12 +182,20 @@ def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
 
 def modal_document(res: ModalAnalysis) -> dict:
     """JSON-ready report; names carry units."""
-    m = res.mesh
+    m, st = res.mesh, res.system.structure
     return {
         "case": res.name,
-        "model": "torsional",
+        "model": res.loaded.case.model,
         "drive": res.system.drive,
         "dofs": list(res.result.dofs),
+        "bodies": {
+            "motor_inertia_t_mm2": st.motor_inertia_t_mm2 or None,
+            "pinion_inertia_t_mm2": st.J1_t_mm2,
+            "gear_inertia_t_mm2": st.J2_t_mm2,
+            "load_inertia_t_mm2": st.load_inertia_t_mm2 or None,
+            "pinion_mass_t": st.m1_t if st.lateral else None,
+            "gear_mass_t": st.m2_t if st.lateral else None,
+        },
         "linearisation": {
             "static_force_N": m.static_force_N,
             "static_deflection_mm": m.static_deflection_mm,
@@ -167,6 +204,8 @@ def modal_document(res: ModalAnalysis) -> dict:
             "single_pair_stiffness_N_mm": m.single_pair_stiffness_N_mm,
             "double_pair_stiffness_N_mm": m.double_pair_stiffness_N_mm,
             "mesh_damping_Ns_mm": m.mesh_damping_Ns_mm,
+            "motor_curve_damping_Nmms_rad": res.system.motor_curve_damping_Nmms_rad,
+            "load_quadratic_damping_Nmms_rad": res.system.load_quadratic_damping_Nmms_rad,
             "friction": "off",
         },
         "modes": [{
@@ -175,9 +214,12 @@ def modal_document(res: ModalAnalysis) -> dict:
             "natural_frequency_Hz": md.natural_frequency_Hz,
             "damping_ratio": md.damping_ratio,
             "damped_frequency_Hz": md.damped_frequency_Hz,
+            "undamped_frequency_Hz": md.undamped_frequency_Hz,
             "resonant_peak": md.has_peak,
             "description": md.description,
             "shape": dict(zip(res.result.dofs, md.shape, strict=True)),
+            "strain_energy_share": md.strain_energy,
+            "kinetic_energy_share": md.kinetic_energy,
             "eigenvalues_1_s": [[r.real, r.imag] for r in md.eigenvalues],
         } for md in res.result.modes],
         "case_speed_deg_s": res.case_speed_deg_s,
@@ -205,7 +247,8 @@ def save_campbell_plot(res: ModalAnalysis, path: str | Path) -> None:
     from gearcli.plotting.campbell import plot_campbell
 
     fig = plot_campbell(res.result, res.orders, res.speed_range_deg_s, res.case_speed_deg_s,
-                        title=f"{res.name}: torsional modes, drive '{res.system.drive}'")
+                        title=f"{res.name}: {res.loaded.case.model} model, drive "
+                              f"'{res.system.drive}'")
     buf = io.BytesIO()
     fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=150)
     write_atomic(path, buf.getvalue())

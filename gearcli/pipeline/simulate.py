@@ -27,6 +27,7 @@ class SimulationResult:
     kernel: object  # core.integrate.KernelResult
     wall_time_s: float
     window: Window
+    modes: object = None  # model.modal.ModalResult of the same model, linearised
     summary: dict = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
 
@@ -91,8 +92,12 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     last_ramp = max(case.drive.speed.pp.last_breakpoint if case.drive.speed else 0.0,
                     case.drive.torque.pp.last_breakpoint if case.drive.torque else 0.0,
                     case.load.torque.pp.last_breakpoint, 0.0)
+    # the natural frequencies of `gearcli modal` (one model): settling time, summary, margins
+    from gearcli.pipeline.modal import case_modes
+
+    modes = case_modes(case, geo, ki.mesh, geo.pinion_speed_rad_s)
     window = steady_window(case.run.end_time, last_ramp, ki.mesh.natural_frequency_Hz,
-                           ki.mesh.damping_ratio, ki.gear_mesh_frequency_Hz)
+                           ki.mesh.damping_ratio, ki.gear_mesh_frequency_Hz, modes.eigenvalues)
     from gearcli.core.layout import P
 
     params = ki.params.copy()
@@ -111,7 +116,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
             f"({kr.counters['accepted_steps']} steps); nothing was written. Check the contact "
             "stiffness/damping, the load and the run tolerances"
         )
-    result = SimulationResult(loaded, geo, ki, kr, wall, window)
+    result = SimulationResult(loaded, geo, ki, kr, wall, window, modes)
     result.summary = summarize(result)
     result.warnings = collect_warnings(result)
     return result
@@ -126,6 +131,8 @@ def _refuse_unsupported(loaded: LoadedCase) -> None:
 
 def summarize(res: SimulationResult) -> dict:
     """Key scalars over the steady window (internal units; names carry them)."""
+    from gearcli.pipeline.modal import modes_summary
+
     k, ki, g = res.kernel, res.kernel_input, res.geometry.geometry
     t = k.column("t_s")
     w = t >= res.window.t0_s
@@ -165,6 +172,7 @@ def summarize(res: SimulationResult) -> dict:
         "mesh_natural_frequency_Hz": mm.natural_frequency_Hz,
         "mesh_damping_ratio": mm.damping_ratio,
         "energy_balance": energy_balance(k),
+        "modes": modes_summary(res.modes) if res.modes is not None else [],
     }
 
 

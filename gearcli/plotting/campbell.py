@@ -18,18 +18,22 @@ if TYPE_CHECKING:
 
 __all__ = ["plot_campbell"]
 
-_DOF_LABELS = {"theta1_rad": "pinion θ1", "theta2_rad": "gear θ2"}
+_DOF_LABELS = {"theta_m_rad": "motor θm", "theta1_rad": "pinion θ1", "theta2_rad": "gear θ2",
+               "theta_L_rad": "load θL", "x1_mm": "pinion x1", "y1_mm": "pinion y1",
+               "x2_mm": "gear x2", "y2_mm": "gear y2"}
+_MODE_COLOURS = ["#c62828", "#1565c0", "#2e7d32", "#6a1b9a", "#ef6c00", "#00838f", "#ad1457",
+                 "#4e342e"]
 
 
 def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
                   speed_range_deg_s: tuple[float, float], case_speed_deg_s: float | None,
                   title: str = "") -> Figure:
-    """Campbell diagram (left) and mode shapes (right) of a torsional modal result.
+    """Campbell diagram (left) and mode shapes (right) of a modal result (any model).
 
     Parameters
     ----------
     result : ModalResult
-        Modes from :func:`gearcli.model.modal.torsional_modes`.
+        Modes from :func:`gearcli.model.modal.linear_modes`.
     orders : tuple of Order
         Excitation orders (events per pinion revolution).
     speed_range_deg_s : (float, float)
@@ -46,7 +50,7 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
     elastic = result.elastic
     f_modes = [m.natural_frequency_Hz for m in elastic]
     f_top = 1.25 * max(f_modes) if f_modes else (max(o.per_rev for o in orders) * hi / 360.0)
-    mode_colours = ["#c62828", "#1565c0", "#2e7d32", "#6a1b9a"]
+    mode_colours = [_MODE_COLOURS[k % len(_MODE_COLOURS)] for k in range(len(elastic))]
 
     gmf = [o for o in orders if "GMF" in o.name]
     shafts = [o for o in orders if "GMF" not in o.name]
@@ -79,7 +83,7 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
 
-    _plot_shapes(axs, result, mode_colours)
+    _plot_shapes(axs, result, _MODE_COLOURS)
     if title:
         fig.suptitle(title)
     return fig
@@ -102,14 +106,15 @@ def _plot_shapes(ax, result: ModalResult, colours) -> None:
     modes = result.modes
     width = 0.8 / max(len(modes), 1)
     for k, m in enumerate(modes):
-        col = "#777777" if m.rigid else colours[(k - sum(mm.rigid for mm in modes)) % 4]
+        col = "#777777" if m.rigid else colours[(k - sum(mm.rigid for mm in modes))
+                                                % len(colours)]
         label = (f"mode {m.number}: rigid body" if m.rigid
                  else f"mode {m.number}: {m.natural_frequency_Hz:.0f} Hz")
         ax.bar(x + (k - (len(modes) - 1) / 2) * width, m.shape, width, color=col, label=label)
     ax.axhline(0.0, color="black", lw=0.8)
-    ax.set_xticks(x, dofs)
+    ax.set_xticks(x, dofs, rotation=30 if len(dofs) > 3 else 0)
     ax.set_ylim(-1.15, 1.35)
     ax.set_ylabel("normalised amplitude (largest = 1)")
-    ax.set_title("mode shapes (θ2 in the gear's sense of rotation)", fontsize=9)
+    ax.set_title("mode shapes (θ2, θL in the gear's sense; rad, mm)", fontsize=9)
     ax.legend(loc="upper right", fontsize=8)
     ax.grid(axis="y", alpha=0.3)

@@ -81,3 +81,71 @@ def test_bad_speed_range_exit_1():
     r = modal("--speed-range", "100", "50")
     assert r.exit_code == 1, r.output
     assert "--speed-range" in r.output
+
+
+# --- lateral-torsional model and the full torsional chain (issue 5) ---------------------------
+def bearings(value="2e6"):
+    return [a for b in ("pinion", "gear") for d in "xy"
+            for a in ("--set", f"bearings.{b}.stiffness_{d}={value}")]
+
+
+LATERAL = ["--set", "model=lateral-torsional", *bearings()]
+
+
+def test_lateral_table_happy_path(tmp_path):
+    out = tmp_path / "campbell.svg"
+    r = runner.invoke(app, ["modal", str(SEED), *LATERAL, "--plot", str(out)],
+                      env={"COLUMNS": "250"})  # no wrapping inside the table cells
+    assert r.exit_code == 0, r.output
+    assert "lateral-torsional model" in r.output
+    assert "lateral: gear on its bearings" in r.output and "mesh mode" in r.output
+    assert "x1_mm" in r.output and "(overdamped)" in r.output
+    svg = out.read_text()
+    assert "lateral-torsional model" in svg and "pinion x1" in svg
+
+
+def test_lateral_json_fields():
+    r = modal("--json", *LATERAL, "--set", "bearings.gear.stiffness_y=2e6 N/mm")
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.output)
+    assert doc["model"] == "lateral-torsional"
+    assert doc["dofs"] == ["theta2_rad", "x1_mm", "y1_mm", "x2_mm", "y2_mm"]
+    assert doc["bodies"]["gear_mass_t"] > doc["bodies"]["pinion_mass_t"] > 0
+    for m in doc["modes"]:
+        assert list(m["shape"]) == doc["dofs"] and max(map(abs, m["shape"].values())) == 1.0
+        assert set(m["strain_energy_share"]) == {"mesh", "pinion bearings", "gear bearings"}
+        assert sum(m["strain_energy_share"].values()) == pytest.approx(1.0)
+    freqs = [m["natural_frequency_Hz"] for m in doc["modes"]]
+    assert freqs == sorted(freqs) and len(freqs) == 5
+
+
+def test_torque_drive_with_motor_and_load_inertia_json():
+    r = modal("--json", *TORQUE, "--set", "drive.reference_speed=3000",
+              "--set", "drive.motor_inertia=5e5", "--set", "drive.shaft.stiffness=1e8",
+              "--set", "load.inertia=2e6", "--set", "load.shaft.stiffness=2e8", *LIGHT,
+              "--set", "checks.harmonics=3")  # 4 f_z would be 6.5 % from the mesh mode
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.output)
+    assert doc["dofs"] == ["theta_m_rad", "theta1_rad", "theta2_rad", "theta_L_rad"]
+    rigid = doc["modes"][0]
+    assert rigid["rigid_body"] and rigid["shape"]["theta_L_rad"] == pytest.approx(17 / 25)
+    assert any("drive shaft" in m["description"] for m in doc["modes"])
+    assert any("load shaft" in m["description"] for m in doc["modes"])
+
+
+@pytest.mark.parametrize("overrides, key", [
+    (["--set", "model=lateral-torsional", *bearings(), "--set",
+      "bearings.pinion.stiffness_x=-5e5"], "bearings.pinion.stiffness_x"),
+    (["--set", "model=lateral-torsional", *bearings()[:6]], "bearings.gear.stiffness_y"),
+    (["--set", "model=lateral-torsional"], "bearings.pinion.stiffness_x"),
+    (["--set", "load.inertia=0", "--set", "load.shaft.stiffness=1e6"], "load.inertia"),
+    ([*TORQUE, "--set", "drive.motor_inertia=-1", "--set", "drive.shaft.stiffness=1e6"],
+     "drive.motor_inertia"),
+    (["--set", "bearings.gear.stiffness_x=1e6"], "bearings.gear.stiffness_x"),  # torsional
+])
+def test_bad_full_model_input_exit_1_names_key(overrides, key):
+    r = modal(*overrides)
+    assert r.exit_code == 1, r.output
+    first = r.stderr.strip().splitlines()[0]
+    assert first.startswith("error:") and key in first
+    assert "Traceback" not in r.output

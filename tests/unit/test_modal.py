@@ -1,5 +1,6 @@
 """Modal analysis of the torsional model: closed forms, the no-peak rule, the resonance map, and
-a second method (free ring-down in `simulate`)."""
+a second method (free ring-down in `simulate`). The full model (motor, load shaft, lateral):
+tests/unit/test_modal_full.py."""
 
 import dataclasses
 import math
@@ -9,16 +10,29 @@ import pytest
 
 from gearcli.model.modal import (
     NO_PEAK_DAMPING_RATIO,
-    TorsionalSystem,
+    LinearSystem,
     crossings,
     excitation_orders,
     has_resonant_peak,
+    linear_modes,
     margins,
-    torsional_modes,
 )
+from gearcli.model.structure import Structure
 from tests.conftest import SEED
 
 J1, J2, RB1, RB2, K = 2.0, 5.0, 40.0, 60.0, 1.0e5  # t*mm^2, mm, N/mm
+
+
+def TorsionalSystem(J1, J2, rb1, rb2, k, c, drive, shaft_stiffness_Nmm_rad=0.0,
+                    pinion_damping_Nmms_rad=0.0):
+    """The 2-DOF torsional pair (+ drive shaft) as a LinearSystem (torsional model)."""
+    st = Structure("torsional", drive, J1, J2, 0.0, 0.0, rb1, rb2, math.radians(20.0),
+                   drive_shaft_stiffness_Nmm_rad=shaft_stiffness_Nmm_rad,
+                   pinion_bearing_damping_Nmms_rad=pinion_damping_Nmms_rad)
+    return LinearSystem(st, k, c)
+
+
+torsional_modes = linear_modes
 
 
 def two_pi(f):
@@ -75,7 +89,7 @@ def test_two_inertia_shaft_with_stiff_mesh():
 
 
 def test_zero_inertia_rejected():
-    with pytest.raises(ValueError, match="J2_t_mm2"):
+    with pytest.raises(ValueError, match="J2_t_mm2 must be > 0"):
         torsional_modes(TorsionalSystem(J1, 0.0, RB1, RB2, K, 0.0, "torque"))
 
 
@@ -130,5 +144,5 @@ def test_ring_down_in_simulate_matches_modal(drive):
     f_sim = ring_down_frequency_Hz(sim.kernel.column("t_s"), sim.kernel.column("delta_mm"))
     system = run_modal(SEED, overrides).system
     single = dataclasses.replace(system, mesh_stiffness_N_mm=5e4)  # one pair, e = 1
-    mode = torsional_modes(single).elastic[0]
+    mode = linear_modes(single).elastic[0]
     assert f_sim == pytest.approx(mode.damped_frequency_Hz, rel=0.02)
