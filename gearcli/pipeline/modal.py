@@ -32,7 +32,7 @@ from gearcli.model.modal import (
 )
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import contact_stiffness, static_force_N
-from gearcli.pipeline.structure import build_structure
+from gearcli.pipeline.structure import build_structure, refuse_unsupported
 
 DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
@@ -131,6 +131,7 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     """Modes, crossings and the resonance-margin check of a case (see the module docstring)."""
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
     case = loaded.case
+    refuse_unsupported(loaded)
     geo = run_geometry(loaded)
     g = geo.geometry
     mesh = case_mesh(case, geo)

@@ -14,6 +14,7 @@ from gearcli.errors import SolverError
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import HARMONICS_RESOLVED, KernelInput, build_kernel_input
 from gearcli.pipeline.spectrum import alias_frequency
+from gearcli.pipeline.structure import refuse_unsupported
 from gearcli.pipeline.window import Window, steady_window
 
 
@@ -86,7 +87,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
 
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
     case = loaded.case
-    _refuse_unsupported(loaded)
+    refuse_unsupported(loaded)
     geo = run_geometry(loaded)
     ki = build_kernel_input(case, geo)
     last_ramp = max(case.drive.speed.pp.last_breakpoint if case.drive.speed else 0.0,
@@ -122,13 +123,6 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     return result
 
 
-def _refuse_unsupported(loaded: LoadedCase) -> None:
-    case = loaded.case
-    if case.load.applied_to == "pinion":
-        raise loaded.error(("load", "applied_to"), "a load on the pinion is not supported by "
-                           "the solver yet; apply it to the gear", "pinion", True)
-
-
 def summarize(res: SimulationResult) -> dict:
     """Key scalars over the steady window (internal units; names carry them)."""
     from gearcli.pipeline.modal import modes_summary
@@ -141,6 +135,7 @@ def summarize(res: SimulationResult) -> dict:
     omega1 = k.column("omega1_rad_s")[w]
     omega2 = k.column("omega2_rad_s")[w]
     mm = ki.mesh
+    mesh_f, mesh_zeta = mesh_mode_of(res)
     return {
         "window_s": [res.window.t0_s, res.window.t1_s],
         "window_reason": res.window.reason,
@@ -169,11 +164,22 @@ def summarize(res: SimulationResult) -> dict:
         "single_pair_stiffness_N_mm": mm.single_pair_stiffness_N_mm,
         "double_pair_stiffness_N_mm": mm.double_pair_stiffness_N_mm,
         "static_deflection_mm": mm.static_deflection_mm,
-        "mesh_natural_frequency_Hz": mm.natural_frequency_Hz,
-        "mesh_damping_ratio": mm.damping_ratio,
+        "mesh_natural_frequency_Hz": mesh_f,
+        "mesh_damping_ratio": mesh_zeta,
         "energy_balance": energy_balance(k),
         "modes": modes_summary(res.modes) if res.modes is not None else [],
     }
+
+
+def mesh_mode_of(res: SimulationResult) -> tuple[float, float]:
+    """(f_n [Hz], ζ) of the mesh mode: the mode of the full linearised model (the one
+    `gearcli modal` reports) with the largest share of its strain energy in the mesh; the
+    2-DOF estimate of gearcli.model.mesh when there is no modal result."""
+    elastic = [m for m in (res.modes.modes if res.modes is not None else ()) if not m.rigid]
+    if not elastic:
+        return res.kernel_input.mesh.natural_frequency_Hz, res.kernel_input.mesh.damping_ratio
+    mode = max(elastic, key=lambda m: m.strain_energy.get("mesh", 0.0))
+    return mode.natural_frequency_Hz, mode.damping_ratio
 
 
 def energy_balance(k) -> dict:
@@ -207,8 +213,8 @@ def collect_warnings(res: SimulationResult) -> list[str]:
     """Warnings the terminal and the summary show (model.md §4, §7)."""
     s, ki = res.summary, res.kernel_input
     out = []
-    if ki.mesh.damping_ratio > 1.0:
-        out.append(f"overdamped mesh: damping ratio {ki.mesh.damping_ratio:.2f} > 1 "
+    if s["mesh_damping_ratio"] > 1.0:
+        out.append(f"overdamped mesh: damping ratio {s['mesh_damping_ratio']:.2f} > 1 "
                    f"(c_max {res.loaded.case.contact.max_damping:g} N*s/mm); measured gear "
                    "meshes have 0.03-0.1")
     if s["contact_loss_fraction"] > 0.0:

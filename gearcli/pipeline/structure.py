@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from gearcli.case.load import LoadedCase
 from gearcli.case.schema import Case
 from gearcli.model.structure import Structure, Support
 from gearcli.pipeline.geometry import GeometryResult
@@ -40,3 +41,10 @@ def build_structure(case: Case, geo: GeometryResult) -> Structure:
         pinion_support=_support(br.pinion) if lateral else None,
         gear_support=_support(br.gear) if lateral else None,
     )
+
+
+def refuse_unsupported(loaded: LoadedCase) -> None:
+    """Located case error for what the model cannot describe yet (simulate and modal)."""
+    if loaded.case.load.applied_to == "pinion":
+        raise loaded.error(("load", "applied_to"), "a load on the pinion is not supported by "
+                           "the model yet; apply it to the gear", "pinion", True)
