@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from gearcli.core.jit import jit
-from gearcli.core.layout import N_STATE_BASE
+from gearcli.core.layout import N_DYNAMIC, N_STATE_BASE
 from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
 #: Step-size controller (HNW II.4, eq. 4.13; scipy.integrate._ivp.rk constants).
@@ -57,8 +57,15 @@ P_DENSE = np.array([
 @jit_noalloc_inline
 def stage_state(y, K, s, h, out, lo):
     """State of stage ``s`` (1..5): ``out = y + h sum_{k<s} A[s, k] K[k]``, components
-    ``lo ..`` (the ones below ``lo`` are not integrated: prescribed motion)."""
-    for i in range(lo, y.shape[0]):
+    ``lo .. N_DYNAMIC - 1`` and the optional ones ``N_STATE_BASE ..`` (below ``lo``: prescribed
+    motion; the energy quadratures in between feed nothing back into the right-hand side, so
+    only the solution and the dense output need them)."""
+    for i in range(lo, N_DYNAMIC):
+        acc = 0.0
+        for k in range(s):
+            acc += A[s, k] * K[k, i]
+        out[i] = y[i] + h * acc
+    for i in range(N_STATE_BASE, y.shape[0]):
         acc = 0.0
         for k in range(s):
             acc += A[s, k] * K[k, i]

@@ -187,6 +187,8 @@ STATE_NAMES = (
 StateIndex = NamedTuple("StateIndex", [(n, int) for n in STATE_NAMES])
 S = StateIndex(*range(len(STATE_NAMES)))
 N_STATE = len(STATE_NAMES)
+#: The states the right-hand side reads, s1 .. deltadot; the energy quadratures follow.
+N_DYNAMIC = S.work_in
 #: States of the 2-DOF torsional model (the optional ones follow); a run integrates either
 #: these or all N_STATE.
 N_STATE_BASE = S.x1
