@@ -178,6 +178,15 @@ class LinearSystem:
                                          f"{getattr(sup, name)}")
 
     # --- assembly ------------------------------------------------------------------------------
+    def length_scales(self) -> np.ndarray:
+        """Length per unit of each coordinate of :meth:`dofs` [mm/rad or -]: the base radius
+        of the body a rotation belongs to (motor and pinion r_b1, gear and load r_b2), 1 for
+        a centre displacement (for reporting shapes as lengths)."""
+        s = self.structure
+        scale = {"theta_m_rad": s.r_b1_mm, "theta1_rad": s.r_b1_mm, "theta2_rad": s.r_b2_mm,
+                 "theta_L_rad": s.r_b2_mm}
+        return np.array([scale.get(d, 1.0) for d in self.dofs()])
+
     def mesh_vector(self) -> np.ndarray:
         """g = ∂δ/∂q over :meth:`dofs` [mm/rad, -] (module docstring; structure.py frame)."""
         s = self.structure
@@ -259,7 +268,9 @@ class Mode:
     damping_ratio: float | None
     damped_frequency_Hz: float | None  #: None when overdamped
     eigenvalues: tuple[complex, ...]  #: state-space roots assigned to this mode [1/s]
-    shape: tuple[float, ...]  #: mode shape (realised damped shape), largest component +1
+    #: mode shape as lengths (rotations as roll distance r_b θ, :func:`_shape`), realised
+    #: damped shape, largest component +1
+    shape: tuple[float, ...]
     description: str
     undamped_frequency_Hz: float | None = None  #: of the undamped mode it was matched to
     #: share of the modal strain energy per element of ELEMENTS (empty for a rigid mode)
@@ -292,6 +303,14 @@ def _normalise(v: np.ndarray) -> np.ndarray:
     if np.iscomplexobj(v):
         v = np.real(v * np.exp(-1j * np.angle(v[i])))
     return np.asarray(v / v[i], dtype=float)
+
+
+def _shape(system: LinearSystem, v: np.ndarray) -> tuple[float, ...]:
+    """The reported shape: every coordinate as a length [mm] (a rotation as the roll distance
+    r_b θ at its base circle: r_b1 for the motor and pinion, r_b2 for the gear and load; the
+    centre displacements as they are), then realised and normalised (:func:`_normalise`).
+    Rotations in rad next to displacements in mm would compare numbers, not motions."""
+    return tuple(float(x) for x in _normalise(np.asarray(v) * system.length_scales()))
 
 
 def _mac(a: np.ndarray, b: np.ndarray) -> float:
@@ -467,7 +486,7 @@ def linear_modes(system: LinearSystem) -> ModalResult:
     for i in range(n):
         if rigid[i]:
             _, kinetic = energy_shares(system, phi[:, i])
-            modes.append(Mode(0, True, None, None, None, (), tuple(_normalise(phi[:, i])),
+            modes.append(Mode(0, True, None, None, None, (), _shape(system, phi[:, i]),
                               describe(system, phi[:, i], True), None, {}, kinetic))
             continue
         omega_u = math.sqrt(w2[i])
@@ -494,7 +513,7 @@ def linear_modes(system: LinearSystem) -> ModalResult:
             zeta = 0.0
         strain, kinetic = energy_shares(system, shape_vec)
         modes.append(Mode(0, False, omega_n / (2.0 * math.pi), float(zeta), fd, roots,
-                          tuple(_normalise(shape_vec)), describe(system, shape_vec, False),
+                          _shape(system, shape_vec), describe(system, shape_vec, False),
                           omega_u / (2.0 * math.pi), strain, kinetic))
     modes.sort(key=lambda m: (not m.rigid, m.natural_frequency_Hz or 0.0))
     # Modes sharing a frequency: any combination of their shapes is a mode too, so the shapes

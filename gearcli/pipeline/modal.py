@@ -189,6 +189,9 @@ def modal_document(res: ModalAnalysis) -> dict:
         "model": res.loaded.case.model,
         "drive": res.system.drive,
         "dofs": list(res.result.dofs),
+        "shape_convention": "each coordinate as a length: rotations as the roll distance "
+                            "r_b theta at the body's base circle (motor, pinion r_b1; gear, load "
+                            "r_b2), centre displacements in mm; largest component = 1",
         "bodies": {
             "motor_inertia_t_mm2": st.motor_inertia_t_mm2 or None,
             "pinion_inertia_t_mm2": st.J1_t_mm2,

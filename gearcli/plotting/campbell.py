@@ -43,7 +43,7 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
     """
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(12.0, 5.8), layout="constrained")
+    fig = Figure(figsize=(12.0, 7.0), layout="constrained")
     ax, axs = fig.subplots(1, 2, width_ratios=[2.3, 1.0])
     lo, hi = speed_range_deg_s
     speed = np.linspace(lo, hi, 200)
@@ -81,7 +81,9 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
     ax.set_title("Campbell diagram (o crossing with a resonant mode, x mode without a peak)",
                  fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
+    # outside the axes: inside, it hid the order labels at the right-hand end of the lines
+    ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.12), ncol=3, fontsize=8,
+              framealpha=0.9)
 
     _plot_shapes(axs, result, _MODE_COLOURS)
     if title:
@@ -115,6 +117,7 @@ def _plot_shapes(ax, result: ModalResult, colours) -> None:
     ax.set_xticks(x, dofs, rotation=30 if len(dofs) > 3 else 0)
     ax.set_ylim(-1.15, 1.35)
     ax.set_ylabel("normalised amplitude (largest = 1)")
-    ax.set_title("mode shapes (θ2, θL in the gear's sense; rad, mm)", fontsize=9)
+    ax.set_title("mode shapes as lengths (rotations: r_b θ)",
+                 fontsize=9)
     ax.legend(loc="upper right", fontsize=8)
     ax.grid(axis="y", alpha=0.3)

@@ -32,7 +32,7 @@ def test_json_torque_drive_rigid_and_mesh_mode():
     doc = json.loads(r.output)
     rigid, mesh = doc["modes"]
     assert rigid["rigid_body"] and rigid["natural_frequency_Hz"] is None
-    assert rigid["shape"]["theta2_rad"] == pytest.approx(17 / 25)
+    assert rigid["shape"]["theta2_rad"] == pytest.approx(1.0)  # as lengths: r_b2 θ2 = r_b1 θ1
     assert mesh["description"].startswith("mesh mode")
     assert doc["linearisation"]["single_pair_stiffness_N_mm"] < \
         doc["linearisation"]["mesh_stiffness_N_mm"] < \
@@ -128,7 +128,7 @@ def test_torque_drive_with_motor_and_load_inertia_json():
     doc = json.loads(r.output)
     assert doc["dofs"] == ["theta_m_rad", "theta1_rad", "theta2_rad", "theta_L_rad"]
     rigid = doc["modes"][0]
-    assert rigid["rigid_body"] and rigid["shape"]["theta_L_rad"] == pytest.approx(17 / 25)
+    assert rigid["rigid_body"] and rigid["shape"]["theta_L_rad"] == pytest.approx(1.0)
     assert any("drive shaft" in m["description"] for m in doc["modes"])
     assert any("load shaft" in m["description"] for m in doc["modes"])
 

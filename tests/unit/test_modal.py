@@ -44,11 +44,14 @@ def test_both_free_mesh_mode_and_rigid_mode():
     rigid, mesh = modes
     assert rigid.rigid and rigid.natural_frequency_Hz is None and rigid.damping_ratio is None
     # θ2 in the gear's own sense: a rigid turn of the pair has r_b1 θ1 = r_b2 θ2.
-    assert rigid.shape[1] / rigid.shape[0] == pytest.approx(RB1 / RB2, rel=1e-12)
+    # shapes are lengths (rotations as r_b θ): the rigid turn has equal roll distances
+    assert rigid.shape[1] / rigid.shape[0] == pytest.approx(1.0, rel=1e-12)
     assert mesh.natural_frequency_Hz == pytest.approx(
         two_pi(math.sqrt(K * (RB1**2 / J1 + RB2**2 / J2))), rel=1e-12)
-    # M-orthogonal to the rigid mode: J1 φ1 r_b2 + J2 φ2 r_b1 = 0.
-    assert mesh.shape[1] / mesh.shape[0] == pytest.approx(-J1 * RB2 / (J2 * RB1), rel=1e-12)
+    # M-orthogonal to the rigid mode: J1 φ1 r_b2 + J2 φ2 r_b1 = 0, i.e. as lengths
+    # (r_b2 φ2) / (r_b1 φ1) = -J1 r_b2² / (J2 r_b1²).
+    assert mesh.shape[1] / mesh.shape[0] == pytest.approx(-J1 * RB2**2 / (J2 * RB1**2),
+                                                          rel=1e-12)
     assert mesh.description.startswith("mesh mode")
     assert max(abs(v) for v in mesh.shape) == 1.0
 
@@ -84,7 +87,7 @@ def test_two_inertia_shaft_with_stiff_mesh():
     j_eq = J1 + J2 * (RB1 / RB2) ** 2
     assert shaft.natural_frequency_Hz == pytest.approx(two_pi(math.sqrt(ks / j_eq)), rel=1e-3)
     assert shaft.description.startswith("torsional: drive shaft")
-    assert shaft.shape[1] / shaft.shape[0] == pytest.approx(RB1 / RB2, rel=1e-3)
+    assert shaft.shape[1] / shaft.shape[0] == pytest.approx(1.0, rel=1e-3)  # equal r_b θ
     assert mesh.description.startswith("mesh mode")
 
 

@@ -72,7 +72,7 @@ def test_motor_drive_shaft_pinion_gear_three_rotor_chain(k_shaft):
         [hz(w2) for w2 in expected], rel=1e-9)
     # rigid rotation of the whole train: θm = θ1, θ2 = θ1 r_b1/r_b2
     assert rigid.rigid and rigid.natural_frequency_Hz is None
-    assert rigid.shape == pytest.approx((1.0, 1.0, RB1 / RB2), rel=1e-9)
+    assert rigid.shape == pytest.approx((1.0, 1.0, 1.0), rel=1e-9)  # equal r_b θ
     assert rigid.description == "rigid-body rotation (the whole drive train turns together)"
     if k_shaft < 1e6:  # shaft 160x softer than the mesh (k r_b1² = 1.6e7 N*mm/rad)
         assert low.description == "torsional: drive shaft (motor against pinion)"
@@ -131,11 +131,14 @@ def test_full_chain_rigid_mode_and_load_dofs():
     assert res.dofs == ("theta_m_rad", "theta1_rad", "theta2_rad", "theta_L_rad")
     rigid = res.modes[0]
     assert rigid.rigid and sum(m.rigid for m in res.modes) == 1
-    assert rigid.shape == pytest.approx((1.0, 1.0, RB1 / RB2, RB1 / RB2), rel=1e-9)
+    assert rigid.shape == pytest.approx((1.0, 1.0, 1.0, 1.0), rel=1e-9)  # equal r_b θ
     # elastic modes are M-orthogonal to the rigid one: no net angular momentum
-    M, _, _ = LinearSystem(s, 1e4).matrices()
+    system = LinearSystem(s, 1e4)
+    M, _, _ = system.matrices()
+    scale = system.length_scales()  # shapes are reported as lengths: back to coordinates
     for m in res.elastic:
-        assert np.array(rigid.shape) @ M @ np.array(m.shape) == pytest.approx(0.0, abs=1e-9)
+        assert (np.array(rigid.shape) / scale) @ M @ (np.array(m.shape) / scale) \
+            == pytest.approx(0.0, abs=1e-9)
 
 
 # --- dampers ------------------------------------------------------------------------------------
@@ -223,7 +226,7 @@ def test_lateral_torque_drive_rigid_rotation_has_no_translation():
     rigid = res.modes[0]
     assert res.dofs == ("theta1_rad", "theta2_rad", "x1_mm", "y1_mm", "x2_mm", "y2_mm")
     assert rigid.rigid and sum(m.rigid for m in res.modes) == 1
-    assert rigid.shape == pytest.approx((1.0, RB1 / RB2, 0, 0, 0, 0), abs=1e-9)
+    assert rigid.shape == pytest.approx((1.0, 1.0, 0, 0, 0, 0), abs=1e-9)  # equal r_b θ
     assert rigid.description.startswith("rigid-body rotation (gears turn together")
 
 
