@@ -63,21 +63,48 @@ class _NoStatus:
         return False
 
 
+class _Reporter:
+    """What a long command tells the terminal: ``reporter(text)`` names the current stage
+    (a spinner with elapsed time), ``reporter.progress(t, t_start, t_end)`` turns it into a
+    bar over the simulated time with the time remaining."""
+
+    def __init__(self, progress, task):
+        self._progress, self._task = progress, task
+
+    def __call__(self, text: str) -> None:
+        self._progress.update(self._task, description=text)
+
+    def progress(self, t: float, t_start: float, t_end: float) -> None:
+        self._progress.update(self._task, total=t_end - t_start, completed=t - t_start,
+                              description=f"integrating: t = {t:.4g} of {t_end:.4g} s")
+
+
 def status_reporter(enabled: bool):
-    """A spinner with elapsed time on a terminal (stderr); nothing in pipelines."""
+    """A spinner and progress bar on a terminal (stderr, cleared when done); nothing in
+    pipelines or with --quiet. Yields a :class:`_Reporter` (or None)."""
     if not enabled or not sys.stderr.isatty():
         return _NoStatus()
     from contextlib import contextmanager
 
     from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        SpinnerColumn,
+        TaskProgressColumn,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
     @contextmanager
-    def spinner():
-        console = Console(stderr=True)
-        with console.status("loading the case") as st:
-            yield lambda text: st.update(text)
+    def display():
+        columns = (SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
+                   TaskProgressColumn(), TimeElapsedColumn(), TimeRemainingColumn())
+        with Progress(*columns, console=Console(stderr=True), transient=True) as progress:
+            yield _Reporter(progress, progress.add_task("loading the case", total=None))
 
-    return spinner()
+    return display()
 
 
 def format_value(value) -> str:

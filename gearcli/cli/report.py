@@ -51,7 +51,8 @@ def run(
 
     check_target(out, force)
     with status_reporter(enabled=not quiet) as status:
-        result = run_simulation(case, set_, status=status)
+        result = run_simulation(case, set_, status=status,
+                                    progress=status.progress if status else None)
         write_simulation(result, out, force, set_)
         if status:
             status("analysing and writing the report")

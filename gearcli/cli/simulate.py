@@ -38,7 +38,8 @@ def simulate(
     if not to_stdout:
         check_target(out, force)  # fail before a long run, not after
     with status_reporter(enabled=not quiet and not to_stdout and not as_json) as status:
-        result = run_simulation(case, set_, status=status)
+        result = run_simulation(case, set_, status=status,
+                                    progress=status.progress if status else None)
     if to_stdout:
         from gearcli.io.tables import columns_to_csv
 

@@ -24,14 +24,20 @@ from gearcli.core.layout import (
     DRIVE_TORQUE,
     EXTREMA_NAMES,
     LAYOUT_KEY,
+    N_COLUMNS,
+    N_COUNTERS,
+    N_EXTREMA,
     N_PARAMS,
+    N_SLOT_EXTREMA,
+    N_STATE,
     SLOT_EXTREMA_NAMES,
     STATUS_MESSAGES,
     STATUS_OK,
     STATUS_STALE_CACHE,
     P,
 )
-from gearcli.core.timeloop import run
+from gearcli.core.records import finish_extrema, init_extrema
+from gearcli.core.timeloop import RESUME_Y, run
 
 
 class KernelResult(NamedTuple):
@@ -81,8 +87,24 @@ def _pp(pp, what: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return b, c, o
 
 
+#: A run is integrated in chunks of at most this much simulated time [s] (and at most
+#: MAX_CHUNKS of them): between chunks the caller's progress display updates and Ctrl-C is
+#: honoured. The chunking depends on the run's time span only, never on whether anybody
+#: watches, so results are the same with and without a progress display.
+CHUNK_SPAN_S = 2.0
+MAX_CHUNKS = 200
+
+
+def chunk_ends(t_start: float, t_end: float) -> np.ndarray:
+    """End times of the chunks of a run [s] (the last one is exactly ``t_end``)."""
+    n = max(1, min(MAX_CHUNKS, math.ceil((t_end - t_start) / CHUNK_SPAN_S - 1e-9)))
+    ends = t_start + (t_end - t_start) * np.arange(1, n + 1) / n
+    ends[-1] = t_end
+    return ends
+
+
 def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=None,
-             tooth_offsets=None) -> KernelResult:
+             tooth_offsets=None, progress=None) -> KernelResult:
     """Run the compiled kernel on plain arrays; structural checks only (no physics checks).
 
     Parameters
@@ -104,6 +126,8 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
         Antiderivative of ``drive_pp`` [rad] (any constant); required in speed and shaft mode.
     tooth_offsets : ndarray, shape (4 or 2, >= max(z1, z2)), optional
         Per-tooth flank offsets Ft1, Ft2[, Ft1c, Ft2c] [mm]; default zeros.
+    progress : callable(t_reached, t_start, t_end), optional
+        Called after every chunk (:func:`chunk_ends`) with times [s].
 
     Returns
     -------
@@ -152,11 +176,31 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
     if drive_angle_pp is None:  # torque mode: unused, any valid piecewise polynomial
         drive_angle_pp = (np.zeros(0), np.zeros((1, 1)), np.zeros(1))
     angle = _pp(drive_angle_pp, "drive_angle_pp")
-    out = run(prm, tables, offsets, _pp(drive_pp, "drive_pp"), angle, _pp(load_pp, "load_pp"),
-              times, LAYOUT_KEY)
-    status, counters, series, slot_f, slot_fc, extrema, slot_ext, n_valid = out
-    if status == STATUS_STALE_CACHE:
-        raise RuntimeError(STATUS_MESSAGES[STATUS_STALE_CACHE])
+    drive, load = _pp(drive_pp, "drive_pp"), _pp(load_pp, "load_pp")
+    n_out, n_slots = times.size, int(prm[P.n_slots])
+    series = np.full((n_out, N_COLUMNS), np.nan)
+    slot_f = np.full((n_out, n_slots), np.nan)
+    slot_fc = np.full((n_out, n_slots), np.nan)
+    extrema = np.empty(N_EXTREMA)
+    slot_ext = np.empty((N_SLOT_EXTREMA, n_slots))
+    init_extrema(extrema, slot_ext)
+    counters = np.zeros(N_COUNTERS, dtype=np.int64)
+    resume = np.zeros(RESUME_Y + N_STATE)
+    t0, t_end = float(prm[P.t_start]), float(prm[P.t_end])
+    chunk = prm.copy()
+    status, i_out = STATUS_OK, 0
+    for end in chunk_ends(t0, t_end):
+        chunk[P.t_end] = end
+        status, i_out = run(chunk, tables, offsets, drive, angle, load, times, LAYOUT_KEY,
+                            resume, series, slot_f, slot_fc, extrema, slot_ext, counters, i_out)
+        if status == STATUS_STALE_CACHE:
+            raise RuntimeError(STATUS_MESSAGES[STATUS_STALE_CACHE])
+        if status != STATUS_OK:
+            break
+        chunk[P.t_start] = end
+        if progress is not None:
+            progress(float(end), t0, t_end)
+    finish_extrema(extrema, slot_ext)
     return KernelResult(int(status), STATUS_MESSAGES[int(status)],
                         dict(zip(COUNTER_NAMES, (int(c) for c in counters), strict=True)),
-                        series, slot_f, slot_fc, extrema, slot_ext, int(n_valid))
+                        series, slot_f, slot_fc, extrema, slot_ext, int(i_out))

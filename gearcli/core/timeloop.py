@@ -42,11 +42,7 @@ from gearcli.core.layout import (
     DRIVE_TORQUE,
     LAYOUT_KEY,
     N_AUX,
-    N_COLUMNS,
-    N_COUNTERS,
     N_DERIVED,
-    N_EXTREMA,
-    N_SLOT_EXTREMA,
     N_STATE,
     N_STATE_BASE,
     STATUS_MAX_STEPS,
@@ -63,14 +59,19 @@ from gearcli.core.layout import (
 )
 from gearcli.core.nrt import jit_noalloc
 from gearcli.core.records import (
-    finish_extrema,
-    init_extrema,
     kinetic_energy,
     update_extrema,
     write_row,
 )
 from gearcli.core.rhs import derive, rhs
 from gearcli.core.timefunc import pp_eval
+
+#: Layout of the ``resume`` array of :func:`run`: started flag, prescribed-angle offset [rad],
+#: next step size [s], then the state (layout.STATE_NAMES).
+RESUME_STARTED = 0
+RESUME_THETA_OFFSET = 1
+RESUME_H = 2
+RESUME_Y = 3
 
 #: Landing point of a step cut short by a predicted discontinuity: this fraction of the step
 #: before the predicted crossing (absorbs the error of the quadratic prediction).
@@ -165,13 +166,18 @@ def _starting_step(t, y, f0, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_o
 
 
 @jit
-def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_key):
+def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_key, resume,
+        series, slot_out, slot_out_coast, extrema, slot_extrema, counters, i_first):
     """Integrate from ``prm[P.t_start]`` to ``prm[P.t_end]``; see the module docstring.
+
+    One call integrates one chunk of a run: the caller (:mod:`gearcli.core.integrate`) owns the
+    output arrays and the ``resume`` state and calls again for the next chunk, so the results
+    do not depend on how often a progress display looks in.
 
     Parameters
     ----------
     prm : ndarray, shape (N_PARAMS,)
-        Parameter vector (layout.P), internal units.
+        Parameter vector (layout.P), internal units; ``t_start``, ``t_end`` of this chunk.
     tables : ndarray, shape (4, 2, n)
         Gap tables G1, G2, G1c, G2c (value [mm], slope [-]) on the uniform grid x_lo..x_hi.
     tooth_offsets : ndarray, shape (4, >= max(z1, z2))
@@ -180,34 +186,34 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
         Piecewise polynomials (timefunc.py): drive (omega [rad/s] or torque [N*mm]), its
         antiderivative [rad] (speed/shaft modes), load torque [N*mm].
     t_out : ndarray, shape (n_out,)
-        Non-decreasing output times in [t_start, t_end] [s].
+        Non-decreasing output times of the whole run [s]; rows ``i_first ..`` with
+        ``t_out <= t_end`` are written by this chunk.
     layout_key : int
         layout.LAYOUT_KEY as seen by the caller (stale-cache guard).
+    resume : ndarray, shape (RESUME_Y + N_STATE,)
+        In/out: ``[started, theta_offset, h, y...]``. ``started == 0``: a fresh start from the
+        initial values in ``prm`` (and ``energy_initial_mJ`` is set); otherwise the state,
+        the prescribed-angle offset [rad] and the next step size [s] where the last chunk
+        ended. Written on return for the next chunk.
+    series, slot_out, slot_out_coast : ndarray, shapes (n_out, N_COLUMNS), (n_out, N)
+        Written: output rows (columns layout.COLUMN_NAMES; force of every drive / coast slot).
+    extrema, slot_extrema : ndarray, shapes (N_EXTREMA,), (N_SLOT_EXTREMA, N)
+        Updated: running extrema (start values from records.init_extrema).
+    counters : ndarray of int64, shape (N_COUNTERS,)
+        Incremented.
+    i_first : int
+        First output row of this chunk.
 
     Returns
     -------
     status : int
-    counters : ndarray of int64, shape (N_COUNTERS,)
-    series : ndarray, shape (n_out, N_COLUMNS)
-    slot_out, slot_out_coast : ndarray, shape (n_out, N)
-        Force of every drive / coast pair slot at the samples [N].
-    extrema : ndarray, shape (N_EXTREMA,)
-    slot_extrema : ndarray, shape (N_SLOT_EXTREMA, N)
-    n_valid : int
-        Number of filled output rows.
+    i_out : int
+        Next output row (rows ``i_first .. i_out - 1`` were written).
     """
     n_out = t_out.shape[0]
     n_slots = int(prm[P.n_slots])
-    series = np.full((n_out, N_COLUMNS), np.nan)
-    slot_out = np.full((n_out, n_slots), np.nan)
-    slot_out_coast = np.full((n_out, n_slots), np.nan)
-    extrema = np.full(N_EXTREMA, np.nan)
-    slot_extrema = np.full((N_SLOT_EXTREMA, n_slots), np.nan)
-    counters = np.zeros(N_COUNTERS, dtype=np.int64)
     if layout_key != LAYOUT_KEY:
-        return STATUS_STALE_CACHE, counters, series, slot_out, slot_out_coast, extrema, \
-            slot_extrema, 0
-    init_extrema(extrema, slot_extrema)
+        return STATUS_STALE_CACHE, i_first
 
     mode = int(prm[P.drive_mode])
     speed_mode = mode == DRIVE_SPEED
@@ -218,9 +224,13 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     max_steps = prm[P.max_steps]
     ext_start = prm[P.extrema_t_start]
     pen_limit = prm[P.penetration_limit]
-    theta_offset = prm[P.theta1_init]
-    if mode != DRIVE_TORQUE:
-        theta_offset -= pp_eval(angle_pp[0], angle_pp[1], angle_pp[2], t)
+    fresh = resume[RESUME_STARTED] == 0.0
+    if fresh:
+        theta_offset = prm[P.theta1_init]
+        if mode != DRIVE_TORQUE:
+            theta_offset -= pp_eval(angle_pp[0], angle_pp[1], angle_pp[2], t)
+    else:
+        theta_offset = resume[RESUME_THETA_OFFSET]
     derived = np.empty(N_DERIVED)
     derive(prm, tables, tooth_offsets, derived)
     # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
@@ -258,11 +268,15 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     sf = work[5 * vec:5 * vec + n_slots]
     sfc = work[6 * vec:6 * vec + n_slots]
     K = work[7 * vec:].reshape((N_STAGES + 1, vec))[:, :n_state]  # K[0] = f(t, y) (FSAL)
-    y[S.s1] = prm[P.r_b1] * prm[P.theta1_init]
-    y[S.v1] = prm[P.r_b1] * prm[P.omega1_init]
-    y[S.delta] = prm[P.delta_init]
-    y[S.deltadot] = prm[P.deltadot_init]
-    if extra:
+    if not fresh:
+        for i in range(n_state):
+            y[i] = resume[RESUME_Y + i]
+    else:
+        y[S.s1] = prm[P.r_b1] * prm[P.theta1_init]
+        y[S.v1] = prm[P.r_b1] * prm[P.omega1_init]
+        y[S.delta] = prm[P.delta_init]
+        y[S.deltadot] = prm[P.deltadot_init]
+    if extra and fresh:
         y[S.x1] = prm[P.x1_init]
         y[S.y1] = prm[P.y1_init]
         y[S.x2] = prm[P.x2_init]
@@ -277,22 +291,21 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     if speed_mode:  # prescribed: keep the (uncontrolled) integrated copies exact
         y[S.s1] = aux[A.s1]
         y[S.v1] = aux[A.v1]
-    extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y) \
-        + aux[A.contact_energy] + aux[A.spring_energy]
+    if fresh:
+        extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y) \
+            + aux[A.contact_energy] + aux[A.spring_energy]
     extrema[X.t_reached_s] = t
     if not (_all_finite(y) and _all_finite(dy) and _all_finite(aux)):
-        finish_extrema(extrema, slot_extrema)
-        return STATUS_NAN, counters, series, slot_out, slot_out_coast, extrema, \
-            slot_extrema, 0
+        return STATUS_NAN, i_first
     if t >= ext_start:
         update_extrema(extrema, slot_extrema, t, y, aux, sf, lateral)
-    i_out = 0
+    i_out = i_first
     while i_out < n_out and t_out[i_out] <= t:
         write_row(series, slot_out, slot_out_coast, i_out, t_out[i_out], y, aux, sf, sfc, prm)
         i_out += 1
 
     span = t_end - t
-    h = prm[P.first_step]
+    h = prm[P.first_step] if fresh else resume[RESUME_H]
     if h <= 0.0 and span > 0.0:
         h = _starting_step(t, y, K[0], ys, dy, aux, sf, sfc, prm, derived, tables,
                            tooth_offsets, mode, theta_offset, drive_pp, angle_pp, load_pp, atol,
@@ -419,5 +432,9 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
             h = h_step * factor
 
     extrema[X.t_reached_s] = t
-    finish_extrema(extrema, slot_extrema)
-    return status, counters, series, slot_out, slot_out_coast, extrema, slot_extrema, i_out
+    resume[RESUME_STARTED] = 1.0
+    resume[RESUME_THETA_OFFSET] = theta_offset
+    resume[RESUME_H] = h
+    for i in range(n_state):
+        resume[RESUME_Y + i] = y[i]
+    return status, i_out

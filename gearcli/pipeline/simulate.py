@@ -78,10 +78,12 @@ class SimulationResult:
 
 
 def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None = None,
-                   status=None) -> SimulationResult:
+                   status=None, progress=None) -> SimulationResult:
     """Load the case, check its geometry, run the kernel; failed runs raise SolverError.
 
-    ``status`` is an optional callable(str) told what is happening (compiling, integrating).
+    ``status`` is an optional callable(str) told what is happening (compiling, integrating);
+    ``progress`` an optional callable(t, t_start, t_end) [s] called as the integration
+    advances (gearcli.core.integrate.simulate).
     """
     from gearcli.core.integrate import simulate
 
@@ -108,7 +110,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     t0 = time.perf_counter()
     kr = simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
                   load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
-                  tooth_offsets=ki.tooth_offsets)
+                  tooth_offsets=ki.tooth_offsets, progress=progress)
     wall = time.perf_counter() - t0
     if not kr.ok:
         t_reached = kr.extremum("t_reached_s")

@@ -31,7 +31,7 @@ from gearcli.core.friction import adams_mu
 from gearcli.core.gaptable import hermite
 from gearcli.core.integrate import simulate
 from gearcli.core.stepfunc import step
-from gearcli.core.timeloop import run
+from gearcli.core.timeloop import RESUME_Y, run
 from gearcli.model.timefunction import PiecewisePolynomial as PP
 
 # --- seed-like pair (model.md §9) -----------------------------------------------------------
@@ -500,8 +500,12 @@ def test_status_step_too_small():
 
 def test_stale_compiled_layout_is_refused():
     (prm, tables), kw = _seed_inputs()
+    n_out, n = kw["t_out"].size, int(prm[layout.P.n_slots])
     out = run(prm, tables, np.zeros((4, Z2)), kw["drive_pp"], kw["drive_angle_pp"],
-              kw["load_pp"], kw["t_out"], layout.LAYOUT_KEY + 1)
+              kw["load_pp"], kw["t_out"], layout.LAYOUT_KEY + 1,
+              np.zeros(RESUME_Y + layout.N_STATE), np.zeros((n_out, layout.N_COLUMNS)),
+              np.zeros((n_out, n)), np.zeros((n_out, n)), np.zeros(layout.N_EXTREMA),
+              np.zeros((layout.N_SLOT_EXTREMA, n)), np.zeros(layout.N_COUNTERS, np.int64), 0)
     assert out[0] == layout.STATUS_STALE_CACHE
 
 
