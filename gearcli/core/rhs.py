@@ -87,7 +87,7 @@ from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 @jit_noalloc_inline
 def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, offset,
           lat, lat_rate, slide, k1, k2, t1, t2, g1, g2, overlap_max, prm, derived, tables,
-          tooth_offsets, slot_force):
+          tooth_offsets, slot_force, full):
     """Forces of all pair slots of one flank family (drive: sigma = +1, coast: sigma = -1).
 
     Parameters
@@ -130,7 +130,9 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
     tables, tooth_offsets : ndarray
         See :func:`rhs`.
     slot_force : ndarray, shape (N,)
-        Written: the force of every slot [N] (0 out of contact).
+        Written when ``full``: the force of every slot [N] (0 out of contact).
+    full : bool
+        False at the inner Runge-Kutta stages, where only the derivatives are used.
 
     Returns
     -------
@@ -141,8 +143,9 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
         [N*mm/s] (<= 0); damping dissipation rate [N*mm/s] (>= 0); contact potential [N*mm];
         largest penetration [mm].
     """
-    for j in range(slot_force.shape[0]):
-        slot_force[j] = 0.0
+    if full:
+        for j in range(slot_force.shape[0]):
+            slot_force[j] = 0.0
     if sigma * delta + lat - offset + overlap_max <= 0.0:  # no slot can touch
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0
     p_b = prm[P.p_b]
@@ -239,7 +242,8 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
         pdamp += (force - fel) * pdot
         if force <= 0.0:
             continue
-        slot_force[j] = force
+        if full:
+            slot_force[j] = force
         f_sum += force
         n_contact += 1
         q1 -= force * dp1
@@ -368,7 +372,7 @@ def runout(ecc, phase, theta, inv_r_b):
 
 @jit_noalloc_inline
 def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth_offsets,
-        drive_angle, drive_value, drive_rate, load_torque):
+        drive_angle, drive_value, drive_rate, load_torque, full):
     """Time derivative of the state and auxiliary results at time ``t`` [s].
 
     Parameters
@@ -394,6 +398,9 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
     drive_angle, drive_value, drive_rate, load_torque : float
         From :func:`gearcli.core.drive.forcing` at ``t``: prescribed angle [rad], drive speed
         [rad/s] or torque [N*mm], its rate [rad/s^2], load torque [N*mm].
+    full : bool
+        Write ``aux`` and the slot forces; False at the inner Runge-Kutta stages of a step,
+        whose only use is ``dy`` (the accepted step's last stage and the samples are full).
     """
     mode = int(prm[P.drive_mode])
     r_b1 = prm[P.r_b1]
@@ -444,7 +451,7 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
         1.0, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, prm[P.s1_0], 0.0,
         lat_d, lat_d_rate, slide_d, int(prm[P.tooth_k1]), int(prm[P.tooth_k2]), 0, 1,
         TABLE_G1, TABLE_G2, derived[D.overlap_drive], prm, derived, tables, tooth_offsets,
-        slot_force)
+        slot_force, full)
     fc = 0.0
     nc = 0
     ffc = 0.0
@@ -456,7 +463,8 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
             -1.0, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, prm[P.s1c_0],
             prm[P.backlash_n], lat_c, lat_c_rate, slide_c, int(prm[P.tooth_k1_coast]),
             int(prm[P.tooth_k2_coast]), 2, 3, TABLE_G1_COAST, TABLE_G2_COAST,
-            derived[D.overlap_coast], prm, derived, tables, tooth_offsets, slot_force_coast)
+            derived[D.overlap_coast], prm, derived, tables, tooth_offsets, slot_force_coast,
+            full)
         q1 += q1c
         q2 += q2c
         m1f += m1c
@@ -467,7 +475,7 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
         potd += potc
         if penc > pend:
             pend = penc
-    else:
+    elif full:
         for j in range(slot_force_coast.shape[0]):
             slot_force_coast[j] = 0.0
 
@@ -589,16 +597,19 @@ def rhs(t, y, dy, aux, slot_force, slot_force_coast, prm, derived, tables, tooth
         else:
             for i in range(S.x1, S.vy2 + 1):
                 dy[i] = 0.0
-        aux[A.bearing_fx1] = bfx1
-        aux[A.bearing_fy1] = bfy1
-        aux[A.bearing_fx2] = bfx2
-        aux[A.bearing_fy2] = bfy2
+        if full:
+            aux[A.bearing_fx1] = bfx1
+            aux[A.bearing_fy1] = bfy1
+            aux[A.bearing_fx2] = bfx2
+            aux[A.bearing_fy2] = bfy2
     dy[S.work_in] = work_in_rate
     dy[S.work_load] = work_load_rate
     dy[S.loss_bearing] = loss
     dy[S.loss_damping] = pdd
     dy[S.loss_friction] = -fpd
 
+    if not full:
+        return
     aux[A.s1] = s1
     aux[A.v1] = v1
     aux[A.force_drive] = fd

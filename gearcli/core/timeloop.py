@@ -108,7 +108,7 @@ def _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
     """One RHS evaluation at ``t`` with the time functions evaluated there (off the hot path:
     start, hops, output samples)."""
     ang, val, rate, load = forcing(t, mode, theta_offset, drive_pp, angle_pp, load_pp)
-    rhs(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate, load)
+    rhs(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate, load, True)
 
 
 @jit_noalloc
@@ -132,7 +132,7 @@ def _attempt(t, h, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, table
         ang, val, rate, load = forcing(ts, mode, theta_offset, drive_pp, angle_pp, load_pp)
         # writes straight into the row of K (a view costs nothing without reference counts)
         rhs(ts, ys, K[s], aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate,
-            load)
+            load, s == N_STAGES)
     for i in range(y.shape[0]):
         y_new[i] = ys[i]
     return error_norm(y, y_new, K, h, first, count, atol, rtol)
