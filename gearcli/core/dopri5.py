@@ -60,16 +60,13 @@ def stage_state(y, K, s, h, out, lo):
     ``lo .. N_DYNAMIC - 1`` and the optional ones ``N_STATE_BASE ..`` (below ``lo``: prescribed
     motion; the energy quadratures in between feed nothing back into the right-hand side, so
     only the solution and the dense output need them)."""
-    for i in range(lo, N_DYNAMIC):
-        acc = 0.0
-        for k in range(s):
-            acc += A[s, k] * K[k, i]
-        out[i] = y[i] + h * acc
-    for i in range(N_STATE_BASE, y.shape[0]):
-        acc = 0.0
-        for k in range(s):
-            acc += A[s, k] * K[k, i]
-        out[i] = y[i] + h * acc
+    for part in range(2):
+        start, stop = (lo, N_DYNAMIC) if part == 0 else (N_STATE_BASE, y.shape[0])
+        for i in range(start, stop):
+            acc = 0.0
+            for k in range(s):
+                acc += A[s, k] * K[k, i]
+            out[i] = y[i] + h * acc
 
 
 @jit_noalloc_inline
@@ -91,18 +88,14 @@ def error_norm(y, y_new, K, h, first, count, atol, rtol):
     (HNW II.4, eq. 4.11). A non-finite result means the step produced NaN or overflow.
     """
     acc = 0.0
-    for i in range(first, first + count):
-        err = 0.0
-        for k in range(N_STAGES + 1):
-            err += E[k] * K[k, i]
-        scale = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
-        acc += (h * err / scale) ** 2
-    for i in range(N_STATE_BASE, y.shape[0]):  # optional degrees of freedom (layout.py)
-        err = 0.0
-        for k in range(N_STAGES + 1):
-            err += E[k] * K[k, i]
-        scale = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
-        acc += (h * err / scale) ** 2
+    for part in range(2):  # the controlled base states, then the optional ones (layout.py)
+        start, stop = (first, first + count) if part == 0 else (N_STATE_BASE, y.shape[0])
+        for i in range(start, stop):
+            err = 0.0
+            for k in range(N_STAGES + 1):
+                err += E[k] * K[k, i]
+            scale = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
+            acc += (h * err / scale) ** 2
     return math.sqrt(acc / (count + max(0, y.shape[0] - N_STATE_BASE)))
 
 
@@ -147,10 +140,10 @@ def step_factor(err, rejected_before):
 def scaled_rms(v, y, first, count, atol, rtol):
     """RMS of ``v_i / (atol_i + rtol |y_i|)`` over the controlled components."""
     acc = 0.0
-    for i in range(first, first + count):
-        acc += (v[i] / (atol[i] + rtol * abs(y[i]))) ** 2
-    for i in range(N_STATE_BASE, y.shape[0]):
-        acc += (v[i] / (atol[i] + rtol * abs(y[i]))) ** 2
+    for part in range(2):
+        start, stop = (first, first + count) if part == 0 else (N_STATE_BASE, y.shape[0])
+        for i in range(start, stop):
+            acc += (v[i] / (atol[i] + rtol * abs(y[i]))) ** 2
     return math.sqrt(acc / (count + max(0, y.shape[0] - N_STATE_BASE)))
 
 
