@@ -84,7 +84,8 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
         Section("Case", "case", geometry_note + tables(
             tb.gears_table(data), tb.geometry_table(data), tb.contact_table(data),
             tb.drive_table(data), tb.modifications_table(data))),
-        Section("Results", "results", tables(tb.results_table(data), tb.lines_table(data))),
+        Section("Results", "results", tables(tb.results_table(data), tb.lines_table(data),
+                                             tb.modes_table(data))),
         Section("Checks", "checks", tables(tb.checks_table(data))),
         *([Section("Stress", "stress", tables(tb.stress_table(data)))] if data.stress else []),
         Section("Warnings", "warnings",

@@ -277,6 +277,21 @@ def lines_table(data: ReportData) -> Table | None:
                  "sidebands k·f_z ± n1, n2 are in harmonics.csv")
 
 
+def modes_table(data: ReportData) -> Table | None:
+    """Modes of the linearised model as simulate stored them (the ones `gearcli modal` gives)."""
+    modes = data.scalars.get("modes") or []
+    if not modes:
+        return None
+    rows = [(str(m["mode"]),
+             "rigid body" if m.get("rigid_body") else fmt(m.get("natural_frequency_Hz")),
+             "–" if m.get("rigid_body") else fmt(m.get("damping_ratio")),
+             str(m.get("description", ""))) for m in modes]
+    return Table("Modes of the linearised model", ("mode", "f_n [Hz]", "damping ratio ζ",
+                                                   "dominant motion"), rows,
+                 "the margins of the results table are measured to these; details and mode "
+                 "shapes: gearcli modal")
+
+
 def checks_table(data: ReportData) -> Table:
     """Every check of analysis.json, marked pass or fail."""
     rows, status = [], []

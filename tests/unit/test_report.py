@@ -177,6 +177,10 @@ def test_html_holds_the_case_tables_results_and_provenance(short_dir, html_repor
     manifest = json.loads((short_dir / "manifest.json").read_text())
     assert manifest["case_sha256"] in text
     assert "run.end_time=0.6" in text  # the overrides are shown
+    # the modes simulate stored (speed drive: the gear against the prescribed pinion)
+    modes = _table(parsed, "Modes of the linearised model")[0][1:]  # after the header row
+    assert len(modes) == 1 and modes[0][3].startswith("mesh mode")
+    assert float(modes[0][1]) == pytest.approx(281.2, abs=0.1)
 
 
 def test_html_escapes_strings_from_the_case(short_dir, tmp_path):
