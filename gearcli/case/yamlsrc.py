@@ -52,9 +52,16 @@ class Source:
                 has_value=has_value,
             )
         line = self.line_of(loc)
+        file = self.file
+        if loc and line == self.key_lines.get(()) and loc[:1] not in self.key_lines:
+            # nothing on the key's path is in the file: no line to show; when --set options
+            # were given they are what the file is checked with
+            line = None
+            if self.overridden:
+                file += " with --set " + " ".join(self.overridden.values())
         return CaseError(
             message,
-            file=self.file,
+            file=file,
             line=line,
             path=".".join(str(p) for p in loc) or None,
             value=value,

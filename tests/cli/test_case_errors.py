@@ -178,3 +178,16 @@ def test_directory_instead_of_file(tmp_path):
     result = runner.invoke(app, ["geometry", str(tmp_path)])
     assert result.exit_code == 1
     assert "is a directory" in result.stderr
+
+
+def test_missing_section_required_by_a_set_option_names_the_option(seed_text, write_case):
+    """A key that nothing in the file locates (the seed has no `bearings` section) is reported
+    without a misleading source line, with the --set options the file was checked with."""
+    path = write_case(seed_text)
+    res = runner.invoke(app, ["simulate", str(path), "-o", "-", "--set",
+                              "model=lateral-torsional"])
+    assert res.exit_code == 1
+    lines = res.output.strip().splitlines()
+    assert len(lines) == 1, res.output
+    assert lines[0].startswith(f"error: {path} with --set model=lateral-torsional: "
+                               "bearings.pinion.stiffness_x: missing;")
