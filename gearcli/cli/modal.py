@@ -64,7 +64,8 @@ def _print(doc: dict) -> None:
         f"{lin['mesh_damping_Ns_mm']:.4g} N*s/mm, friction off")
     t = Table(title="Modes", title_justify="left")
     for col in ("mode", "f [Hz]", "zeta", "description",
-                "shape (largest = 1): " + ", ".join(doc["dofs"])):
+                "shape as lengths, rotations as r_b θ (largest = 1): "
+                + ", ".join(d.rsplit("_", 1)[0] for d in doc["dofs"])):
         t.add_column(col)
     for m in doc["modes"]:
         f = "rigid body" if m["rigid_body"] else format_value(m["natural_frequency_Hz"])

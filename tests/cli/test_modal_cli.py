@@ -99,7 +99,7 @@ def test_lateral_table_happy_path(tmp_path):
     assert r.exit_code == 0, r.output
     assert "lateral-torsional model" in r.output
     assert "lateral: gear on its bearings" in r.output and "mesh mode" in r.output
-    assert "x1_mm" in r.output and "(overdamped)" in r.output
+    assert "x1, y1, x2, y2" in r.output and "(overdamped)" in r.output
     svg = out.read_text()
     assert "lateral-torsional model" in svg and "pinion x1" in svg
 
