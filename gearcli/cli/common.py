@@ -7,6 +7,7 @@ import os
 import sys
 import tempfile
 import traceback
+from contextlib import contextmanager
 from pathlib import Path
 
 import typer
@@ -55,12 +56,20 @@ def is_terminal() -> bool:
     return sys.stdout.isatty()
 
 
-class _NoStatus:
-    def __enter__(self):
-        return None
+@contextmanager
+def rich_progress(enabled: bool, columns, transient: bool = False):
+    """A rich Progress on stderr when ``enabled`` and stderr is a terminal, else None.
 
-    def __exit__(self, *exc):
-        return False
+    ``columns()`` returns the progress columns (called only when displayed, so rich stays
+    unimported in pipelines)."""
+    if not enabled or not sys.stderr.isatty():
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import Progress
+
+    with Progress(*columns(), console=Console(stderr=True), transient=transient) as progress:
+        yield progress
 
 
 class _Reporter:
@@ -79,17 +88,9 @@ class _Reporter:
                               description=f"integrating: t = {t:.4g} of {t_end:.4g} s")
 
 
-def status_reporter(enabled: bool):
-    """A spinner and progress bar on a terminal (stderr, cleared when done); nothing in
-    pipelines or with --quiet. Yields a :class:`_Reporter` (or None)."""
-    if not enabled or not sys.stderr.isatty():
-        return _NoStatus()
-    from contextlib import contextmanager
-
-    from rich.console import Console
+def _status_columns():
     from rich.progress import (
         BarColumn,
-        Progress,
         SpinnerColumn,
         TaskProgressColumn,
         TextColumn,
@@ -97,14 +98,17 @@ def status_reporter(enabled: bool):
         TimeRemainingColumn,
     )
 
-    @contextmanager
-    def display():
-        columns = (SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
-                   TaskProgressColumn(), TimeElapsedColumn(), TimeRemainingColumn())
-        with Progress(*columns, console=Console(stderr=True), transient=True) as progress:
-            yield _Reporter(progress, progress.add_task("loading the case", total=None))
+    return (SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
+            TaskProgressColumn(), TimeElapsedColumn(), TimeRemainingColumn())
 
-    return display()
+
+@contextmanager
+def status_reporter(enabled: bool):
+    """A spinner and progress bar on a terminal (stderr, cleared when done); nothing in
+    pipelines or with --quiet. Yields a :class:`_Reporter` (or None)."""
+    with rich_progress(enabled, _status_columns, transient=True) as progress:
+        yield None if progress is None else _Reporter(
+            progress, progress.add_task("loading the case", total=None))
 
 
 def format_value(value) -> str:

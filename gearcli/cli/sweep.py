@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from pathlib import Path
 
 import typer
 
 from gearcli.cli import app
-from gearcli.cli.common import handle_errors
+from gearcli.cli.common import handle_errors, rich_progress
 
 
 @app.command()
@@ -42,43 +43,30 @@ def sweep(
                    " (summary.csv, trends.md)")
 
 
-class _Silent:
-    def __enter__(self):
-        return None
-
-    def __exit__(self, *exc):
-        return False
-
-
-def _progress(enabled: bool, total: int):
-    """A rich progress bar (done/failed/remaining, ETA) on a terminal; nothing otherwise."""
-    import sys
-
-    if not enabled or not sys.stderr.isatty():
-        return _Silent()
-    from contextlib import contextmanager
-
-    from rich.console import Console
+def _sweep_columns():
     from rich.progress import (
         BarColumn,
         MofNCompleteColumn,
-        Progress,
         TextColumn,
         TimeElapsedColumn,
         TimeRemainingColumn,
     )
 
-    @contextmanager
-    def bar():
-        cols = (TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
-                TextColumn("{task.fields[failed]} failed, {task.fields[left]} left"),
-                TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn())
-        with Progress(*cols, console=Console(stderr=True)) as pr:
-            task = pr.add_task("sweep", total=total, failed=0, left=total)
+    return (TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
+            TextColumn("{task.fields[failed]} failed, {task.fields[left]} left"),
+            TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn())
 
-            def update(done: int, failed: int, n: int) -> None:
-                pr.update(task, completed=done, failed=failed, left=n - done)
 
-            yield update
+@contextmanager
+def _progress(enabled: bool, total: int):
+    """A rich progress bar (done/failed/remaining, ETA) on a terminal; nothing otherwise."""
+    with rich_progress(enabled, _sweep_columns) as pr:
+        if pr is None:
+            yield None
+            return
+        task = pr.add_task("sweep", total=total, failed=0, left=total)
 
-    return bar()
+        def update(done: int, failed: int, n: int) -> None:
+            pr.update(task, completed=done, failed=failed, left=n - done)
+
+        yield update
