@@ -67,6 +67,10 @@ NO_PEAK_DAMPING_RATIO = 1.0 / math.sqrt(2.0)
 #: ω² below this fraction of the largest ω² counts as a rigid-body mode.
 RIGID_TOLERANCE = 1e-9
 
+#: A state-space root with |λ| (or decay rate -Re λ) below this fraction of the largest |λ|
+#: is round-off of a free rigid-body root.
+LIVE_ROOT_FRACTION = 1e-9
+
 #: Natural frequencies this close (relative) are one repeated frequency.
 REPEATED_TOLERANCE = 1e-6
 
@@ -294,6 +298,15 @@ class ModalResult:
     def elastic(self) -> tuple[Mode, ...]:
         return tuple(m for m in self.modes if not m.rigid)
 
+    def slowest_decay_rate_1_s(self) -> float | None:
+        """Smallest decay rate -Re λ [1/s] over the damped roots (a damped rigid-body mode
+        too: a motor curve or a viscous load on a torque drive); None if nothing decays.
+        Free rigid-body roots (round-off around 0) are skipped."""
+        scale = max((abs(lam) for lam in self.eigenvalues), default=0.0)
+        rates = [-lam.real for lam in self.eigenvalues
+                 if -lam.real > LIVE_ROOT_FRACTION * scale]
+        return min(rates) if rates else None
+
 
 def _normalise(v: np.ndarray) -> np.ndarray:
     """Real shape, largest component +1. A complex (damped) shape is first turned by the phase
@@ -461,7 +474,7 @@ def linear_modes(system: LinearSystem) -> ModalResult:
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ C]])
     lam, vec = scipy.linalg.eig(A)
     lam_scale = max(float(np.max(np.abs(lam))), 1e-300)
-    live = [j for j in range(2 * n) if abs(lam[j]) > 1e-9 * lam_scale]
+    live = [j for j in range(2 * n) if abs(lam[j]) > LIVE_ROOT_FRACTION * lam_scale]
     elastic = [i for i in range(n) if not rigid[i]]
 
     def mac(j: int, i: int) -> float:

@@ -100,7 +100,8 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
 
     modes = case_modes(case, geo, ki.mesh, geo.pinion_speed_rad_s)
     window = steady_window(case.run.end_time, last_ramp, ki.mesh.natural_frequency_Hz,
-                           ki.mesh.damping_ratio, ki.gear_mesh_frequency_Hz, modes.eigenvalues)
+                           ki.mesh.damping_ratio, ki.gear_mesh_frequency_Hz,
+                           modes.slowest_decay_rate_1_s())
     from gearcli.core.layout import P
 
     params = ki.params.copy()

@@ -7,8 +7,6 @@ from dataclasses import dataclass
 
 #: Settling = this many time constants of the slowest decaying mesh-mode pole (e^-5 < 1 %).
 SETTLING_TIME_CONSTANTS = 5.0
-#: A root |Re λ| below this fraction of the largest |λ| is a free rigid-body root (round-off).
-RIGID_ROOT_FRACTION = 1e-9
 #: The window must hold at least this many mesh cycles.
 MIN_MESH_CYCLES = 20
 
@@ -38,34 +36,23 @@ def settling_time_s(natural_frequency_Hz: float, damping_ratio: float) -> float:
     return SETTLING_TIME_CONSTANTS / rate
 
 
-def slowest_settling_time_s(eigenvalues) -> float:
-    """Time for the slowest decaying pole of a linear model to decay by e^-5 [s].
-
-    ``eigenvalues``: the state-space roots λ [1/s] (gearcli.model.modal); roots with
-    Re λ >= 0 (undamped rigid-body motion, which never settles and has nothing to wait for)
-    are skipped. A damped rigid-body mode (a motor curve or a viscous load on a torque drive)
-    gives the drivetrain's speed settling, often far slower than the mesh mode.
-    """
-    scale = max((abs(lam) for lam in eigenvalues), default=0.0)
-    # roots within round-off of 0 (free rigid-body modes; same threshold as model.modal)
-    rates = [-lam.real for lam in eigenvalues if -lam.real > RIGID_ROOT_FRACTION * scale]
-    return SETTLING_TIME_CONSTANTS / min(rates) if rates else 0.0
-
-
 def steady_window(
     t_end_s: float,
     last_ramp_s: float,
     natural_frequency_Hz: float,
     damping_ratio: float,
     gear_mesh_frequency_Hz: float | None,
-    eigenvalues=(),
+    slowest_decay_rate_1_s: float | None = None,
 ) -> Window:
-    """Automatic window [t0, t_end]: t0 = end of ramps + settling (the mesh mode's, or the
-    slowest pole of the whole linearised model when its ``eigenvalues`` are given), keeping
-    ≥ 20 mesh cycles."""
+    """Automatic window [t0, t_end]: t0 = end of ramps + settling, keeping ≥ 20 mesh cycles.
+
+    Settling: the mesh mode's, or that of the slowest decaying pole of the whole linearised
+    model when its rate [1/s] is given and slower (a damped rigid-body mode gives the
+    drivetrain's speed settling, often far slower than the mesh mode)."""
     settle = settling_time_s(natural_frequency_Hz, damping_ratio)
     reason = "after the ramps and the mesh mode's settling time"
-    slowest = slowest_settling_time_s(eigenvalues)
+    slowest = (SETTLING_TIME_CONSTANTS / slowest_decay_rate_1_s
+               if slowest_decay_rate_1_s else 0.0)
     if slowest > settle:
         settle = slowest
         reason = "after the ramps and the settling time of the slowest mode"
