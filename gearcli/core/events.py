@@ -16,6 +16,8 @@ dx1/dt = sigma v1, and x2 = x1 - sigma delta with dx2/dt = sigma (v1 - deltadot)
 
 import math
 
+import numpy as np
+
 from gearcli.core.gaptable import TABLE_G1, TABLE_G1_COAST, TABLE_G2, TABLE_G2_COAST, hermite
 from gearcli.core.jit import jit
 from gearcli.core.layout import D, P
@@ -71,7 +73,7 @@ def _flank_crossing(sigma, s1, v1, a1, delta, deltadot, deltaddot, phase0, offse
     h_grid = derived[D.grid_step]
     inv_h = derived[D.inv_grid_step]
     r = sigma * s1 - phase0
-    u = r - math.floor(r * derived[D.inv_p_b]) * p_b
+    u = r - np.floor(r * derived[D.inv_p_b]) * p_b
     r1 = sigma * v1  # dx1/dt
     q1 = sigma * a1
     r2 = sigma * (v1 - deltadot)  # dx2/dt

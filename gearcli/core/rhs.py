@@ -69,6 +69,8 @@ terms dissipate into loss_bearing, so the energy balance closes for every model.
 
 import math
 
+import numpy as np
+
 from gearcli.core.contact import impact_force
 from gearcli.core.friction import adams_mu
 from gearcli.core.gaptable import (
@@ -164,7 +166,7 @@ def flank(sigma, s1, v1, delta, v2, omega1, omega2, e1, de1, e2, de2, phase0, of
     inv_e1 = derived[D.inv_exponent_plus_1]
     use_friction = mu_s != 0.0 or mu_d != 0.0
     r = sigma * s1 - phase0
-    nf = math.floor(r * derived[D.inv_p_b])
+    nf = np.floor(r * derived[D.inv_p_b])  # a float: math.floor's int costs two conversions
     u = r - nf * p_b
     if u >= p_b:  # rounding of r - floor(r/p) p
         u -= p_b

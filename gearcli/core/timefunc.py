@@ -6,6 +6,8 @@ The arrays come from :meth:`gearcli.model.timefunction.PiecewisePolynomial.to_ar
 (piece 0 everything before ``breaks[0]``, piece n everything from ``breaks[n-1]`` on).
 """
 
+import math
+
 from gearcli.core.jit import jit
 
 
@@ -24,6 +26,18 @@ def pp_piece(breaks, t):
         else:
             hi = mid
     return lo
+
+
+@jit
+def top_degree(coefs, k):
+    """Degree of piece ``k``: its highest nonzero coefficient (0 for a zero piece). Horner
+    from there gives the same value as from the table's top degree (the skipped terms are
+    exact zeros) without their multiply-add latency (a constant speed is a degree-0 piece of a
+    quintic ramp table)."""
+    p = coefs.shape[1] - 1
+    while p > 0 and coefs[k, p] == 0.0:
+        p -= 1
+    return p
 
 
 @jit
@@ -48,10 +62,11 @@ def pp_eval(breaks, coefs, origins, t):
     """
     k = pp_piece(breaks, t)
     s = t - origins[k]
-    value = 0.0
-    for p in range(coefs.shape[1] - 1, -1, -1):
-        value = value * s + coefs[k, p]
-    return value
+    p = top_degree(coefs, k)
+    value = coefs[k, p]
+    for q in range(p - 1, -1, -1):
+        value = value * s + coefs[k, q]
+    return value if s == s else math.nan
 
 
 @jit
@@ -69,9 +84,12 @@ def pp_eval_d(breaks, coefs, origins, t):
     """
     k = pp_piece(breaks, t)
     s = t - origins[k]
-    value = 0.0
+    p = top_degree(coefs, k)
+    value = coefs[k, p]
     slope = 0.0
-    for p in range(coefs.shape[1] - 1, -1, -1):
+    for q in range(p - 1, -1, -1):
         slope = slope * s + value
-        value = value * s + coefs[k, p]
+        value = value * s + coefs[k, q]
+    if s != s:
+        return math.nan, math.nan
     return value, slope

@@ -84,6 +84,10 @@ EVENT_MIN_OVERSHOOT = 1e-12  # [s]
 #: After a hop the next step is this fraction of the last one: the force jump starts a new
 #: transient (measured on the seed case: entry needs ~0.4, exit ~0.15 of the step before).
 EVENT_RESTART = 0.25
+#: The prediction looks this many step sizes ahead and is not repeated before a step would end
+#: past the window or the crossing it found (the slot positions move fast against the DTE, so
+#: the predicted time stays accurate over the window).
+EVENT_LOOKAHEAD = 8.0
 
 
 @jit_noalloc
@@ -317,6 +321,7 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     nonfinite_last = False
     predict = True  # predict the next discontinuity before the next step
     t_event = math.inf
+    t_recheck = -math.inf  # predict again before a step ends past this time [s]
     hop_limit = 0.0  # a crossing closer than this [s] is hopped over
     h_cut = math.inf  # size of the last step cut short by a crossing [s]
     while t < t_end:
@@ -328,15 +333,16 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
         if h < h_min and t + h < t_end:
             status = STATUS_NAN if nonfinite_last else STATUS_STEP_TOO_SMALL
             break
-        if predict:
+        if predict or t + h > t_recheck:
             predict = False
             margin = err_bound + 0.1 * abs(y[S.delta])
             if lateral:  # the centres' approach along either line of action, at most
                 margin += abs(y[S.x1] - y[S.x2]) + abs(y[S.y1] - y[S.y2])
+            window = max(EVENT_LOOKAHEAD * h, hop_limit)
             tau = next_crossing(y[S.s1], y[S.v1], K[0, S.v1], y[S.delta], y[S.deltadot],
-                                K[0, S.deltadot], prm, derived, tables, max(h, hop_limit),
-                                margin)
+                                K[0, S.deltadot], prm, derived, tables, window, margin)
             t_event = t + tau
+            t_recheck = t + min(tau, window)
             if tau <= max(hop_limit, 100.0 * h_min):
                 # Hop over the discontinuity with one Euler step ending just past it.
                 hop = tau + max(EVENT_OVERSHOOT * tau, EVENT_MIN_OVERSHOOT, 4.0 * h_min)
@@ -424,10 +430,10 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
         if runaway:
             status = STATUS_RUNAWAY_PENETRATION
             break
-        predict = True
         if cut:  # keep the step size of the undisturbed solution; hop next
             hop_limit = EVENT_HOP * EVENT_LANDING * h_step / (1.0 - EVENT_LANDING)
             h_cut = h_step
+            predict = True
         else:
             h = h_step * factor
 

@@ -196,6 +196,15 @@ def test_numba_eval_matches_call(f):
         assert slope == pytest.approx(df(ti), rel=1e-12, abs=1e-9 * max(1, abs(df(ti))))
 
 
+def test_numba_eval_propagates_nan():
+    # the Horner loop starts at each piece's top nonzero coefficient (timefunc.top_degree):
+    # a NaN time must still give NaN, also on a constant piece
+    arrays = (PP.step(0, 0, 1, 3000) + PP.constant(2.0)).to_arrays(degree=5)
+    assert np.isnan(pp_eval(*arrays, np.nan))
+    assert np.isnan(pp_eval_d(*arrays, np.nan)).all()
+    assert pp_eval(*arrays, 5.0) == 3002.0 and pp_eval_d(*arrays, 5.0) == (3002.0, 0.0)
+
+
 def test_to_arrays_shapes():
     breaks, coefs, origins = PP.step(0, 0, 1, 1).to_arrays()
     assert breaks.dtype == coefs.dtype == origins.dtype == np.float64
