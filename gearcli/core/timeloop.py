@@ -57,7 +57,7 @@ from gearcli.core.layout import (
     S,
     X,
 )
-from gearcli.core.nrt import jit_noalloc
+from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 from gearcli.core.records import (
     kinetic_energy,
     update_extrema,
@@ -115,7 +115,7 @@ def _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
     rhs(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate, load, True)
 
 
-@jit_noalloc
+@jit_noalloc_inline
 def _attempt(t, h, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets,
              mode, theta_offset, drive_pp, angle_pp, load_pp, atol, rtol, first, count):
     """One Dormand-Prince step attempt from (t, y) with K[0] = f(t, y): stages 2..6, the
@@ -124,7 +124,8 @@ def _attempt(t, h, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, table
     Only components ``first ..`` are integrated (speed mode: s1, v1 are prescribed and
     the rhs ignores their entries of the state).
 
-    The hot path of the kernel: forcing and rhs are inlined here (nrt.jit_noalloc_inline).
+    The hot path of the kernel: forcing and rhs are inlined here, and this function into
+    :func:`_march` (nrt.jit_noalloc_inline).
     """
     for s in range(1, N_STAGES + 1):
         if s < N_STAGES:
@@ -214,20 +215,12 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     i_out : int
         Next output row (rows ``i_first .. i_out - 1`` were written).
     """
-    n_out = t_out.shape[0]
     n_slots = int(prm[P.n_slots])
     if layout_key != LAYOUT_KEY:
         return STATUS_STALE_CACHE, i_first
 
     mode = int(prm[P.drive_mode])
-    speed_mode = mode == DRIVE_SPEED
     t = prm[P.t_start]
-    t_end = prm[P.t_end]
-    rtol = prm[P.rtol]
-    max_step = prm[P.max_step]
-    max_steps = prm[P.max_steps]
-    ext_start = prm[P.extrema_t_start]
-    pen_limit = prm[P.penetration_limit]
     fresh = resume[RESUME_STARTED] == 0.0
     if fresh:
         theta_offset = prm[P.theta1_init]
@@ -237,12 +230,9 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
         theta_offset = resume[RESUME_THETA_OFFSET]
     derived = np.empty(N_DERIVED)
     derive(prm, tables, tooth_offsets, derived)
-    # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
-    err_bound = derived[D.error_bound] + 10.0 * prm[P.atol_delta]
 
-    lateral = prm[P.lateral] != 0.0
     # optional degrees of freedom (layout.STATE_NAMES): all of them or none are integrated
-    extra = lateral or prm[P.motor_J] > 0.0 or prm[P.load_J] > 0.0
+    extra = prm[P.lateral] != 0.0 or prm[P.motor_J] > 0.0 or prm[P.load_J] > 0.0
     n_state = N_STATE if extra else N_STATE_BASE
     atol = np.zeros(N_STATE)
     atol[S.s1] = prm[P.atol_delta]
@@ -256,8 +246,6 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     atol[S.tw_m_dot] = prm[P.atol_deltadot] / prm[P.r_b1]
     atol[S.tw_l] = prm[P.atol_delta] / prm[P.r_b2]
     atol[S.tw_l_dot] = prm[P.atol_deltadot] / prm[P.r_b2]
-    first = S.delta if speed_mode else S.s1  # controlled components: first .. S.deltadot
-    count = S.deltadot + 1 - first
 
     # Work vectors and the rows of K in one block, each starting on its own 128-byte boundary.
     # Allocated one by one (or K packed with 72-byte rows) the same code ran 1.3-1.5 times
@@ -288,8 +276,41 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
         y[S.tw_m] = prm[P.tw_m_init]
         y[S.tw_l] = prm[P.tw_l_init]
 
+    # f(t, y) here, not in _march: numba then compiles _evaluate in this simpler context
+    # (6 s instead of 20 s of the first run's compilation, measured)
     _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
               theta_offset, drive_pp, angle_pp, load_pp)
+    return _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resume,
+                  series, slot_out, slot_out_coast, extrema, slot_extrema, counters, i_first,
+                  derived, atol, y, dy, ys, y_new, aux, sf, sfc, K, theta_offset, fresh,
+                  n_state)
+
+
+@jit_noalloc
+def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resume, series,
+           slot_out, slot_out_coast, extrema, slot_extrema, counters, i_first, derived, atol,
+           y, dy, ys, y_new, aux, sf, sfc, K, theta_offset, fresh, n_state):
+    """The time loop of :func:`run`, from its work arrays with ``dy = f(t_start, y)``.
+
+    Allocation-free, so that the step attempt can be inlined here: in :func:`run` (which
+    allocates, hence counts references) the inlined views cost 4x the run time, and as a call
+    per step the attempt's ~170 words of array arguments cost ~14 % of it (seed case, A/B).
+    """
+    n_out = t_out.shape[0]
+    mode = int(prm[P.drive_mode])
+    speed_mode = mode == DRIVE_SPEED
+    t = prm[P.t_start]
+    t_end = prm[P.t_end]
+    rtol = prm[P.rtol]
+    max_step = prm[P.max_step]
+    max_steps = prm[P.max_steps]
+    ext_start = prm[P.extrema_t_start]
+    pen_limit = prm[P.penetration_limit]
+    # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
+    err_bound = derived[D.error_bound] + 10.0 * prm[P.atol_delta]
+    lateral = prm[P.lateral] != 0.0
+    first = S.delta if speed_mode else S.s1  # controlled components: first .. S.deltadot
+    count = S.deltadot + 1 - first
     store_row(K, 0, dy)
     counters[2] += 1
     if speed_mode:  # prescribed: keep the (uncontrolled) integrated copies exact
