@@ -127,7 +127,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     params = ki.params.copy()
     params[P.extrema_t_start] = window.t0_s
     if status:
-        status("integrating (the first run compiles the solver, ~30 s)")
+        status("integrating (the first run compiles the solver, ~25 s)")
     t0 = time.perf_counter()
     with cyclic_gc_paused():
         kr = simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
