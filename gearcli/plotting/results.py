@@ -49,6 +49,18 @@ def _zoom_axis(ax: Axes, t0: float, what: str = "time") -> None:
     ax.set_xlabel(f"{what} − {t0:.4f} s [ms]")
 
 
+def _mesh_cycles(zoom_s, f_z_Hz: float | None) -> float:
+    """Mesh cycles in the zoom span (0 when the gear-mesh frequency is unknown)."""
+    return (zoom_s[1] - zoom_s[0]) * f_z_Hz if f_z_Hz else 0.0
+
+
+def _title_zoom(ax: Axes, n_samples: int, zoom_s, f_z_Hz: float | None) -> None:
+    """Title a zoom axis with its mesh cycles and flag an output too coarse to resolve them."""
+    cycles = _mesh_cycles(zoom_s, f_z_Hz)
+    ax.set_title(f"zoom on {cycles:.0f} mesh cycles" if cycles else "zoom", fontsize=9)
+    _note_coarse(ax, n_samples, cycles)
+
+
 def _note_coarse(ax: Axes, n_samples: int, cycles: float) -> None:
     """Say so on the plot when the output is too coarse to show a mesh cycle."""
     if cycles > 0 and n_samples / cycles < 8:
@@ -82,10 +94,8 @@ def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_
         zx.plot(ms, kin[z], color=KIN, lw=0.9, ls="--", label="kinematic ω1·z1/z2")
         _zoom_axis(zx, zoom_s[0])
         zx.set_ylabel("gear speed [deg/s]")
-        cycles = (zoom_s[1] - zoom_s[0]) * f_z_Hz if f_z_Hz else 0.0
-        zx.set_title(f"zoom on {cycles:.0f} mesh cycles" if cycles else "zoom", fontsize=9)
         zx.legend(loc="best", fontsize=8)
-        _note_coarse(zx, int(z.sum()), cycles)
+        _title_zoom(zx, int(z.sum()), zoom_s, f_z_Hz)
     else:
         zx.set_visible(False)
     fig.suptitle(f"Gear speed fluctuates around the kinematic {k_mean:.0f} deg/s "
@@ -123,7 +133,7 @@ def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, win
         zx.set_ylabel("normal force [kN]")
         zx.set_title("zoom around the maximum", fontsize=9)
         zx.legend(loc="upper left", fontsize=8)
-        _note_coarse(zx, int(z.sum()), (zoom_s[1] - zoom_s[0]) * f_z_Hz if f_z_Hz else 0.0)
+        _note_coarse(zx, int(z.sum()), _mesh_cycles(zoom_s, f_z_Hz))
     else:
         zx.set_visible(False)
     if force_max_N is not None:
@@ -143,7 +153,7 @@ def plot_mesh_cycles(t_s, force_N, slot_forces: dict[str, np.ndarray], pairs, zo
     t = np.asarray(t_s, float)
     z = _in(t, zoom_s)
     ms = (t[z] - zoom_s[0]) * 1e3
-    cycles = (zoom_s[1] - zoom_s[0]) * f_z_Hz
+    cycles = _mesh_cycles(zoom_s, f_z_Hz)
     fig, (ax,) = _figure(1, height=4.6)
     nz = np.asarray(pairs, float)[z]
     tw = ax.twinx()
@@ -198,9 +208,7 @@ def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = Non
         zx.axhline(mean, color=KIN, ls="--", lw=1.0)
         _zoom_axis(zx, zoom_s[0])
         zx.set_ylabel("DTE δ [µm]")
-        cycles = (zoom_s[1] - zoom_s[0]) * f_z_Hz if f_z_Hz else 0.0
-        zx.set_title(f"zoom on {cycles:.0f} mesh cycles" if cycles else "zoom", fontsize=9)
-        _note_coarse(zx, int(z.sum()), cycles)
+        _title_zoom(zx, int(z.sum()), zoom_s, f_z_Hz)
     else:
         zx.set_visible(False)
     fig.suptitle(f"DTE settles at a mean of {mean:.1f} µm (mesh deflection) and swings "
