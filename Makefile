@@ -22,7 +22,7 @@ demo: $(STAMP)
 	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg
 	$(BIN)/gearcli run $(CASE) -o $(OUT) --force
 
-test: $(STAMP)
+test: lint
 	$(BIN)/python -m pytest -n $(JOBS) -q
 
 test-fast: $(STAMP)

@@ -14,6 +14,8 @@ Sections (issue 3, speed):
 4. ``gearcli simulate`` end to end with a warm numba cache, and the first run with an empty
    one (``NUMBA_CACHE_DIR`` a fresh folder); the cache with the package folder read-only.
 5. Peak RSS of a 60 s simulation (``/usr/bin/time -v``).
+6. ``analyze`` + ``report`` of a written seed run (in process), target < 5 s (issue 12 moved
+   this check out of the test suite: wall-clock times belong here, never in tests).
 """
 
 from __future__ import annotations
@@ -186,6 +188,27 @@ def memory(args) -> None:
             "< 1 GB", kb < 1024 * 1024)
 
 
+def post_processing(args) -> None:
+    from gearcli.pipeline.analysis_io import write_analysis
+    from gearcli.pipeline.analyze import analyze
+    from gearcli.pipeline.outputs import write_simulation
+    from gearcli.pipeline.simulate import run_simulation
+    from gearcli.report import build_report
+
+    print("analyze + report of the seed run (in process, results folder already written)")
+    times = []
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp) / "seed"
+        write_simulation(run_simulation(SEED), folder, force=False)
+        for _ in range(3):
+            t0 = time.perf_counter()
+            write_analysis(analyze(folder))
+            build_report(folder)
+            times.append(time.perf_counter() - t0)
+    med = statistics.median(times)
+    row("analyze + report, seed", f"median {med:.2f} s (n=3)", "< 5 s", med < 5.0)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=9, help="timed solver runs (median), >= 7")
@@ -205,6 +228,7 @@ def main() -> None:
         end_to_end(args)
         read_only(args)
         memory(args)
+        post_processing(args)
     print("\n| what | measured | target | |\n|---|---|---|---|")
     for what, measured, target, verdict in ROWS:
         print(f"| {what.strip()} | {measured} | {target} | {verdict} |")

@@ -3,7 +3,6 @@
 import json
 import subprocess
 import sys
-import time
 
 from typer.testing import CliRunner
 
@@ -28,9 +27,8 @@ def test_version():
 
 
 def test_python_m_gearcli_and_help_is_fast():
-    # `gearcli --help` must not import numba/pandas/matplotlib/pydantic/pint: measure the
-    # imports it triggers (robust), and the wall time (generous bound: CI machines vary; the
-    # 0.3 s target is measured by `make bench`).
+    # `gearcli --help` must not import numba/pandas/matplotlib/pydantic/pint: check the
+    # imports it triggers (the wall-time target is measured by `make bench`, never here).
     code = (
         "import sys, runpy; sys.argv=['gearcli','--help'];\n"
         "try:\n runpy.run_module('gearcli', run_name='__main__')\n"
@@ -38,12 +36,9 @@ def test_python_m_gearcli_and_help_is_fast():
         "heavy=[m for m in ('numba','pandas','matplotlib','pydantic','pint','scipy') "
         "if m in sys.modules]\nprint('HEAVY', heavy)"
     )
-    t0 = time.perf_counter()
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    elapsed = time.perf_counter() - t0
     assert "HEAVY []" in out.stdout, out.stdout[-300:]
     assert "geometry" in out.stdout
-    assert elapsed < 2.0
 
 
 def test_schema_is_json_schema():

@@ -11,20 +11,14 @@ import base64
 import json
 import re
 import shutil
-import time
 from html.parser import HTMLParser
 
 import numpy as np
 import pytest
 
 from gearcli.errors import OutputError, ResultsError
-from gearcli.pipeline.analysis_io import write_analysis
-from gearcli.pipeline.analyze import analyze
-from gearcli.pipeline.outputs import write_simulation
-from gearcli.pipeline.simulate import run_simulation
 from gearcli.plotting import results as plots
 from gearcli.report import build_report
-from tests.conftest import SEED
 from tests.physics.simrun import write_run
 
 SHORT = ["drive.speed=STEP(time, 0, 0, 0.2, 3000)", "load.torque=STEP(time, 0, 0, 0.2, 4.5e5)",
@@ -278,14 +272,3 @@ def test_force_figure_marks_the_true_maximum_and_the_static_line():
     assert "1.50 kN" in title and "1.50 × the static 1.00 kN" in title
     stars = [ln for ax in fig.axes for ln in ax.lines if ln.get_marker() == "*"]
     assert len(stars) == 2 and all(ln.get_ydata()[0] == pytest.approx(1.5) for ln in stars)
-
-
-@pytest.mark.slow
-def test_analyze_and_report_of_the_seed_case_take_under_5_s(tmp_path):
-    folder = tmp_path / "seed"
-    write_simulation(run_simulation(SEED), folder, force=False)
-    t0 = time.perf_counter()
-    write_analysis(analyze(folder))
-    build_report(folder)
-    elapsed = time.perf_counter() - t0
-    assert elapsed < 5.0, f"analyze + report took {elapsed:.2f} s"
