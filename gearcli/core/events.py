@@ -18,9 +18,10 @@ import math
 
 import numpy as np
 
-from gearcli.core.gaptable import TABLE_G1, TABLE_G1_COAST, TABLE_G2, TABLE_G2_COAST, hermite
+from gearcli.core.derive import table_of
+from gearcli.core.gaptable import hermite
 from gearcli.core.jit import jit
-from gearcli.core.layout import D, P
+from gearcli.core.layout import COAST_FLANKS, DRIVE_FLANKS, GEAR, PINION, D, F, P
 from gearcli.core.nrt import jit_noalloc
 
 
@@ -59,20 +60,26 @@ def _boundary_ahead(x, rate, x_lo, x_hi):
 
 
 @jit_noalloc
-def _flank_crossing(sigma, s1, v1, a1, delta, deltadot, deltaddot, phase0, offset, g1, g2,
-                    overlap_max, end_gap, prm, derived, tables, window, margin):
-    """Earliest loaded table-end crossing of one flank family within ``window`` [s]."""
-    # no pair of the family can touch within the window (rhs.overlap_bound), or none can be
-    # loaded where it crosses a table end (rhs.end_gap_bound: extended tables): nothing to find
+def _flank_crossing(f, s1, v1, a1, delta, deltadot, deltaddot, model, window, margin):
+    """Earliest loaded table-end crossing of flank family ``f`` within ``window`` [s]."""
+    prm = model.prm
+    derived = model.derived
+    tables = model.tables
+    sigma = 1.0 if f == DRIVE_FLANKS else -1.0
+    offset = model.family[f, F.offset]
+    g1 = table_of(f, PINION)
+    g2 = table_of(f, GEAR)
+    # no pair of the family can touch within the window (derive.overlap_bound), or none can be
+    # loaded where it crosses a table end (derive.end_gap_bound: extended tables): nothing to find
     reach = sigma * delta + (abs(deltadot) + 0.5 * abs(deltaddot) * window) * window
-    if reach - offset + min(overlap_max, -end_gap) <= -margin:
+    if reach - offset + min(model.family[f, F.overlap], -model.family[f, F.end_gap]) <= -margin:
         return math.inf
     p_b = prm[P.p_b]
     x_lo = prm[P.x_lo]
     x_hi = prm[P.x_hi]
     h_grid = derived[D.grid_step]
     inv_h = derived[D.inv_grid_step]
-    r = sigma * s1 - phase0
+    r = sigma * s1 - model.family[f, F.phase0]
     u = r - np.floor(r * derived[D.inv_p_b]) * p_b
     r1 = sigma * v1  # dx1/dt
     q1 = sigma * a1
@@ -108,7 +115,7 @@ def _flank_crossing(sigma, s1, v1, a1, delta, deltadot, deltaddot, phase0, offse
 
 
 @jit_noalloc
-def next_crossing(s1, v1, a1, delta, deltadot, deltaddot, prm, derived, tables, window, margin):
+def next_crossing(s1, v1, a1, delta, deltadot, deltaddot, model, window, margin):
     """Time [s] from now to the next loaded table-end crossing, ``inf`` if none in ``window``.
 
     Parameters
@@ -117,24 +124,18 @@ def next_crossing(s1, v1, a1, delta, deltadot, deltaddot, prm, derived, tables, 
         Pinion roll distance [mm], rate [mm/s], acceleration [mm/s^2].
     delta, deltadot, deltaddot : float
         DTE [mm] and its first two derivatives [mm/s, mm/s^2].
-    prm, derived : ndarray
-        Parameter vector (layout.P) and derived constants (layout.D, rhs.derive).
-    tables : ndarray, shape (4, 2, n)
-        Gap tables.
+    model : gearcli.core.bundles.Model
     window : float
         Look-ahead [s]; positions are extrapolated quadratically.
     margin : float
         A crossing counts when the flank overlap at the table end exceeds ``-margin`` [mm]
         (covers runout and tooth offsets, which are not evaluated here).
     """
-    tau = _flank_crossing(1.0, s1, v1, a1, delta, deltadot, deltaddot, prm[P.s1_0], 0.0,
-                          TABLE_G1, TABLE_G2, derived[D.overlap_drive], derived[D.end_gap_drive],
-                          prm, derived, tables, window, margin)
-    if prm[P.coast_flanks] != 0.0:
-        tau_c = _flank_crossing(-1.0, s1, v1, a1, delta, deltadot, deltaddot, prm[P.s1c_0],
-                                prm[P.backlash_n], TABLE_G1_COAST, TABLE_G2_COAST,
-                                derived[D.overlap_coast], derived[D.end_gap_coast], prm, derived,
-                                tables, window, margin)
+    tau = _flank_crossing(DRIVE_FLANKS, s1, v1, a1, delta, deltadot, deltaddot, model, window,
+                          margin)
+    if model.prm[P.coast_flanks] != 0.0:
+        tau_c = _flank_crossing(COAST_FLANKS, s1, v1, a1, delta, deltadot, deltaddot, model,
+                                window, margin)
         if tau_c < tau:
             tau = tau_c
     return tau

@@ -15,14 +15,8 @@ for the Hermite basis h00, h10, h01, h11; any numerical-analysis text (e.g. Burd
 
 import math
 
+from gearcli.core.layout import TABLE_GAP, TABLE_SLOPE
 from gearcli.core.nrt import jit_noalloc
-
-#: Table rows in ``gap_tables[k, :, :]``.
-TABLE_G1 = 0  # drive flank, function of the pinion roll position
-TABLE_G2 = 1  # drive flank, function of the gear roll position
-TABLE_G1_COAST = 2
-TABLE_G2_COAST = 3
-N_TABLES = 4
 
 
 @jit_noalloc
@@ -32,7 +26,8 @@ def hermite(tables, k, x_lo, x_hi, h, inv_h, x):
     Parameters
     ----------
     tables : ndarray, shape (N_TABLES, 2, n)
-        ``tables[k, 0, i]`` gap value [mm], ``tables[k, 1, i]`` slope dG/dx [-] at the grid
+        ``tables[k, TABLE_GAP, i]`` gap value [mm], ``tables[k, TABLE_SLOPE, i]`` slope dG/dx
+        [-] (layout.py) at the grid
         point ``x_lo + i (x_hi - x_lo)/(n - 1)``; ``n >= 2``.
     k : int
         Table index.
@@ -60,10 +55,10 @@ def hermite(tables, k, x_lo, x_hi, h, inv_h, x):
     if i > n - 2:
         i = n - 2
     t = q - i
-    y0 = tables[k, 0, i]
-    y1 = tables[k, 0, i + 1]
-    m0 = tables[k, 1, i] * h
-    m1 = tables[k, 1, i + 1] * h
+    y0 = tables[k, TABLE_GAP, i]
+    y1 = tables[k, TABLE_GAP, i + 1]
+    m0 = tables[k, TABLE_SLOPE, i] * h
+    m1 = tables[k, TABLE_SLOPE, i + 1] * h
     t2 = t * t
     t3 = t2 * t
     value = (2.0 * t3 - 3.0 * t2 + 1.0) * y0 + (t3 - 2.0 * t2 + t) * m0 \
@@ -83,7 +78,7 @@ def table_floor(tables, k, h):
     """
     floor = math.inf
     for i in range(tables.shape[2] - 1):
-        lo = min(tables[k, 0, i], tables[k, 0, i + 1]) \
-            - 4.0 / 27.0 * h * (abs(tables[k, 1, i]) + abs(tables[k, 1, i + 1]))
+        lo = min(tables[k, TABLE_GAP, i], tables[k, TABLE_GAP, i + 1]) \
+            - 4.0 / 27.0 * h * (abs(tables[k, TABLE_SLOPE, i]) + abs(tables[k, TABLE_SLOPE, i + 1]))
         floor = min(floor, lo)
     return floor

@@ -15,10 +15,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from gearcli.core.gaptable import N_TABLES
+from gearcli.core.bundles import Model, Out
+from gearcli.core.derive import derive
 from gearcli.core.layout import (
+    COAST_FLANKS,
     COLUMN_NAMES,
     COUNTER_NAMES,
+    DRIVE_FLANKS,
     DRIVE_SHAFT,
     DRIVE_SPEED,
     DRIVE_TORQUE,
@@ -26,18 +29,24 @@ from gearcli.core.layout import (
     LAYOUT_KEY,
     N_COLUMNS,
     N_COUNTERS,
+    N_DERIVED,
     N_EXTREMA,
+    N_FAMILIES,
+    N_FAMILY,
+    N_GEARS,
     N_PARAMS,
+    N_RESUME,
     N_SLOT_EXTREMA,
-    N_STATE,
+    N_TABLES,
     SLOT_EXTREMA_NAMES,
     STATUS_MESSAGES,
     STATUS_OK,
     STATUS_STALE_CACHE,
+    TABLE_ROWS,
     P,
 )
 from gearcli.core.records import finish_extrema, init_extrema
-from gearcli.core.timeloop import RESUME_Y, run
+from gearcli.core.timeloop import run
 
 
 class KernelResult(NamedTuple):
@@ -103,6 +112,70 @@ def chunk_ends(t_start: float, t_end: float) -> np.ndarray:
     return ends
 
 
+def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
+                 tooth_offsets=None) -> Model:
+    """The kernel's read-only data (:class:`gearcli.core.bundles.Model`) from plain arrays,
+    with structural checks (shapes, sizes, ordering; no physics checks) and the run's derived
+    constants (:func:`gearcli.core.derive.derive`). Parameters as in :func:`simulate`."""
+    prm = _f64(params, 1, "params")
+    if prm.size != N_PARAMS:
+        raise ValueError(f"params has {prm.size} entries, the layout has {N_PARAMS}")
+    mode = int(prm[P.drive_mode])
+    if mode not in (DRIVE_SPEED, DRIVE_SHAFT, DRIVE_TORQUE):
+        raise ValueError(f"drive_mode must be 0, 1 or 2, got {prm[P.drive_mode]}")
+    tables = _f64(gap_tables, 3, "gap_tables")
+    if tables.shape[0] == N_GEARS:  # one family given: the others use its tables
+        tables = np.ascontiguousarray(np.concatenate([tables] * N_FAMILIES))
+    if tables.shape[:2] != (N_TABLES, len(TABLE_ROWS)) or tables.shape[2] < 2:
+        raise ValueError(f"gap_tables must have shape ({N_TABLES}, {len(TABLE_ROWS)}, n >= 2), "
+                         f"got {tables.shape}")
+    if not prm[P.x_hi] > prm[P.x_lo]:
+        raise ValueError("x_hi must exceed x_lo")
+    needed = math.ceil((prm[P.x_hi] - prm[P.x_lo]) / prm[P.p_b]) + 1
+    if int(prm[P.n_slots]) < needed:
+        raise ValueError(f"n_slots = {int(prm[P.n_slots])} < ceil((x_hi - x_lo)/p_b) + 1 = "
+                         f"{needed}: pairs would be missed")
+    z_max = max(int(prm[P.z1]), int(prm[P.z2]))
+    if tooth_offsets is None:
+        tooth_offsets = np.zeros((N_TABLES, z_max))
+    offsets = _f64(tooth_offsets, 2, "tooth_offsets")
+    if offsets.shape[0] == N_GEARS:
+        offsets = np.ascontiguousarray(np.concatenate([offsets] * N_FAMILIES))
+    if offsets.shape[0] != N_TABLES or offsets.shape[1] < z_max:
+        raise ValueError(f"tooth_offsets must have shape ({N_TABLES}, >= {z_max}), "
+                         f"got {offsets.shape}")
+    if (prm[P.mu_s] != 0.0 or prm[P.mu_d] != 0.0) and not 0.0 < prm[P.v_s] < prm[P.v_d]:
+        raise ValueError("friction needs 0 < v_s < v_d")
+    if mode != DRIVE_TORQUE and drive_angle_pp is None:
+        raise ValueError("speed and shaft drives need drive_angle_pp (antiderivative)")
+    if drive_angle_pp is None:  # torque mode: unused, any valid piecewise polynomial
+        drive_angle_pp = (np.zeros(0), np.zeros((1, 1)), np.zeros(1))
+    derived = np.zeros(N_DERIVED)
+    family = np.zeros((N_FAMILIES, N_FAMILY))
+    derive(prm, tables, offsets, derived, family)
+    return Model(prm=prm.copy(), derived=derived, family=family, tables=tables,
+                 tooth_offsets=offsets, drive_pp=_pp(drive_pp, "drive_pp"),
+                 angle_pp=_pp(drive_angle_pp, "drive_angle_pp"),
+                 load_pp=_pp(load_pp, "load_pp"))
+
+
+def kernel_out(model: Model, t_out) -> Out:
+    """Empty outputs of a run of ``model`` sampled at ``t_out`` [s] (non-decreasing, within
+    [t_start, t_end]): rows NaN, extrema at their start values, counters 0, a fresh start."""
+    prm = model.prm
+    times = _f64(t_out, 1, "t_out")
+    if times.size and (np.any(np.diff(times) < 0.0) or times[0] < prm[P.t_start]
+                       or times[-1] > prm[P.t_end]):
+        raise ValueError("t_out must be non-decreasing within [t_start, t_end]")
+    n_out, n_slots = times.size, int(prm[P.n_slots])
+    out = Out(t_out=times, series=np.full((n_out, N_COLUMNS), np.nan),
+              slot_series=np.full((N_FAMILIES, n_out, n_slots), np.nan),
+              extrema=np.empty(N_EXTREMA), slot_extrema=np.empty((N_SLOT_EXTREMA, n_slots)),
+              counters=np.zeros(N_COUNTERS, dtype=np.int64), resume=np.zeros(N_RESUME))
+    init_extrema(out.extrema, out.slot_extrema)
+    return out
+
+
 def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=None,
              tooth_offsets=None, progress=None) -> KernelResult:
     """Run the compiled kernel on plain arrays; structural checks only (no physics checks).
@@ -140,67 +213,24 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
     RuntimeError
         The compiled kernel comes from a stale cache (layout changed).
     """
-    prm = _f64(params, 1, "params")
-    if prm.size != N_PARAMS:
-        raise ValueError(f"params has {prm.size} entries, the layout has {N_PARAMS}")
-    mode = int(prm[P.drive_mode])
-    if mode not in (DRIVE_SPEED, DRIVE_SHAFT, DRIVE_TORQUE):
-        raise ValueError(f"drive_mode must be 0, 1 or 2, got {prm[P.drive_mode]}")
-    tables = _f64(gap_tables, 3, "gap_tables")
-    if tables.shape[0] == 2:
-        tables = np.ascontiguousarray(np.concatenate([tables, tables]))
-    if tables.shape[:2] != (N_TABLES, 2) or tables.shape[2] < 2:
-        raise ValueError(f"gap_tables must have shape (4, 2, n >= 2), got {tables.shape}")
-    if not prm[P.x_hi] > prm[P.x_lo]:
-        raise ValueError("x_hi must exceed x_lo")
-    needed = math.ceil((prm[P.x_hi] - prm[P.x_lo]) / prm[P.p_b]) + 1
-    if int(prm[P.n_slots]) < needed:
-        raise ValueError(f"n_slots = {int(prm[P.n_slots])} < ceil((x_hi - x_lo)/p_b) + 1 = "
-                         f"{needed}: pairs would be missed")
-    z_max = max(int(prm[P.z1]), int(prm[P.z2]))
-    if tooth_offsets is None:
-        tooth_offsets = np.zeros((N_TABLES, z_max))
-    offsets = _f64(tooth_offsets, 2, "tooth_offsets")
-    if offsets.shape[0] == 2:
-        offsets = np.ascontiguousarray(np.concatenate([offsets, offsets]))
-    if offsets.shape[0] != N_TABLES or offsets.shape[1] < z_max:
-        raise ValueError(f"tooth_offsets must have shape (4, >= {z_max}), got {offsets.shape}")
-    if (prm[P.mu_s] != 0.0 or prm[P.mu_d] != 0.0) and not 0.0 < prm[P.v_s] < prm[P.v_d]:
-        raise ValueError("friction needs 0 < v_s < v_d")
-    if mode != DRIVE_TORQUE and drive_angle_pp is None:
-        raise ValueError("speed and shaft drives need drive_angle_pp (antiderivative)")
-    times = _f64(t_out, 1, "t_out")
-    if times.size and (np.any(np.diff(times) < 0.0) or times[0] < prm[P.t_start]
-                       or times[-1] > prm[P.t_end]):
-        raise ValueError("t_out must be non-decreasing within [t_start, t_end]")
-    if drive_angle_pp is None:  # torque mode: unused, any valid piecewise polynomial
-        drive_angle_pp = (np.zeros(0), np.zeros((1, 1)), np.zeros(1))
-    angle = _pp(drive_angle_pp, "drive_angle_pp")
-    drive, load = _pp(drive_pp, "drive_pp"), _pp(load_pp, "load_pp")
-    n_out, n_slots = times.size, int(prm[P.n_slots])
-    series = np.full((n_out, N_COLUMNS), np.nan)
-    slot_f = np.full((n_out, n_slots), np.nan)
-    slot_fc = np.full((n_out, n_slots), np.nan)
-    extrema = np.empty(N_EXTREMA)
-    slot_ext = np.empty((N_SLOT_EXTREMA, n_slots))
-    init_extrema(extrema, slot_ext)
-    counters = np.zeros(N_COUNTERS, dtype=np.int64)
-    resume = np.zeros(RESUME_Y + N_STATE)
+    model = kernel_model(params, gap_tables, drive_pp=drive_pp, load_pp=load_pp,
+                         drive_angle_pp=drive_angle_pp, tooth_offsets=tooth_offsets)
+    out = kernel_out(model, t_out)
+    prm = model.prm
     t0, t_end = float(prm[P.t_start]), float(prm[P.t_end])
-    chunk = prm.copy()
     status, i_out = STATUS_OK, 0
     for end in chunk_ends(t0, t_end):
-        chunk[P.t_end] = end
-        status, i_out = run(chunk, tables, offsets, drive, angle, load, times, LAYOUT_KEY,
-                            resume, series, slot_f, slot_fc, extrema, slot_ext, counters, i_out)
+        prm[P.t_end] = end
+        status, i_out = run(model, out, LAYOUT_KEY, i_out)
         if status == STATUS_STALE_CACHE:
             raise RuntimeError(STATUS_MESSAGES[STATUS_STALE_CACHE])
         if status != STATUS_OK:
             break
-        chunk[P.t_start] = end
+        prm[P.t_start] = end
         if progress is not None:
             progress(float(end), t0, t_end)
-    finish_extrema(extrema, slot_ext)
+    finish_extrema(out.extrema, out.slot_extrema)
     return KernelResult(int(status), STATUS_MESSAGES[int(status)],
-                        dict(zip(COUNTER_NAMES, (int(c) for c in counters), strict=True)),
-                        series, slot_f, slot_fc, extrema, slot_ext, int(i_out))
+                        dict(zip(COUNTER_NAMES, (int(c) for c in out.counters), strict=True)),
+                        out.series, out.slot_series[DRIVE_FLANKS], out.slot_series[COAST_FLANKS],
+                        out.extrema, out.slot_extrema, int(i_out))

@@ -224,18 +224,37 @@ A = AuxIndex(*range(len(AUX_NAMES)))
 N_AUX = len(AUX_NAMES)
 
 # --------------------------------------------------------------------------------------------
-# Constants derived once per run from the inputs (rhs.derive); saves divisions in the RHS.
+# Flank families and gap tables. A flank family is the set of pair slots on one line of action
+# (drive flanks: sigma = +1, coast flanks: sigma = -1, rhs.py). Each family reads two gap
+# tables, one per gear, in the gap-table array tables[table, row, i] (model/gap.py fills it,
+# core/gaptable.py reads it); per-tooth flank offsets use the same rows.
+# --------------------------------------------------------------------------------------------
+FLANK_FAMILIES = ("drive", "coast")
+N_FAMILIES = len(FLANK_FAMILIES)
+DRIVE_FLANKS = FLANK_FAMILIES.index("drive")
+COAST_FLANKS = FLANK_FAMILIES.index("coast")
+GEARS = ("pinion", "gear")
+N_GEARS = len(GEARS)
+PINION = GEARS.index("pinion")
+GEAR = GEARS.index("gear")
+#: Gap tables (and tooth-offset rows): one per flank family and gear, index family * N_GEARS
+#: + gear: G1, G2 (drive), G1c, G2c (coast).
+N_TABLES = N_FAMILIES * N_GEARS
+TABLE_G1 = DRIVE_FLANKS * N_GEARS + PINION
+TABLE_G2 = DRIVE_FLANKS * N_GEARS + GEAR
+TABLE_G1_COAST = COAST_FLANKS * N_GEARS + PINION
+TABLE_G2_COAST = COAST_FLANKS * N_GEARS + GEAR
+#: Rows of one gap table: the gap [mm] and its slope dG/dx [-] at the grid points.
+TABLE_ROWS = ("gap_mm", "slope")
+TABLE_GAP = TABLE_ROWS.index("gap_mm")
+TABLE_SLOPE = TABLE_ROWS.index("slope")
+
+# --------------------------------------------------------------------------------------------
+# Constants derived once per run from the inputs (core/derive.py); saves divisions in the RHS.
 # --------------------------------------------------------------------------------------------
 DERIVED_NAMES = (
-    "overlap_drive",  # upper bound of -G1 - G2 - errors on the drive flanks [mm]
-    "overlap_coast",  # the same on the coast flanks [mm]
-    "end_gap_drive",  # lower bound of G1 + G2 with a position on a table end, drive [mm]
-    "end_gap_coast",  # the same, coast flanks [mm]
     "error_bound",  # largest overlap runout + tooth offsets add on either flank family [mm]
     "tooth_offsets_used",  # 1 when any per-tooth flank offset is non-zero, else 0
-    # [zero_lo + k, zero_hi + k]: roll positions [mm] where gap table k is exactly zero
-    "zero_lo", "zero_lo_1", "zero_lo_2", "zero_lo_3",
-    "zero_hi", "zero_hi_1", "zero_hi_2", "zero_hi_3",
     "inv_exponent_plus_1",  # 1/(e + 1) [-]
     "grid_step",  # gap-table spacing (x_hi - x_lo)/(n - 1) [mm]
     "inv_grid_step",  # [1/mm]
@@ -248,6 +267,36 @@ DERIVED_NAMES = (
 DerivedIndex = NamedTuple("DerivedIndex", [(n, int) for n in DERIVED_NAMES])
 D = DerivedIndex(*range(len(DERIVED_NAMES)))
 N_DERIVED = len(DERIVED_NAMES)
+
+#: Constants of one flank family (``family[f, F.xxx]``, f in DRIVE_FLANKS, COAST_FLANKS), from
+#: the parameters and the tables (core/derive.py). Per gear g (1 pinion, 2 gear): the table
+#: rows are layout.N_GEARS * f + g - 1.
+FAMILY_NAMES = (
+    "phase0",  # slot phase s1_0 / s1c_0 [mm]
+    "offset",  # 0 (drive) or the normal backlash j_n (coast) [mm]
+    "tooth_k1",  # tooth index offsets of slot 0 (integer-valued)
+    "tooth_k2",
+    "phase1",  # runout phases on this family's line of action [rad]
+    "phase2",
+    "overlap",  # upper bound of -G1 - G2 - errors [mm] (derive.overlap_bound)
+    "end_gap",  # lower bound of G1 + G2 with a position on a table end [mm]
+    # [zero_lo, zero_hi]: roll positions [mm] where the gear's gap table is exactly zero
+    "zero_lo1",
+    "zero_hi1",
+    "zero_lo2",
+    "zero_hi2",
+)
+FamilyIndex = NamedTuple("FamilyIndex", [(n, int) for n in FAMILY_NAMES])
+F = FamilyIndex(*range(len(FAMILY_NAMES)))
+N_FAMILY = len(FAMILY_NAMES)
+#: Where each family's phase0, offset, tooth indices and runout phases come from.
+FAMILY_PARAMS = {
+    "drive": (("phase0", "s1_0"), ("offset", None), ("tooth_k1", "tooth_k1"),
+              ("tooth_k2", "tooth_k2"), ("phase1", "phase1"), ("phase2", "phase2")),
+    "coast": (("phase0", "s1c_0"), ("offset", "backlash_n"), ("tooth_k1", "tooth_k1_coast"),
+              ("tooth_k2", "tooth_k2_coast"), ("phase1", "phase1_coast"),
+              ("phase2", "phase2_coast")),
+}
 
 # --------------------------------------------------------------------------------------------
 # Sampled output columns (series[i, C.xxx]); names carry units.
@@ -332,23 +381,56 @@ ExtremaIndex = NamedTuple("ExtremaIndex", [(n, int) for n in EXTREMA_NAMES])
 X = ExtremaIndex(*range(len(EXTREMA_NAMES)))
 N_EXTREMA = len(EXTREMA_NAMES)
 
-#: Per-slot extrema rows (slot_extrema[row, j]).
+#: Per-slot extrema rows of the drive slots (slot_extrema[SX.xxx, j]).
 SLOT_EXTREMA_NAMES = ("force_max_N", "force_max_t_s", "force_min_N")
+SlotExtremaIndex = NamedTuple("SlotExtremaIndex", [(n, int) for n in SLOT_EXTREMA_NAMES])
+SX = SlotExtremaIndex(*range(len(SLOT_EXTREMA_NAMES)))
 N_SLOT_EXTREMA = len(SLOT_EXTREMA_NAMES)
 
+#: Solver counters (counters[N.xxx], int64).
 COUNTER_NAMES = ("accepted_steps", "rejected_steps", "rhs_evaluations", "output_evaluations")
+CounterIndex = NamedTuple("CounterIndex", [(n, int) for n in COUNTER_NAMES])
+N = CounterIndex(*range(len(COUNTER_NAMES)))
 N_COUNTERS = len(COUNTER_NAMES)
+
+#: The ``resume`` vector that carries a run from one chunk to the next (timeloop.run):
+#: started flag (0 = fresh start from the parameters), prescribed-angle offset [rad], next
+#: step size [s], then the state (STATE_NAMES).
+RESUME_NAMES = ("started", "theta_offset", "h")
+ResumeIndex = NamedTuple("ResumeIndex", [(n, int) for n in RESUME_NAMES])
+R = ResumeIndex(*range(len(RESUME_NAMES)))
+RESUME_Y = len(RESUME_NAMES)
+N_RESUME = RESUME_Y + N_STATE
 
 
 def _layout_key() -> int:
     """Deterministic 62-bit checksum of every layout above (Python's hash() is salted)."""
     key = 1469598103934665603 % (1 << 62)
-    layouts = (PARAM_NAMES, STATE_NAMES, AUX_NAMES, DERIVED_NAMES, COLUMN_NAMES, EXTREMA_NAMES,
-               SLOT_EXTREMA_NAMES, COUNTER_NAMES, tuple(STATUS_MESSAGES))
+    layouts = (PARAM_NAMES, STATE_NAMES, AUX_NAMES, DERIVED_NAMES, FAMILY_NAMES, FLANK_FAMILIES,
+               GEARS, TABLE_ROWS, COLUMN_NAMES, EXTREMA_NAMES, SLOT_EXTREMA_NAMES,
+               COUNTER_NAMES, RESUME_NAMES, tuple(STATUS_MESSAGES))
     for text in repr(layouts):
         key = (key * 1099511628211 + ord(text)) % (1 << 62)
     return key
 
+
+
+def _check_layouts() -> None:
+    """Sizes come from one constant each; names are unique (run once at import, so a new table,
+    family or name cannot silently share another's slot)."""
+    for names in (PARAM_NAMES, STATE_NAMES, AUX_NAMES, DERIVED_NAMES, FAMILY_NAMES,
+                  COLUMN_NAMES, EXTREMA_NAMES, COUNTER_NAMES, RESUME_NAMES):
+        if len(set(names)) != len(names):
+            raise RuntimeError(f"duplicate name in a kernel layout: {names}")
+    if sorted(FAMILY_PARAMS) != sorted(FLANK_FAMILIES) or any(
+            not {n for n, _ in v} <= set(FAMILY_NAMES) for v in FAMILY_PARAMS.values()):
+        raise RuntimeError("FAMILY_PARAMS must name every flank family and only FAMILY_NAMES")
+    if any(src is not None and src not in PARAM_NAMES
+           for v in FAMILY_PARAMS.values() for _, src in v):
+        raise RuntimeError("FAMILY_PARAMS refers to an unknown parameter")
+
+
+_check_layouts()
 
 #: Checksum of the layouts, compiled into the kernel and compared at run time.
 LAYOUT_KEY = _layout_key()

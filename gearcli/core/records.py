@@ -6,7 +6,7 @@ energy sum 1/2 J omega^2 + 1/2 m v^2 of the bodies [t*mm^2/s^2 = N*mm = mJ].
 
 import math
 
-from gearcli.core.layout import N_STATE_BASE, A, C, P, S, X
+from gearcli.core.layout import DRIVE_FLANKS, N_FAMILIES, N_STATE_BASE, SX, A, C, P, S, X
 from gearcli.core.nrt import jit_noalloc
 
 
@@ -28,9 +28,10 @@ def kinetic_energy(prm, s1dot, y):
 
 
 @jit_noalloc
-def write_row(series, slot_out, slot_out_coast, i, t, y, aux, slot_force, slot_force_coast,
-              prm):
-    """Fill output row ``i`` at time ``t`` [s] from the state and one RHS evaluation there."""
+def write_row(out, i, t, y, aux, slot_force, prm):
+    """Fill output row ``i`` of ``out`` (bundles.Out) at time ``t`` [s] from the state and one
+    full RHS evaluation there (``aux``, ``slot_force`` of shape (N_FAMILIES, n_slots))."""
+    series = out.series
     r_b1 = prm[P.r_b1]
     r_b2 = prm[P.r_b2]
     s1 = aux[A.s1]
@@ -74,9 +75,10 @@ def write_row(series, slot_out, slot_out_coast, i, t, y, aux, slot_force, slot_f
     row[C.drive_shaft_torque_Nmm] = aux[A.drive_shaft_torque]
     row[C.omega_load_rad_s] = aux[A.load_speed]
     row[C.load_shaft_torque_Nmm] = aux[A.load_shaft_torque]
-    for j in range(slot_force.shape[0]):
-        slot_out[i, j] = slot_force[j]
-        slot_out_coast[i, j] = slot_force_coast[j]
+    slot_series = out.slot_series
+    for f in range(N_FAMILIES):
+        for j in range(slot_force.shape[1]):
+            slot_series[f, i, j] = slot_force[f, j]
 
 
 @jit_noalloc
@@ -93,14 +95,17 @@ def init_extrema(extrema, slot_extrema):
     extrema[X.bearing_force_max_1_N] = -math.inf
     extrema[X.bearing_force_max_2_N] = -math.inf
     for j in range(slot_extrema.shape[1]):
-        slot_extrema[0, j] = -math.inf
-        slot_extrema[1, j] = math.nan
-        slot_extrema[2, j] = math.inf
+        slot_extrema[SX.force_max_N, j] = -math.inf
+        slot_extrema[SX.force_max_t_s, j] = math.nan
+        slot_extrema[SX.force_min_N, j] = math.inf
 
 
 @jit_noalloc
-def update_extrema(extrema, slot_extrema, t, y, aux, slot_force, lateral):
-    """Fold the state and forces of one accepted step end (time ``t`` [s]) into the extrema."""
+def update_extrema(out, t, y, aux, slot_force, lateral):
+    """Fold the state and forces of one accepted step end (time ``t`` [s]) into the extrema of
+    ``out`` (bundles.Out); per-slot extrema of the drive slots (row 0 of ``slot_force``)."""
+    extrema = out.extrema
+    slot_extrema = out.slot_extrema
     if lateral:
         b1 = math.hypot(aux[A.bearing_fx1], aux[A.bearing_fy1])
         b2 = math.hypot(aux[A.bearing_fx2], aux[A.bearing_fy2])
@@ -130,13 +135,13 @@ def update_extrema(extrema, slot_extrema, t, y, aux, slot_force, lateral):
     if pen > extrema[X.penetration_max_mm]:
         extrema[X.penetration_max_mm] = pen
         extrema[X.penetration_max_t_s] = t
-    for j in range(slot_force.shape[0]):
-        fj = slot_force[j]
-        if fj > slot_extrema[0, j]:
-            slot_extrema[0, j] = fj
-            slot_extrema[1, j] = t
-        if fj < slot_extrema[2, j]:
-            slot_extrema[2, j] = fj
+    for j in range(slot_force.shape[1]):
+        fj = slot_force[DRIVE_FLANKS, j]
+        if fj > slot_extrema[SX.force_max_N, j]:
+            slot_extrema[SX.force_max_N, j] = fj
+            slot_extrema[SX.force_max_t_s, j] = t
+        if fj < slot_extrema[SX.force_min_N, j]:
+            slot_extrema[SX.force_min_N, j] = fj
 
 
 @jit_noalloc

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from gearcli.core.bundles import Work
 from gearcli.core.dopri5 import (
     MIN_FACTOR,
     N_STAGES,
@@ -42,9 +43,10 @@ from gearcli.core.layout import (
     DRIVE_TORQUE,
     LAYOUT_KEY,
     N_AUX,
-    N_DERIVED,
+    N_FAMILIES,
     N_STATE,
     N_STATE_BASE,
+    RESUME_Y,
     STATUS_MAX_STEPS,
     STATUS_NAN,
     STATUS_OK,
@@ -53,7 +55,9 @@ from gearcli.core.layout import (
     STATUS_STEP_TOO_SMALL,
     A,
     D,
+    N,
     P,
+    R,
     S,
     X,
 )
@@ -63,15 +67,8 @@ from gearcli.core.records import (
     update_extrema,
     write_row,
 )
-from gearcli.core.rhs import derive, rhs
+from gearcli.core.rhs import rhs
 from gearcli.core.timefunc import pp_eval
-
-#: Layout of the ``resume`` array of :func:`run`: started flag, prescribed-angle offset [rad],
-#: next step size [s], then the state (layout.STATE_NAMES).
-RESUME_STARTED = 0
-RESUME_THETA_OFFSET = 1
-RESUME_H = 2
-RESUME_Y = 3
 
 #: Landing point of a step cut short by a predicted discontinuity: this fraction of the step
 #: before the predicted crossing (absorbs the error of the quadratic prediction).
@@ -107,26 +104,27 @@ def _row_finite(K, s):
 
 
 @jit_noalloc
-def _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode, theta_offset,
-              drive_pp, angle_pp, load_pp):
-    """One RHS evaluation at ``t`` with the time functions evaluated there (off the hot path:
-    start, hops, output samples)."""
-    ang, val, rate, load = forcing(t, mode, theta_offset, drive_pp, angle_pp, load_pp)
-    rhs(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate, load, True)
+def _evaluate(t, y, dy, aux, slot_force, model, mode, theta_offset):
+    """One full RHS evaluation at ``t`` with the time functions evaluated there (off the hot
+    path: start, hops, output samples)."""
+    rhs(t, y, dy, aux, slot_force, model, forcing(t, mode, theta_offset, model), True)
 
 
 @jit_noalloc_inline
-def _attempt(t, h, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets,
-             mode, theta_offset, drive_pp, angle_pp, load_pp, atol, rtol, first, count):
-    """One Dormand-Prince step attempt from (t, y) with K[0] = f(t, y): stages 2..6, the
-    solution ``y_new`` at ``t_new = t + h``, the FSAL stage K[6] = f(t_new, y_new) (its ``aux``,
-    ``sf``, ``sfc`` stay in the work arrays) and the scaled error norm (dopri5.error_norm).
-    Only components ``first ..`` are integrated (speed mode: s1, v1 are prescribed and
-    the rhs ignores their entries of the state).
+def _attempt(t, h, t_new, model, work, mode, theta_offset, first, count, rtol):
+    """One Dormand-Prince step attempt from (t, y) with K[0] = f(t, y) (``work``, bundles.Work):
+    stages 2..6, the solution ``y_new`` at ``t_new = t + h``, the FSAL stage K[6] = f(t_new,
+    y_new) (its ``aux`` and slot forces stay in the work arrays) and the scaled error norm
+    (dopri5.error_norm). Only components ``first ..`` are integrated (speed mode: s1, v1 are
+    prescribed and the rhs ignores their entries of the state).
 
     The hot path of the kernel: forcing and rhs are inlined here, and this function into
     :func:`_march` (nrt.jit_noalloc_inline).
     """
+    y = work.y
+    K = work.K
+    ys = work.ys
+    y_new = work.y_new
     for s in range(1, N_STAGES + 1):
         if s < N_STAGES:
             stage_state(y, K, s, h, ys, first)
@@ -134,31 +132,33 @@ def _attempt(t, h, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, table
         else:
             solution(y, K, h, ys, first)
             ts = t_new
-        ang, val, rate, load = forcing(ts, mode, theta_offset, drive_pp, angle_pp, load_pp)
         # writes straight into the row of K (a view costs nothing without reference counts)
-        rhs(ts, ys, K[s], aux, sf, sfc, prm, derived, tables, tooth_offsets, ang, val, rate,
-            load, s == N_STAGES)
+        rhs(ts, ys, K[s], work.aux, work.slot_force, model,
+            forcing(ts, mode, theta_offset, model), s == N_STAGES)
     for i in range(y.shape[0]):
         y_new[i] = ys[i]
-    return error_norm(y, y_new, K, h, first, count, atol, rtol)
+    return error_norm(y, y_new, K, h, first, count, work.atol, rtol)
 
 
 @jit_noalloc
-def _starting_step(t, y, f0, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
-                   theta_offset, drive_pp, angle_pp, load_pp, atol, rtol, first, count, span):
+def _starting_step(t, model, work, mode, theta_offset, first, count, rtol, span):
     """Starting step size [s] (HNW II.4, "starting step size"; scipy select_initial_step).
 
     Uses the controlled components only and one extra RHS evaluation (written into ``dy``,
-    ``aux``, ``sf``, ``sfc``, which are scratch here).
+    ``aux`` and the slot forces of ``work``, which are scratch here); f(t, y) is ``K[0]``.
     """
+    y = work.y
+    f0 = work.K[0]
+    ys = work.ys
+    dy = work.dy
+    atol = work.atol
     d0 = scaled_rms(y, y, first, count, atol, rtol)
     d1 = scaled_rms(f0, y, first, count, atol, rtol)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
     h0 = min(h0, span)
     for i in range(y.shape[0]):
         ys[i] = y[i] + h0 * f0[i]
-    _evaluate(t + h0, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
-              theta_offset, drive_pp, angle_pp, load_pp)
+    _evaluate(t + h0, ys, dy, work.aux, work.slot_force, model, mode, theta_offset)
     for i in range(y.shape[0]):
         dy[i] -= f0[i]
     d2 = scaled_rms(dy, y, first, count, atol, rtol) / h0
@@ -171,41 +171,27 @@ def _starting_step(t, y, f0, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_o
 
 
 @jit
-def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_key, resume,
-        series, slot_out, slot_out_coast, extrema, slot_extrema, counters, i_first):
+def run(model, out, layout_key, i_first):
     """Integrate from ``prm[P.t_start]`` to ``prm[P.t_end]``; see the module docstring.
 
     One call integrates one chunk of a run: the caller (:mod:`gearcli.core.integrate`) owns the
-    output arrays and the ``resume`` state and calls again for the next chunk, so the results
-    do not depend on how often a progress display looks in.
+    outputs and the ``resume`` state and calls again for the next chunk, so the results do not
+    depend on how often a progress display looks in.
 
     Parameters
     ----------
-    prm : ndarray, shape (N_PARAMS,)
-        Parameter vector (layout.P), internal units; ``t_start``, ``t_end`` of this chunk.
-    tables : ndarray, shape (4, 2, n)
-        Gap tables G1, G2, G1c, G2c (value [mm], slope [-]) on the uniform grid x_lo..x_hi.
-    tooth_offsets : ndarray, shape (4, >= max(z1, z2))
-        Per-tooth flank offsets Ft1, Ft2, Ft1c, Ft2c [mm].
-    drive_pp, angle_pp, load_pp : tuple of (breaks, coefs, origins)
-        Piecewise polynomials (timefunc.py): drive (omega [rad/s] or torque [N*mm]), its
-        antiderivative [rad] (speed/shaft modes), load torque [N*mm].
-    t_out : ndarray, shape (n_out,)
-        Non-decreasing output times of the whole run [s]; rows ``i_first ..`` with
-        ``t_out <= t_end`` are written by this chunk.
+    model : gearcli.core.bundles.Model
+        Read-only data of the run (internal units); ``prm`` holds ``t_start``, ``t_end`` of
+        this chunk; ``derived`` and ``family`` from :func:`gearcli.core.derive.derive`.
+    out : gearcli.core.bundles.Out
+        Output times (non-decreasing, whole run: rows ``i_first ..`` with ``t_out <= t_end``
+        are written by this chunk), output rows, running extrema (start values from
+        records.init_extrema), counters (incremented) and ``resume`` (layout.R, in/out:
+        ``started == 0`` is a fresh start from the initial values in ``prm`` and sets
+        ``energy_initial_mJ``; otherwise the state, the prescribed-angle offset [rad] and the
+        next step size [s] where the last chunk ended; written on return for the next chunk).
     layout_key : int
         layout.LAYOUT_KEY as seen by the caller (stale-cache guard).
-    resume : ndarray, shape (RESUME_Y + N_STATE,)
-        In/out: ``[started, theta_offset, h, y...]``. ``started == 0``: a fresh start from the
-        initial values in ``prm`` (and ``energy_initial_mJ`` is set); otherwise the state,
-        the prescribed-angle offset [rad] and the next step size [s] where the last chunk
-        ended. Written on return for the next chunk.
-    series, slot_out, slot_out_coast : ndarray, shapes (n_out, N_COLUMNS), (n_out, N)
-        Written: output rows (columns layout.COLUMN_NAMES; force of every drive / coast slot).
-    extrema, slot_extrema : ndarray, shapes (N_EXTREMA,), (N_SLOT_EXTREMA, N)
-        Updated: running extrema (start values from records.init_extrema).
-    counters : ndarray of int64, shape (N_COUNTERS,)
-        Incremented.
     i_first : int
         First output row of this chunk.
 
@@ -215,21 +201,21 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     i_out : int
         Next output row (rows ``i_first .. i_out - 1`` were written).
     """
-    n_slots = int(prm[P.n_slots])
     if layout_key != LAYOUT_KEY:
         return STATUS_STALE_CACHE, i_first
-
+    prm = model.prm
+    resume = out.resume
+    n_slots = int(prm[P.n_slots])
     mode = int(prm[P.drive_mode])
     t = prm[P.t_start]
-    fresh = resume[RESUME_STARTED] == 0.0
+    fresh = resume[R.started] == 0.0
     if fresh:
         theta_offset = prm[P.theta1_init]
         if mode != DRIVE_TORQUE:
+            angle_pp = model.angle_pp
             theta_offset -= pp_eval(angle_pp[0], angle_pp[1], angle_pp[2], t)
     else:
-        theta_offset = resume[RESUME_THETA_OFFSET]
-    derived = np.empty(N_DERIVED)
-    derive(prm, tables, tooth_offsets, derived)
+        theta_offset = resume[R.theta_offset]
 
     # optional degrees of freedom (layout.STATE_NAMES): all of them or none are integrated
     extra = prm[P.lateral] != 0.0 or prm[P.motor_J] > 0.0 or prm[P.load_J] > 0.0
@@ -251,15 +237,19 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
     # Allocated one by one (or K packed with 72-byte rows) the same code ran 1.3-1.5 times
     # slower depending on the build (measured on the seed case; cache-line/aliasing effects).
     vec = 16 * ((max(N_STATE, N_AUX, n_slots) + 15) // 16)
-    work = np.zeros((7 + N_STAGES + 1) * vec)
-    y = work[0:n_state]
-    dy = work[vec:vec + n_state]
-    ys = work[2 * vec:2 * vec + n_state]
-    y_new = work[3 * vec:3 * vec + n_state]
-    aux = work[4 * vec:4 * vec + N_AUX]
-    sf = work[5 * vec:5 * vec + n_slots]
-    sfc = work[6 * vec:6 * vec + n_slots]
-    K = work[7 * vec:].reshape((N_STAGES + 1, vec))[:, :n_state]  # K[0] = f(t, y) (FSAL)
+    n_vectors = 5 + N_FAMILIES  # y, dy, ys, y_new, aux, one slot-force row per flank family
+    work = np.zeros((n_vectors + N_STAGES + 1) * vec)
+    w = Work(
+        y=work[0:n_state],
+        dy=work[vec:vec + n_state],
+        ys=work[2 * vec:2 * vec + n_state],
+        y_new=work[3 * vec:3 * vec + n_state],
+        aux=work[4 * vec:4 * vec + N_AUX],
+        slot_force=work[5 * vec:n_vectors * vec].reshape((N_FAMILIES, vec))[:, :n_slots],
+        K=work[n_vectors * vec:].reshape((N_STAGES + 1, vec))[:, :n_state],  # K[0] = f(t, y)
+        atol=atol,
+    )
+    y = w.y
     if not fresh:
         for i in range(n_state):
             y[i] = resume[RESUME_Y + i]
@@ -278,24 +268,40 @@ def run(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, layout_k
 
     # f(t, y) here, not in _march: numba then compiles _evaluate in this simpler context
     # (6 s instead of 20 s of the first run's compilation, measured)
-    _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
-              theta_offset, drive_pp, angle_pp, load_pp)
-    return _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resume,
-                  series, slot_out, slot_out_coast, extrema, slot_extrema, counters, i_first,
-                  derived, atol, y, dy, ys, y_new, aux, sf, sfc, K, theta_offset, fresh,
-                  n_state)
+    _evaluate(t, y, w.dy, w.aux, w.slot_force, model, mode, theta_offset)
+    return _march(model, w, out, i_first, theta_offset, fresh, n_state)
 
 
 @jit_noalloc
-def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resume, series,
-           slot_out, slot_out_coast, extrema, slot_extrema, counters, i_first, derived, atol,
-           y, dy, ys, y_new, aux, sf, sfc, K, theta_offset, fresh, n_state):
-    """The time loop of :func:`run`, from its work arrays with ``dy = f(t_start, y)``.
+def _sample(out, i_out, ts, ys, w, model, mode, theta_offset, ext_start, lateral):
+    """Output row ``i_out`` at ``ts`` [s] from the state ``ys`` there (and its extrema)."""
+    _evaluate(ts, ys, w.dy, w.aux, w.slot_force, model, mode, theta_offset)
+    out.counters[N.output_evaluations] += 1
+    write_row(out, i_out, ts, ys, w.aux, w.slot_force, model.prm)
+    if ts >= ext_start:  # samples are points of the solution too
+        update_extrema(out, ts, ys, w.aux, w.slot_force, lateral)
+
+
+@jit_noalloc
+def _march(model, w, out, i_first, theta_offset, fresh, n_state):
+    """The time loop of :func:`run`, from its work arrays ``w`` (bundles.Work) with
+    ``w.dy = f(t_start, y)``.
 
     Allocation-free, so that the step attempt can be inlined here: in :func:`run` (which
     allocates, hence counts references) the inlined views cost 4x the run time, and as a call
     per step the attempt's ~170 words of array arguments cost ~14 % of it (seed case, A/B).
     """
+    prm = model.prm
+    t_out = out.t_out
+    counters = out.counters
+    extrema = out.extrema
+    resume = out.resume
+    y = w.y
+    dy = w.dy
+    ys = w.ys
+    y_new = w.y_new
+    aux = w.aux
+    K = w.K
     n_out = t_out.shape[0]
     mode = int(prm[P.drive_mode])
     speed_mode = mode == DRIVE_SPEED
@@ -307,12 +313,12 @@ def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resum
     ext_start = prm[P.extrema_t_start]
     pen_limit = prm[P.penetration_limit]
     # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
-    err_bound = derived[D.error_bound] + 10.0 * prm[P.atol_delta]
+    err_bound = model.derived[D.error_bound] + 10.0 * prm[P.atol_delta]
     lateral = prm[P.lateral] != 0.0
     first = S.delta if speed_mode else S.s1  # controlled components: first .. S.deltadot
     count = S.deltadot + 1 - first
     store_row(K, 0, dy)
-    counters[2] += 1
+    counters[N.rhs_evaluations] += 1
     if speed_mode:  # prescribed: keep the (uncontrolled) integrated copies exact
         y[S.s1] = aux[A.s1]
         y[S.v1] = aux[A.v1]
@@ -323,19 +329,17 @@ def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resum
     if not (_all_finite(y) and _all_finite(dy) and _all_finite(aux)):
         return STATUS_NAN, i_first
     if t >= ext_start:
-        update_extrema(extrema, slot_extrema, t, y, aux, sf, lateral)
+        update_extrema(out, t, y, aux, w.slot_force, lateral)
     i_out = i_first
     while i_out < n_out and t_out[i_out] <= t:
-        write_row(series, slot_out, slot_out_coast, i_out, t_out[i_out], y, aux, sf, sfc, prm)
+        write_row(out, i_out, t_out[i_out], y, aux, w.slot_force, prm)
         i_out += 1
 
     span = t_end - t
-    h = prm[P.first_step] if fresh else resume[RESUME_H]
+    h = prm[P.first_step] if fresh else resume[R.h]
     if h <= 0.0 and span > 0.0:
-        h = _starting_step(t, y, K[0], ys, dy, aux, sf, sfc, prm, derived, tables,
-                           tooth_offsets, mode, theta_offset, drive_pp, angle_pp, load_pp, atol,
-                           rtol, first, count, span)
-        counters[2] += 1
+        h = _starting_step(t, model, w, mode, theta_offset, first, count, rtol, span)
+        counters[N.rhs_evaluations] += 1
 
     status = STATUS_OK
     rejected_before = False
@@ -346,7 +350,7 @@ def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resum
     hop_limit = 0.0  # a crossing closer than this [s] is hopped over
     h_cut = math.inf  # size of the last step cut short by a crossing [s]
     while t < t_end:
-        if counters[0] + counters[1] >= max_steps:
+        if counters[N.accepted_steps] + counters[N.rejected_steps] >= max_steps:
             status = STATUS_MAX_STEPS
             break
         h = min(h, max_step, t_end - t)
@@ -361,7 +365,7 @@ def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resum
                 margin += abs(y[S.x1] - y[S.x2]) + abs(y[S.y1] - y[S.y2])
             window = max(EVENT_LOOKAHEAD * h, hop_limit)
             tau = next_crossing(y[S.s1], y[S.v1], K[0, S.v1], y[S.delta], y[S.deltadot],
-                                K[0, S.deltadot], prm, derived, tables, window, margin)
+                                K[0, S.deltadot], model, window, margin)
             t_event = t + tau
             t_recheck = t + min(tau, window)
             if tau <= max(hop_limit, 100.0 * h_min):
@@ -372,26 +376,19 @@ def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resum
                     ts = t_out[i_out]
                     for i in range(n_state):
                         ys[i] = y[i] + (ts - t) * K[0, i]
-                    _evaluate(ts, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
-                              theta_offset, drive_pp, angle_pp, load_pp)
-                    counters[3] += 1
-                    write_row(series, slot_out, slot_out_coast, i_out, ts, ys, aux, sf, sfc,
-                              prm)
-                    if ts >= ext_start:
-                        update_extrema(extrema, slot_extrema, ts, ys, aux, sf, lateral)
+                    _sample(out, i_out, ts, ys, w, model, mode, theta_offset, ext_start, lateral)
                     i_out += 1
                 for i in range(n_state):
                     y[i] += hop * K[0, i]
                 t = t_hop
-                _evaluate(t, y, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
-                          theta_offset, drive_pp, angle_pp, load_pp)
-                counters[2] += 1
+                _evaluate(t, y, dy, aux, w.slot_force, model, mode, theta_offset)
+                counters[N.rhs_evaluations] += 1
                 store_row(K, 0, dy)
                 if speed_mode:
                     y[S.s1] = aux[A.s1]
                     y[S.v1] = aux[A.v1]
                 if t >= ext_start:
-                    update_extrema(extrema, slot_extrema, t, y, aux, sf, lateral)
+                    update_extrema(out, t, y, aux, w.slot_force, lateral)
                 # the jump starts a new transient: restart below the last step size
                 h = EVENT_RESTART * min(h, h_cut)
                 hop_limit = 0.0
@@ -407,40 +404,33 @@ def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resum
         if t_new > t_end - h_min:
             t_new = t_end
             h_step = t_end - t
-        err = _attempt(t, h_step, t_new, y, K, ys, y_new, dy, aux, sf, sfc, prm, derived, tables,
-                       tooth_offsets, mode, theta_offset, drive_pp, angle_pp, load_pp,
-                       atol, rtol, first, count)
-        counters[2] += N_STAGES
+        err = _attempt(t, h_step, t_new, model, w, mode, theta_offset, first, count, rtol)
+        counters[N.rhs_evaluations] += N_STAGES
         if not (math.isfinite(err) and _all_finite(y_new) and _row_finite(K, N_STAGES)):
-            counters[1] += 1
+            counters[N.rejected_steps] += 1
             h = h_step * MIN_FACTOR
             rejected_before = True
             nonfinite_last = True
             continue
         nonfinite_last = False
         if err >= 1.0:
-            counters[1] += 1
+            counters[N.rejected_steps] += 1
             h = h_step * step_factor(err, rejected_before)
             rejected_before = True
             continue
 
         # Accepted. Extrema from the FSAL evaluation at (t_new, y_new), before sampling.
-        counters[0] += 1
+        counters[N.accepted_steps] += 1
         if speed_mode:
             y_new[S.s1] = aux[A.s1]
             y_new[S.v1] = aux[A.v1]
         if t_new >= ext_start:
-            update_extrema(extrema, slot_extrema, t_new, y_new, aux, sf, lateral)
+            update_extrema(out, t_new, y_new, aux, w.slot_force, lateral)
         runaway = aux[A.max_penetration] > pen_limit
         while i_out < n_out and t_out[i_out] <= t_new:
             ts = t_out[i_out]
             dense(y, K, h_step, (ts - t) / h_step, ys)
-            _evaluate(ts, ys, dy, aux, sf, sfc, prm, derived, tables, tooth_offsets, mode,
-                      theta_offset, drive_pp, angle_pp, load_pp)
-            counters[3] += 1
-            write_row(series, slot_out, slot_out_coast, i_out, ts, ys, aux, sf, sfc, prm)
-            if ts >= ext_start:  # samples are points of the solution too
-                update_extrema(extrema, slot_extrema, ts, ys, aux, sf, lateral)
+            _sample(out, i_out, ts, ys, w, model, mode, theta_offset, ext_start, lateral)
             i_out += 1
         factor = step_factor(err, rejected_before)
         rejected_before = False
@@ -459,9 +449,9 @@ def _march(prm, tables, tooth_offsets, drive_pp, angle_pp, load_pp, t_out, resum
             h = h_step * factor
 
     extrema[X.t_reached_s] = t
-    resume[RESUME_STARTED] = 1.0
-    resume[RESUME_THETA_OFFSET] = theta_offset
-    resume[RESUME_H] = h
+    resume[R.started] = 1.0
+    resume[R.theta_offset] = theta_offset
+    resume[R.h] = h
     for i in range(n_state):
         resume[RESUME_Y + i] = y[i]
     return status, i_out

@@ -40,11 +40,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.layout import (
+    N_TABLES,
+    TABLE_G1,
+    TABLE_G1_COAST,
+    TABLE_G2,
+    TABLE_G2_COAST,
+    TABLE_GAP,
+    TABLE_ROWS,
+    TABLE_SLOPE,
+)
 from gearcli.model import profile
 from gearcli.model.geometry import GearGeometry, PairGeometry
-
-#: Table rows, as core.gaptable expects them.
-TABLE_G1, TABLE_G2, TABLE_G1_COAST, TABLE_G2_COAST = 0, 1, 2, 3
 
 _FD_STEP_MM = 1e-5  # central-difference step for the corner-gap slope (error ~ h² G''' < 1e-9)
 
@@ -72,8 +79,9 @@ class Modifications:
 class GapTables:
     """Tabulated gaps on one uniform grid ``x_lo … x_hi`` [mm] (roll position from A).
 
-    ``tables[k, 0, i]`` is the gap [mm] and ``tables[k, 1, i]`` its slope [-] of table k
-    (TABLE_G1, TABLE_G2, TABLE_G1_COAST, TABLE_G2_COAST) at ``x[i]``.
+    ``tables[k, TABLE_GAP, i]`` is the gap [mm] and ``tables[k, TABLE_SLOPE, i]`` its slope [-]
+    of table k (TABLE_G1, TABLE_G2, TABLE_G1_COAST, TABLE_G2_COAST) at ``x[i]``: the layout of
+    :mod:`gearcli.core.layout`.
     """
 
     x_mm: np.ndarray
@@ -258,9 +266,9 @@ def gap_tables(
             v, s = _corner_with_slope(recess_gap, geo, x[after])
             g1[after] += np.maximum(v, 0.0)
             s1[after] += np.where(v > 0.0, s, 0.0)
-    tables = np.empty((4, 2, n))
-    tables[TABLE_G1] = (g1, s1)
-    tables[TABLE_G2] = (g2, s2)
+    tables = np.empty((N_TABLES, len(TABLE_ROWS), n))
+    tables[TABLE_G1, TABLE_GAP], tables[TABLE_G1, TABLE_SLOPE] = g1, s1
+    tables[TABLE_G2, TABLE_GAP], tables[TABLE_G2, TABLE_SLOPE] = g2, s2
     tables[TABLE_G1_COAST] = tables[TABLE_G1]  # symmetric teeth: coast flanks are mirror images
     tables[TABLE_G2_COAST] = tables[TABLE_G2]
     return GapTables(x, tables, engagement)
@@ -276,3 +284,14 @@ def coast_phase_mm(geo: PairGeometry) -> float:
     """
     psi1 = float(profile.flank_half_angle(geo.pinion, geo.pinion.r_w_mm))
     return (2.0 * geo.pinion.r_b_mm * psi1) % geo.p_b_mm
+
+
+def slot_layout(geo: PairGeometry, tables: GapTables) -> dict[str, float]:
+    """Pair slots of the kernel (core/rhs.py) for the grid of ``tables``: their number
+    ``n_slots`` = ceil((x_hi − x_lo)/p_b) + 1 (every pair inside the grid has a slot) and the
+    slot phases [mm] ``s1_0``, ``s1c_0`` that put a drive pair (and, ``coast_phase_mm``
+    later, a coast pair) at the pitch point C when the pinion roll s1 = r_b1 θ1 = 0."""
+    x_c = geo.C_mm - geo.A_mm  # pitch point, from A
+    return {"n_slots": math.ceil((tables.x_hi - tables.x_lo) / geo.p_b_mm) + 1,
+            "s1_0": (-(x_c - tables.x_lo)) % geo.p_b_mm,
+            "s1c_0": (-coast_phase_mm(geo) - (x_c - tables.x_lo)) % geo.p_b_mm}

@@ -21,6 +21,13 @@ from dataclasses import dataclass
 from gearcli.core.stepfunc import step as adams_step  # Adams STEP (one implementation)
 
 
+def static_normal_force_N(load_torque_Nmm: float, r_b2_mm: float) -> float:
+    """Static normal tooth force F_n,static = |T_load| / r_b2 [N] of a load torque [N*mm] on
+    the gear with base radius r_b2 [mm] (model.md §7; the force acts along the line of action,
+    tangent to the base circle)."""
+    return abs(load_torque_Nmm) / r_b2_mm
+
+
 @dataclass(frozen=True)
 class MeshMode:
     """Linearised mesh at the operating load (internal units)."""

@@ -16,12 +16,13 @@ import numpy as np
 from gearcli.case.schema import Case, PitchDeviation
 from gearcli.case.schema import Relief as CaseRelief
 from gearcli.core import layout
-from gearcli.model.gap import GapTables, Modifications, Relief, coast_phase_mm, gap_tables
+from gearcli.model.errors import cumulative_pitch_positions, runout_phases, tooth_offsets
+from gearcli.model.gap import GapTables, Modifications, Relief, gap_tables, slot_layout
 from gearcli.model.geometry import mesh_frequencies
-from gearcli.model.mesh import MeshMode, mesh_mode
-from gearcli.model.stiffness import derived_pair_stiffness
+from gearcli.model.mesh import MeshMode
 from gearcli.model.structure import Structure
 from gearcli.pipeline.geometry import GeometryResult
+from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness
 from gearcli.pipeline.structure import build_structure
 
 #: Output sampling: the analysed band reaches 10 mesh harmonics (issue 3); 2.56 samples per
@@ -62,29 +63,12 @@ def modifications(case: Case) -> Modifications:
     )
 
 
-def iso1328_single_pitch_tolerance_um(grade: int, d_mm: float, m_mm: float) -> float:
-    """Single pitch tolerance f_pT [µm], ISO 1328-1:2013 eq. (4):
-    f_pT = (0.001 d + 0.4 m_n + 5) · √2^(A − 5), A the flank tolerance class."""
-    return (0.001 * d_mm + 0.4 * m_mm + 5.0) * math.sqrt(2.0) ** (grade - 5)
-
-
-def cumulative_pitch_positions(dev: PitchDeviation | None, z: int, d_mm: float, m_mm: float):
-    """Flank positions [mm] of the z teeth from single pitch deviations (zero mean).
-
-    Values given: the single pitch deviations f_pt,i, mean removed (they close around the gear,
-    ISO 1328-1), then summed. ISO grade: f_pt,i drawn from a normal law with σ = f_pT/3 (so
-    nearly all lie within the tolerance) with the case's seed, then the same.
-    """
+def _pitch_positions(dev: PitchDeviation | None, gear, m_mm: float) -> np.ndarray:
+    """Flank positions [mm] of a gear's teeth from the case's pitch deviations (model.errors)."""
     if dev is None:
-        return np.zeros(z)
-    if dev.values is not None:
-        fpt = np.asarray(dev.values, float)
-    else:
-        tol_mm = iso1328_single_pitch_tolerance_um(dev.iso1328_grade, d_mm, m_mm) * 1e-3
-        fpt = np.random.default_rng(dev.seed).normal(0.0, tol_mm / 3.0, z)
-    fpt = fpt - fpt.mean()
-    pos = np.cumsum(fpt)
-    return pos - pos.mean()
+        return np.zeros(gear.teeth)
+    return cumulative_pitch_positions(dev.values, dev.iso1328_grade, dev.seed, gear.teeth,
+                                      gear.d_mm, m_mm)
 
 
 def output_times(case: Case, f_z: float | None) -> tuple[np.ndarray, float]:
@@ -103,23 +87,6 @@ def output_times(case: Case, f_z: float | None) -> tuple[np.ndarray, float]:
         n = max(int(math.ceil(t_end * rate)), 10)
     t = np.linspace(0.0, t_end, n + 1)
     return t, n / t_end
-
-
-def static_force_N(case: Case, geo: GeometryResult) -> float:
-    """F_n,static = T_load / r_b2 at the end of the load ramps (model.md §7)."""
-    final = case.load.torque.pp.final_value()
-    torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
-    return abs(torque) / geo.geometry.gear.r_b_mm
-
-
-def contact_stiffness(case: Case, geo: GeometryResult) -> float:
-    """k of the IMPACT law [N/mm^e]: given, or 'derived' = ISO 6336-1 c' b (e = 1) at the
-    static load (model.md §4)."""
-    if case.contact.stiffness != "derived":
-        return float(case.contact.stiffness)
-    torque = static_force_N(case, geo) * geo.geometry.gear.r_b_mm
-    iso = derived_pair_stiffness(geo.geometry, case.gears.rack.dedendum, torque)
-    return iso.pair_stiffness_N_mm
 
 
 @functools.lru_cache(maxsize=16)
@@ -149,38 +116,23 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     rb1, rb2 = g.pinion.r_b_mm, g.gear.r_b_mm
     J1, J2 = geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2
     ct, fr, dr = case.contact, case.friction, case.drive
-    k = contact_stiffness(case, geo)
     mode = {"speed": layout.DRIVE_SPEED, "shaft": layout.DRIVE_SHAFT,
             "torque": layout.DRIVE_TORQUE}[dr.type]
-    mesh = mesh_mode(static_force_N(case, geo), g.eps_alpha, k, ct.exponent, ct.max_damping,
-                     ct.penetration_depth, rb1, rb2, J1, J2, pinion_free=mode != layout.DRIVE_SPEED)
+    mesh = case_mesh(case, geo)
     # Tip gaps are tabulated up to well beyond the deflections the run can reach.
     cap = max(0.05 * g.module_mm, 20.0 * mesh.static_deflection_mm)
     tables = _gap_tables(g, modifications(case), ct.engagement, cap)
-    x_c = g.C_mm - g.A_mm  # pitch point, from A
-    n_slots = math.ceil((tables.x_hi - tables.x_lo) / g.p_b_mm) + 1
-    s1_0 = (-(x_c - tables.x_lo)) % g.p_b_mm  # slot at x_C when s1 = 0 (θ1 = 0: pair at C)
-    s1c_0 = (-coast_phase_mm(g) - (x_c - tables.x_lo)) % g.p_b_mm
 
     speed = geo.pinion_speed_rad_s
     f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None
     t_out, rate = output_times(case, f_z)
 
-    alpha_w = g.alpha_w_rad
     ro = case.errors.runout
     ecc1, phi1 = (ro.pinion.eccentricity, ro.pinion.phase) if ro.pinion else (0.0, 0.0)
     ecc2, phi2 = (ro.gear.eccentricity, ro.gear.phase) if ro.gear else (0.0, 0.0)
     pd = case.errors.pitch_deviation
-    pos1 = cumulative_pitch_positions(pd.pinion, g.pinion.teeth, g.pinion.d_mm, g.module_mm)
-    pos2 = cumulative_pitch_positions(pd.gear, g.gear.teeth, g.gear.d_mm, g.module_mm)
-    z_max = max(g.pinion.teeth, g.gear.teeth)
-    offsets = np.zeros((4, z_max))
-    # A tooth displaced forward (in its rotation) by F: the pinion's drive flank closes on the
-    # gear (-F), the gear's drive flank (its trailing side) opens (+F); coast flanks opposite.
-    offsets[0, : g.pinion.teeth] = -pos1
-    offsets[1, : g.gear.teeth] = pos2
-    offsets[2, : g.pinion.teeth] = pos1
-    offsets[3, : g.gear.teeth] = -pos2
+    offsets = tooth_offsets(_pitch_positions(pd.pinion, g.pinion, g.module_mm),
+                            _pitch_positions(pd.gear, g.gear, g.module_mm))
 
     bearing = case.bearings
     params = layout.make_params(
@@ -191,13 +143,10 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
         r_b1=rb1, r_b2=rb2, J1=J1, J2=J2,
         z1=g.pinion.teeth, z2=g.gear.teeth,
         p_b=g.p_b_mm, T1A=g.A_mm, T1T2=g.T1T2_mm,
-        x_lo=tables.x_lo, x_hi=tables.x_hi, n_slots=n_slots,
-        s1_0=s1_0, s1c_0=s1c_0, backlash_n=g.j_n_mm,
-        # Runout e sin(ψ), ψ the eccentricity's angle from the line of centres in the gear's
-        # sense of rotation at θ = 0, projected on each line of action (signs: rhs.py).
-        ecc1=ecc1, phase1=phi1 + alpha_w + math.pi, phase1_coast=phi1 - alpha_w,
-        ecc2=ecc2, phase2=math.pi - phi2 - alpha_w, phase2_coast=alpha_w - phi2,
-        k_contact=k, exponent=ct.exponent, c_max=ct.max_damping, d_max=ct.penetration_depth,
+        x_lo=tables.x_lo, x_hi=tables.x_hi, **slot_layout(g, tables), backlash_n=g.j_n_mm,
+        ecc1=ecc1, ecc2=ecc2, **runout_phases(phi1, phi2, g.alpha_w_rad),
+        k_contact=contact_stiffness(case, geo), exponent=ct.exponent, c_max=ct.max_damping,
+        d_max=ct.penetration_depth,
         mu_s=fr.static_coefficient if fr.enabled else 0.0,
         mu_d=fr.dynamic_coefficient if fr.enabled else 0.0,
         v_s=fr.stiction_velocity, v_d=fr.transition_velocity,

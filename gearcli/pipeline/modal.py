@@ -2,7 +2,7 @@
 
 The model is the one the kernel integrates: bodies, shafts and supports from
 gearcli.pipeline.structure.build_structure (the same Structure core/rhs.py gets), the mesh
-linearised at the static load (gearcli.model.mesh.mesh_mode, as kernel_input builds it),
+linearised at the static load (gearcli.pipeline.mesh_input.case_mesh, the one simulate uses),
 friction off; torsional or lateral-torsional (case key ``model``). See gearcli.model.modal.
 :func:`case_modes` and :func:`modes_summary` give `simulate` the same modes for its summary.
 """
@@ -16,7 +16,7 @@ from pathlib import Path
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.case.schema import Case
 from gearcli.errors import CaseError
-from gearcli.model.mesh import MeshMode, mesh_mode
+from gearcli.model.mesh import MeshMode
 from gearcli.model.modal import (
     NO_PEAK_DAMPING_RATIO,
     Crossing,
@@ -31,7 +31,7 @@ from gearcli.model.modal import (
     margins,
 )
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
-from gearcli.pipeline.kernel_input import contact_stiffness, static_force_N
+from gearcli.pipeline.mesh_input import case_mesh
 from gearcli.pipeline.structure import build_structure, refuse_unsupported
 
 DEG = 180.0 / math.pi
@@ -69,15 +69,6 @@ class ModalAnalysis:
     @property
     def passed(self) -> bool:
         return all(c.passed for c in self.checks)
-
-
-def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
-    """The mesh linearised at the static load, as kernel_input builds it (model.md §4)."""
-    g, ct = geo.geometry, case.contact
-    return mesh_mode(static_force_N(case, geo), g.eps_alpha, contact_stiffness(case, geo),
-                     ct.exponent, ct.max_damping, ct.penetration_depth, g.pinion.r_b_mm,
-                     g.gear.r_b_mm, geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,
-                     pinion_free=case.drive.type != "speed")
 
 
 def _final_drive_torque_Nmm(case: Case) -> float:

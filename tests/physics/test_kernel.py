@@ -29,9 +29,9 @@ from gearcli.core.dopri5 import C as RK_C
 from gearcli.core.dopri5 import E as RK_E
 from gearcli.core.friction import adams_mu
 from gearcli.core.gaptable import hermite
-from gearcli.core.integrate import simulate
+from gearcli.core.integrate import kernel_model, kernel_out, simulate
 from gearcli.core.stepfunc import step
-from gearcli.core.timeloop import RESUME_Y, run
+from gearcli.core.timeloop import run
 from gearcli.model.timefunction import PiecewisePolynomial as PP
 
 # --- seed-like pair (model.md §9) -----------------------------------------------------------
@@ -500,13 +500,11 @@ def test_status_step_too_small():
 
 def test_stale_compiled_layout_is_refused():
     (prm, tables), kw = _seed_inputs()
-    n_out, n = kw["t_out"].size, int(prm[layout.P.n_slots])
-    out = run(prm, tables, np.zeros((4, Z2)), kw["drive_pp"], kw["drive_angle_pp"],
-              kw["load_pp"], kw["t_out"], layout.LAYOUT_KEY + 1,
-              np.zeros(RESUME_Y + layout.N_STATE), np.zeros((n_out, layout.N_COLUMNS)),
-              np.zeros((n_out, n)), np.zeros((n_out, n)), np.zeros(layout.N_EXTREMA),
-              np.zeros((layout.N_SLOT_EXTREMA, n)), np.zeros(layout.N_COUNTERS, np.int64), 0)
-    assert out[0] == layout.STATUS_STALE_CACHE
+    t_out = kw.pop("t_out")
+    model = kernel_model(prm, tables, **kw)
+    out = kernel_out(model, t_out)
+    assert run(model, out, layout.LAYOUT_KEY + 1, 0)[0] == layout.STATUS_STALE_CACHE
+    assert np.isnan(out.series).all()  # nothing was integrated
 
 
 # --- 5. seed case, steady state ----------------------------------------------------------------

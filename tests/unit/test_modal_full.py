@@ -303,7 +303,8 @@ LATERAL = ["model=lateral-torsional", "bearings.pinion.stiffness_x=2e6",
 def test_case_modes_and_summary_match_run_modal():
     from gearcli.case.load import load_case
     from gearcli.pipeline.geometry import run_geometry
-    from gearcli.pipeline.modal import case_mesh, case_modes, modes_summary, run_modal
+    from gearcli.pipeline.mesh_input import case_mesh
+    from gearcli.pipeline.modal import case_modes, modes_summary, run_modal
 
     loaded = load_case(SEED, LATERAL)
     geo = run_geometry(loaded)

@@ -1,0 +1,55 @@
+"""The kernel's arguments, bundled: read-only model data, work arrays, outputs.
+
+numba passes a namedtuple of arrays like its fields and caches functions that take one, so the
+compiled functions take these few bundles instead of dozens of positional arrays. A new per-pair
+or per-tooth array of the model is one field of :class:`Model` (filled by
+:func:`gearcli.core.integrate.simulate`) and one consumer (e.g. :func:`gearcli.core.flank.flank`).
+Every packed vector inside is indexed by the names of :mod:`gearcli.core.layout`.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+
+class Model(NamedTuple):
+    """What the physics reads during a run (never written by the kernel).
+
+    Internal units (layout.py): mm, N, s, t, rad.
+    """
+
+    prm: np.ndarray  #: (N_PARAMS,) parameter vector, layout.P
+    derived: np.ndarray  #: (N_DERIVED,) constants of the run, layout.D (derive.derive)
+    family: np.ndarray  #: (N_FAMILIES, N_FAMILY) constants per flank family, layout.F
+    tables: np.ndarray  #: (N_TABLES, 2, n) gap tables: gap [mm], slope [-] (gaptable.py)
+    tooth_offsets: np.ndarray  #: (N_TABLES, >= max(z1, z2)) flank offset per tooth [mm]
+    drive_pp: tuple  #: (breaks, coefs, origins): omega(t) [rad/s] or T(t) [N*mm]
+    angle_pp: tuple  #: antiderivative of drive_pp [rad] (speed and shaft drives)
+    load_pp: tuple  #: load torque T_load(t) [N*mm]
+
+
+class Work(NamedTuple):
+    """Scratch arrays of the time loop (allocated once per chunk by timeloop.run)."""
+
+    y: np.ndarray  #: (n_state,) state at t, layout.S
+    dy: np.ndarray  #: (n_state,) a derivative evaluation
+    ys: np.ndarray  #: (n_state,) stage / sample state
+    y_new: np.ndarray  #: (n_state,) state at t + h
+    aux: np.ndarray  #: (N_AUX,) auxiliary results of the last full RHS evaluation, layout.A
+    slot_force: np.ndarray  #: (N_FAMILIES, n_slots) force of every pair slot [N]
+    K: np.ndarray  #: (N_STAGES + 1, n_state) Runge-Kutta stages, K[0] = f(t, y)
+    atol: np.ndarray  #: (N_STATE,) absolute tolerance per state
+
+
+class Out(NamedTuple):
+    """The run's results, owned by the caller across chunks (integrate.simulate)."""
+
+    t_out: np.ndarray  #: (n_out,) output times [s]
+    series: np.ndarray  #: (n_out, N_COLUMNS) sampled columns, layout.C
+    slot_series: np.ndarray  #: (N_FAMILIES, n_out, n_slots) force of every slot [N]
+    extrema: np.ndarray  #: (N_EXTREMA,) layout.X
+    slot_extrema: np.ndarray  #: (N_SLOT_EXTREMA, n_slots) drive slots, layout.SX
+    counters: np.ndarray  #: (N_COUNTERS,) int64, layout.N
+    resume: np.ndarray  #: (N_RESUME,) carried between chunks, layout.R

@@ -1,0 +1,155 @@
+"""Constants of a run, computed once before the time loop from the parameters and the tables.
+
+Reciprocals of geometry and inertia (layout.D) save divisions in the right-hand side; per flank
+family (layout.F) the slot phase, the backlash offset, the tooth indices and runout phases of
+its line of action, bounds on the overlap its pairs can reach, and the zero runs of its gap
+tables. These bounds let the right-hand side skip work that cannot change a result
+(tests/physics/test_kernel_fastpaths.py).
+"""
+
+import math
+
+from gearcli.core.gaptable import table_floor
+from gearcli.core.layout import (
+    FAMILY_PARAMS,
+    FLANK_FAMILIES,
+    GEAR,
+    N_FAMILIES,
+    N_GEARS,
+    PINION,
+    TABLE_GAP,
+    TABLE_SLOPE,
+    D,
+    F,
+    P,
+)
+from gearcli.core.nrt import jit_noalloc
+
+
+@jit_noalloc
+def table_of(family, gear):
+    """Gap-table (and tooth-offset) row of one flank family and gear (layout.N_TABLES)."""
+    return family * N_GEARS + gear
+
+
+@jit_noalloc
+def error_bound(prm, tooth_offsets, t1, t2):
+    """Largest overlap [mm] runout and tooth offsets can add on one flank family.
+
+    ``|ecc1| + |ecc2| + max_i(-Ft1[i]) + max_i(-Ft2[i])`` (rows ``t1``, ``t2`` of the offsets).
+    """
+    bound = abs(prm[P.ecc1]) + abs(prm[P.ecc2])
+    for row, z in ((t1, int(prm[P.z1])), (t2, int(prm[P.z2]))):
+        worst = -math.inf
+        for i in range(z):
+            worst = max(worst, -tooth_offsets[row, i])
+        bound += worst
+    return bound
+
+
+@jit_noalloc
+def overlap_bound(prm, tables, tooth_offsets, t1, t2):
+    """Upper bound [mm] of ``-G1(x1) - G2(x2) - e1 - e2 - Ft1 - Ft2`` of one flank family
+    (tables and offset rows ``t1``, ``t2``).
+
+    A pair of the family can only touch when ``sigma delta - offset`` exceeds minus this.
+    """
+    h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
+    return -table_floor(tables, t1, h) - table_floor(tables, t2, h) \
+        + error_bound(prm, tooth_offsets, t1, t2)
+
+
+@jit_noalloc
+def end_gap_bound(tables, g1, g2, h):
+    """Lower bound [mm] of ``G1(x1) + G2(x2)`` when either position sits on a table end.
+
+    ``min(G1(x_lo), G1(x_hi)) + min G2`` or the same with the tables swapped (``min G`` from
+    :func:`gearcli.core.gaptable.table_floor`). A pair crossing a table end overlaps by at most
+    ``sigma delta - offset`` minus this (events.py); extended tables open a gap of about the
+    tabulation cap there, so no crossing of theirs is loaded.
+    """
+    n = tables.shape[2]
+    end1 = min(tables[g1, TABLE_GAP, 0], tables[g1, TABLE_GAP, n - 1]) \
+        + table_floor(tables, g2, h)
+    end2 = min(tables[g2, TABLE_GAP, 0], tables[g2, TABLE_GAP, n - 1]) \
+        + table_floor(tables, g1, h)
+    return min(end1, end2)
+
+
+@jit_noalloc
+def zero_run(tables, k):
+    """First and last grid index of the longest run of grid points of table ``k`` where the
+    value and the slope are both zero (``(0, -1)`` if none): the Hermite cubic vanishes
+    identically between them."""
+    best_lo = 0
+    best_hi = -1
+    start = -1
+    n = tables.shape[2]
+    for i in range(n + 1):
+        zero = i < n and tables[k, TABLE_GAP, i] == 0.0 and tables[k, TABLE_SLOPE, i] == 0.0
+        if zero:
+            if start < 0:
+                start = i
+        elif start >= 0:
+            if i - 1 - start > best_hi - best_lo:
+                best_lo = start
+                best_hi = i - 1
+            start = -1
+    return best_lo, best_hi
+
+
+@jit_noalloc
+def _zero_interval(prm, tables, k, h):
+    """[lo, hi] [mm] inside table ``k``'s zero run, one grid step in from its ends (a position
+    there falls in an interval of the run whatever the rounding of its grid index, and the
+    cubic is exactly 0); an empty interval when there is no run of at least 3 points."""
+    lo, hi = zero_run(tables, k)
+    if hi - lo >= 2:
+        return prm[P.x_lo] + (lo + 1) * h, prm[P.x_lo] + (hi - 1) * h
+    return math.inf, -math.inf
+
+
+@jit_noalloc
+def derive_tables(prm, tables, tooth_offsets, derived, family):
+    """The table- and offset-dependent constants: ``derived`` entries error_bound,
+    tooth_offsets_used, grid_step and reciprocals; ``family`` columns overlap, end_gap and
+    the zero runs."""
+    h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
+    bound = -math.inf
+    for f in range(N_FAMILIES):
+        t1 = table_of(f, PINION)
+        t2 = table_of(f, GEAR)
+        family[f, F.overlap] = overlap_bound(prm, tables, tooth_offsets, t1, t2)
+        family[f, F.end_gap] = end_gap_bound(tables, t1, t2, h)
+        lo, hi = _zero_interval(prm, tables, t1, h)
+        family[f, F.zero_lo1] = lo
+        family[f, F.zero_hi1] = hi
+        lo, hi = _zero_interval(prm, tables, t2, h)
+        family[f, F.zero_lo2] = lo
+        family[f, F.zero_hi2] = hi
+        bound = max(bound, error_bound(prm, tooth_offsets, t1, t2))
+    derived[D.error_bound] = bound
+    used = 0.0
+    for row in range(tooth_offsets.shape[0]):
+        for i in range(tooth_offsets.shape[1]):
+            if tooth_offsets[row, i] != 0.0:
+                used = 1.0
+    derived[D.tooth_offsets_used] = used
+    derived[D.inv_exponent_plus_1] = 1.0 / (prm[P.exponent] + 1.0)
+    derived[D.grid_step] = h
+    derived[D.inv_grid_step] = 1.0 / h
+    derived[D.inv_p_b] = 1.0 / prm[P.p_b]
+    derived[D.inv_r_b1] = 1.0 / prm[P.r_b1]
+    derived[D.inv_r_b2] = 1.0 / prm[P.r_b2]
+    derived[D.inv_J1] = 1.0 / prm[P.J1]
+    derived[D.inv_J2] = 1.0 / prm[P.J2]
+
+
+def derive(prm, tables, tooth_offsets, derived, family) -> None:
+    """Fill ``derived`` (layout.D) and ``family`` (layout.F) for a run: the parameters each
+    flank family reads (layout.FAMILY_PARAMS) and :func:`derive_tables`."""
+    for f, name in enumerate(FLANK_FAMILIES):
+        for column, source in FAMILY_PARAMS[name]:
+            family[f, F._fields.index(column)] = 0.0 if source is None \
+                else prm[P._fields.index(source)]
+    derive_tables(prm, tables, tooth_offsets, derived, family)
