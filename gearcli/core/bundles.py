@@ -1,10 +1,17 @@
 """The kernel's arguments, bundled: read-only model data, work arrays, outputs.
 
 numba passes a namedtuple of arrays like its fields and caches functions that take one, so the
-compiled functions take these few bundles instead of dozens of positional arrays. A new per-pair
-or per-tooth array of the model is one field of :class:`Model` (filled by
-:func:`gearcli.core.integrate.simulate`) and one consumer (e.g. :func:`gearcli.core.flank.flank`).
-Every packed vector inside is indexed by the names of :mod:`gearcli.core.layout`.
+compiled functions take these few bundles instead of dozens of positional arrays. Every packed
+vector inside is indexed by the names of :mod:`gearcli.core.layout`.
+
+A new per-pair or per-tooth array of the model (a stiffness table, a fault) is:
+1. one optional field of :class:`Model` below, after the required ones, with an empty default
+   of the right dimensions (``EMPTY_2D``: absent unless the case asks for it);
+2. its consumer in the compiled code (e.g. :func:`gearcli.core.flank.flank` reads
+   ``model.<field>``, with a fast path when ``model.<field>.size == 0``);
+3. its physics in ``gearcli/model/`` and one entry in ``KernelInput.arrays``
+   (pipeline/kernel_input.py); :func:`gearcli.core.integrate.kernel_model` checks and passes it
+   by name (no signature to extend).
 """
 
 from __future__ import annotations
@@ -12,6 +19,9 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+
+#: Default of an optional 2-D model array: absent (size 0).
+EMPTY_2D = np.zeros((0, 0))
 
 
 class Model(NamedTuple):

@@ -113,10 +113,17 @@ def chunk_ends(t_start: float, t_end: float) -> np.ndarray:
 
 
 def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
-                 tooth_offsets=None) -> Model:
+                 tooth_offsets=None, **arrays) -> Model:
     """The kernel's read-only data (:class:`gearcli.core.bundles.Model`) from plain arrays,
     with structural checks (shapes, sizes, ordering; no physics checks) and the run's derived
-    constants (:func:`gearcli.core.derive.derive`). Parameters as in :func:`simulate`."""
+    constants (:func:`gearcli.core.derive.derive`). Parameters as in :func:`simulate`;
+    ``arrays`` are further optional fields of Model by name (float64, with the dimensions of
+    the field's default)."""
+    unknown = sorted(set(arrays) - set(Model._field_defaults))
+    if unknown:
+        raise ValueError(f"not an optional array of the kernel model: {', '.join(unknown)}")
+    optional = {name: _f64(a, Model._field_defaults[name].ndim, name)
+                for name, a in arrays.items()}
     prm = _f64(params, 1, "params")
     if prm.size != N_PARAMS:
         raise ValueError(f"params has {prm.size} entries, the layout has {N_PARAMS}")
@@ -156,7 +163,7 @@ def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
     return Model(prm=prm.copy(), derived=derived, family=family, tables=tables,
                  tooth_offsets=offsets, drive_pp=_pp(drive_pp, "drive_pp"),
                  angle_pp=_pp(drive_angle_pp, "drive_angle_pp"),
-                 load_pp=_pp(load_pp, "load_pp"))
+                 load_pp=_pp(load_pp, "load_pp"), **optional)
 
 
 def kernel_out(model: Model, t_out) -> Out:
@@ -177,7 +184,7 @@ def kernel_out(model: Model, t_out) -> Out:
 
 
 def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=None,
-             tooth_offsets=None, progress=None) -> KernelResult:
+             tooth_offsets=None, progress=None, **arrays) -> KernelResult:
     """Run the compiled kernel on plain arrays; structural checks only (no physics checks).
 
     Parameters
@@ -201,6 +208,8 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
         Per-tooth flank offsets Ft1, Ft2[, Ft1c, Ft2c] [mm]; default zeros.
     progress : callable(t_reached, t_start, t_end), optional
         Called after every chunk (:func:`chunk_ends`) with times [s].
+    **arrays : ndarray
+        Optional model arrays by their field name in :class:`gearcli.core.bundles.Model`.
 
     Returns
     -------
@@ -214,7 +223,7 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
         The compiled kernel comes from a stale cache (layout changed).
     """
     model = kernel_model(params, gap_tables, drive_pp=drive_pp, load_pp=load_pp,
-                         drive_angle_pp=drive_angle_pp, tooth_offsets=tooth_offsets)
+                         drive_angle_pp=drive_angle_pp, tooth_offsets=tooth_offsets, **arrays)
     out = kernel_out(model, t_out)
     prm = model.prm
     t0, t_end = float(prm[P.t_start]), float(prm[P.t_end])

@@ -37,7 +37,9 @@ class KernelInput:
 
     params: np.ndarray
     tables: GapTables
-    tooth_offsets: np.ndarray
+    #: Per-pair / per-tooth model arrays by their field name in gearcli.core.bundles.Model
+    #: (keyword arguments of gearcli.core.integrate.simulate), e.g. ``tooth_offsets``.
+    arrays: dict
     drive_pp: tuple
     drive_angle_pp: tuple | None
     load_pp: tuple
@@ -169,7 +171,7 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     return KernelInput(
         params=params,
         tables=tables,
-        tooth_offsets=offsets,
+        arrays={"tooth_offsets": offsets},
         drive_pp=drive_fn.pp.to_arrays(),
         drive_angle_pp=angle,
         load_pp=case.load.torque.pp.to_arrays(),

@@ -132,7 +132,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     with cyclic_gc_paused():
         kr = simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
                       load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
-                      tooth_offsets=ki.tooth_offsets, progress=progress)
+                      progress=progress, **ki.arrays)
     wall = time.perf_counter() - t0
     if not kr.ok:
         t_reached = kr.extremum("t_reached_s")

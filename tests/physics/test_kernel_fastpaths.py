@@ -98,3 +98,19 @@ def test_layout_sizes_come_from_one_constant_each():
     rows = {layout.TABLE_G1, layout.TABLE_G2, layout.TABLE_G1_COAST, layout.TABLE_G2_COAST}
     assert rows == set(range(layout.N_TABLES))
     assert len(set(layout.FAMILY_NAMES)) == layout.N_FAMILY == len(layout.F)
+
+
+def test_kernel_model_refuses_an_array_it_has_no_field_for():
+    """Optional model arrays are passed by their Model field name; a name the kernel does not
+    know is a programming error, never silently dropped."""
+    from gearcli.core.integrate import kernel_model
+
+    prm = layout.make_params(t_end=1.0, r_b1=80.0, r_b2=117.0, J1=60.0, J2=300.0, z1=17,
+                             z2=25, p_b=29.5, T1A=5.0, T1T2=72.0, x_lo=-1.0, x_hi=5.0,
+                             n_slots=2, k_contact=1e5, exponent=1.5, drive_mode=2)
+    pp = (np.zeros(0), np.zeros((1, 1)), np.zeros(1))
+    tables = _tables(np.zeros(11), np.zeros(11))
+    model = kernel_model(prm, tables, drive_pp=pp, load_pp=pp)
+    assert model.family.shape == (layout.N_FAMILIES, layout.N_FAMILY)
+    with pytest.raises(ValueError, match="pair_stiffnes"):
+        kernel_model(prm, tables, drive_pp=pp, load_pp=pp, pair_stiffnes=np.ones((2, 11)))

@@ -91,8 +91,7 @@ def _ringdown(tmp_path, model):
     prm[P.tw_m_init] = 1.4 * f * st.r_b1_mm / st.drive_shaft_stiffness_Nmm_rad
     prm[P.tw_l_init] = 0.6 * T_LOAD / st.load_shaft_stiffness_Nmm_rad
     kr = simulate(prm, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
-                  load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
-                  tooth_offsets=ki.tooth_offsets)
+                  load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp, **ki.arrays)
     assert kr.ok, kr.message
     modes = linear_modes(LinearSystem(st, K_MESH)).elastic
     return kr, ki.output_rate_Hz, modes
