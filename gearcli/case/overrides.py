@@ -32,7 +32,7 @@ def apply_overrides(data: dict, overrides: list[str], schema) -> dict:
     out = copy.deepcopy(data)
     for text in overrides:
         path, value = parse_override(text)
-        _check_path(path, schema, text)
+        check_path(path, schema, text)
         node = out
         for part in path[:-1]:
             child = node.get(part)
@@ -44,7 +44,7 @@ def apply_overrides(data: dict, overrides: list[str], schema) -> dict:
     return out
 
 
-def _check_path(path: tuple[str, ...], schema, text: str) -> None:
+def check_path(path: tuple[str, ...], schema, text: str) -> None:
     """Refuse a key path that ``schema`` (a pydantic model class) does not have.
 
     Raises
