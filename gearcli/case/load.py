@@ -10,8 +10,10 @@ import difflib
 from dataclasses import dataclass
 from pathlib import Path
 
-from pydantic import BaseModel, ValidationError
+from pydantic import ValidationError
 
+from gearcli.case.keypaths import allowed_keys, field_at
+from gearcli.case.overrides import apply_overrides
 from gearcli.case.schema import Case, FieldError
 from gearcli.case.yamlsrc import Loc, Source, parse_source, read_source
 from gearcli.errors import CaseError
@@ -36,8 +38,6 @@ def load_case(path: str | Path, overrides: list[str] | None = None) -> LoadedCas
     """
     src = read_source(path)
     if overrides:
-        from gearcli.case.overrides import apply_overrides
-
         src.data = apply_overrides(src.data, overrides, Case)
         for text in overrides:  # point errors in overridden values at the command line
             key = tuple(text.partition("=")[0].strip().split("."))
@@ -112,7 +112,7 @@ def data_loc(loc: tuple, data: object) -> Loc:
 def _message(err: dict, cause: Exception | None, loc: Loc) -> str:
     kind = err["type"]
     if kind == "extra_forbidden":
-        allowed = _allowed_keys(loc[:-1])
+        allowed = allowed_keys(Case, loc[:-1])
         msg = "unknown key"
         close = difflib.get_close_matches(str(loc[-1]), allowed, n=1, cutoff=0.6)
         if close:
@@ -165,7 +165,7 @@ def _limit_message(err: dict, loc: Loc) -> str | None:
         return None
     op, key = _LIMITS[err["type"]]
     limit = err.get("ctx", {}).get(key)
-    field = _field_at(loc)
+    field = field_at(Case, loc)
     dim = None
     for meta in getattr(field, "metadata", ()):
         dim = getattr(getattr(meta, "func", None), "dim", None) or dim
@@ -173,34 +173,3 @@ def _limit_message(err: dict, loc: Loc) -> str | None:
         return None
     return f"expected {op} {float(limit) / dim.factor:g} {dim.default}"
 
-
-def _field_at(loc: Loc):
-    model: type[BaseModel] | None = Case
-    field = None
-    for part in loc:
-        if model is None or str(part) not in model.model_fields:
-            return None
-        field = model.model_fields[str(part)]
-        model = _model_in(field.annotation)
-    return field
-
-
-def _allowed_keys(loc: Loc) -> list[str]:
-    """Field names of the schema section at ``loc`` (for did-you-mean)."""
-    model: type[BaseModel] | None = Case
-    for part in loc:
-        field = model.model_fields.get(str(part)) if model is not None else None
-        if field is None:
-            return []
-        model = _model_in(field.annotation)
-    return list(model.model_fields) if model is not None else []
-
-
-def _model_in(annotation) -> type[BaseModel] | None:
-    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return annotation
-    for arg in getattr(annotation, "__args__", ()):
-        found = _model_in(arg)
-        if found is not None:
-            return found
-    return None

@@ -7,6 +7,7 @@ import difflib
 
 import yaml
 
+from gearcli.case.keypaths import model_in
 from gearcli.errors import CaseError
 
 
@@ -31,7 +32,7 @@ def apply_overrides(data: dict, overrides: list[str], schema) -> dict:
     out = copy.deepcopy(data)
     for text in overrides:
         path, value = parse_override(text)
-        _check_path(path, schema, text)
+        check_path(path, schema, text)
         node = out
         for part in path[:-1]:
             child = node.get(part)
@@ -43,9 +44,15 @@ def apply_overrides(data: dict, overrides: list[str], schema) -> dict:
     return out
 
 
-def _check_path(path: tuple[str, ...], schema, text: str) -> None:
-    from gearcli.case.load import _model_in  # the schema walker lives with the loader
+def check_path(path: tuple[str, ...], schema, text: str) -> None:
+    """Refuse a key path that ``schema`` (a pydantic model class) does not have.
 
+    Raises
+    ------
+    CaseError
+        ``--set TEXT: unknown key 'part' in where (did you mean ...); expected one of: ...``,
+        naming the first unknown part of ``path``; ``text`` is the override as written.
+    """
     model = schema
     for i, part in enumerate(path):
         fields = model.model_fields if model is not None else {}
@@ -57,4 +64,4 @@ def _check_path(path: tuple[str, ...], schema, text: str) -> None:
             raise CaseError(
                 f"--set {text}: unknown key '{part}' in {where}{hint}; expected one of: {allowed}"
             )
-        model = _model_in(fields[part].annotation)
+        model = model_in(fields[part].annotation)

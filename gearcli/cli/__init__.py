@@ -1,49 +1,22 @@
 """The `gearcli` command line (Typer). Thin: parse options, call the library, write outputs.
 
-Heavy modules (numba, pandas, matplotlib, pydantic, pint) are imported inside the commands so
-that `gearcli --help` stays fast.
+The application lives in :mod:`gearcli.cli.app`; importing this package registers every
+command on it. Heavy modules (numba, pandas, matplotlib, pydantic, pint) are imported inside
+the commands so that `gearcli --help` stays fast.
 """
 
 from __future__ import annotations
 
-import typer
-
-from gearcli import __version__
-
-app = typer.Typer(
-    name="gearcli",
-    help="Dynamics of spur gear pairs from a YAML case file: geometry, simulation, checks.",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
-    context_settings={"help_option_names": ["-h", "--help"]},
-)
-
-
-def _version(value: bool) -> None:
-    if value:
-        typer.echo(f"gearcli {__version__}")
-        raise typer.Exit()
-
-
-@app.callback()
-def _root(
-    version: bool = typer.Option(
-        False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
-    ),
-) -> None:
-    """Dynamics of spur gear pairs from a YAML case file.
-
-    Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error (log path printed),
-    4 a check failed, 130 interrupted.
-    """
-
-
 # Registering the commands (each module imports only typer at import time); the order of
 # registration is the order of `gearcli --help`: the workflow first.
-from gearcli.cli import (  # noqa: E402,F401,I001
+# isort: off
+from gearcli.cli import (  # noqa: F401
     geometry, simulate, analyze, report, stress, modal, sweep, casefile,
 )
+# isort: on
+from gearcli.cli.app import app
+
+__all__ = ["app", "main"]
 
 
 def main() -> None:

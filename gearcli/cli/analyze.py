@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from gearcli.cli import app
+from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors, print_checks_table, print_quantity_table
 
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from gearcli.cli import app
+from gearcli.cli.app import app
 from gearcli.cli.common import format_value, handle_errors
 
 # (label, json key, unit) rows of the per-gear and per-pair tables.

@@ -19,24 +19,16 @@ G. Niemann, H. Winter, *Maschinenelemente* Bd. II, 2. Aufl., Springer 1989 (spur
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from numbers import Real
 from typing import Literal
 
 from gearcli.model import profile
 from gearcli.model.involute import half_thickness_angle, inv, inv_inverse
+from gearcli.model.toothform import RackSpec, ToothForm
 
 __all__ = ["RackSpec", "GearSpec", "PairSpec", "Finding", "GearGeometry", "PairGeometry",
            "compute_pair_geometry", "mesh_frequencies"]
-
-
-@dataclass(frozen=True)
-class RackSpec:
-    """Basic rack (ISO 53), coefficients of the module. Defaults: ISO 53 profile A."""
-
-    addendum_coef: float = 1.0  #: h_aP* (gear addendum)
-    dedendum_coef: float = 1.25  #: h_fP* (gear dedendum = generating tool addendum)
-    root_radius_coef: float = 0.38  #: ρ_fP* (tool tip rounding generating the fillet)
 
 
 @dataclass(frozen=True)
@@ -74,45 +66,31 @@ class Finding:
 
 
 @dataclass(frozen=True)
-class GearGeometry:
+class GearGeometry(ToothForm):
     """Geometry of one gear in the pair. Diameters d_* [mm]; see the docstring of each field.
 
-    Pair-dependent fields (d_w, d_Nf, clearances) refer to the operating centre distance a_w;
-    they are NaN when a_w admits no operating pressure angle.
+    Extends the gear's :class:`~gearcli.model.toothform.ToothForm` (teeth, module, pressure
+    angle, profile shift, allowance, tip rounding, rack, d, d_b, d_a, d_f, s, undercut), so it
+    can be passed to every :mod:`gearcli.model.profile` function. Pair-dependent fields (d_w,
+    d_Nf, clearances) refer to the operating centre distance a_w; they are NaN when a_w admits
+    no operating pressure angle.
     """
 
-    teeth: int  #: z
-    module_mm: float  #: m [mm]
-    pressure_angle_rad: float  #: α [rad]
-    profile_shift: float  #: x
     tip_shortening_coef: float  #: k
     face_width_mm: float  #: b [mm]
-    thickness_allowance_mm: float  #: A_s: reduction of s at the reference circle [mm]
-    tip_rounding_mm: float  #: ρ_a [mm]
-    rack: RackSpec  #: basic rack the gear is generated with
-    d_mm: float  #: reference diameter d = m z
-    d_b_mm: float  #: base diameter d_b = d cos α
-    d_a_mm: float  #: tip diameter d_a = d + 2m(h_aP* + x − k)
-    d_f_mm: float  #: root diameter d_f = d − 2m(h_fP* − x)
-    s_mm: float  #: reference arc tooth thickness m(π/2 + 2x tan α) − A_s
     s_a_mm: float  #: arc tooth thickness at the tip circle (sharp corner) [mm]
     p_b_mm: float  #: base pitch p_b = π m cos α
-    x_min: float  #: smallest shift without undercut
+    x_min: float  #: smallest shift without undercut (undercut: x < x_min)
     z_min: float  #: smallest tooth count without undercut at this x
-    undercut: bool  #: x < x_min
     undercut_coef: float  #: x_min − x when undercut, else 0 (module units)
     undercut_mm: float  #: undercut_coef · m [mm]
     d_Ff_mm: float  #: root form diameter: start of the generated involute
     d_Fa_mm: float  #: tip form diameter: end of the involute (d_a unless rounded/pointed)
-    d_w_mm: float = math.nan  #: operating pitch diameter 2 a_w z / (z1 + z2)
-    d_Nf_mm: float = math.nan  #: active profile start (where the mate's tip contacts)
-    tip_clearance_mm: float = math.nan  #: a_w − r_a − r_f(mate): this tip to the mate's root
-    root_clearance_mm: float = math.nan  #: a_w − r_a(mate) − r_f: mate's tip to this root
+    d_w_mm: float  #: operating pitch diameter 2 a_w z / (z1 + z2)
+    d_Nf_mm: float  #: active profile start (where the mate's tip contacts)
+    tip_clearance_mm: float  #: a_w − r_a − r_f(mate): this tip to the mate's root
+    root_clearance_mm: float  #: a_w − r_a(mate) − r_f: mate's tip to this root
 
-    r_mm = property(lambda self: 0.5 * self.d_mm, doc="Reference radius [mm].")
-    r_b_mm = property(lambda self: 0.5 * self.d_b_mm, doc="Base radius [mm].")
-    r_a_mm = property(lambda self: 0.5 * self.d_a_mm, doc="Tip radius [mm].")
-    r_f_mm = property(lambda self: 0.5 * self.d_f_mm, doc="Root radius [mm].")
     r_w_mm = property(lambda self: 0.5 * self.d_w_mm, doc="Operating pitch radius [mm].")
 
 
@@ -204,8 +182,15 @@ def _validate(spec: PairSpec) -> None:
         _check_finite("centre_distance_mm", spec.centre_distance_mm, positive=True)
 
 
-def _gear_alone(g: GearSpec, m: float, alpha: float, rack: RackSpec) -> GearGeometry:
-    """Quantities of one gear that do not depend on the mate (ISO 21771, DIN 3960)."""
+def _gear_alone(
+    g: GearSpec, m: float, alpha: float, rack: RackSpec
+) -> tuple[ToothForm, dict[str, float]]:
+    """Quantities of one gear that do not depend on the mate (ISO 21771, DIN 3960).
+
+    Returns the gear's tooth form and, by name, the other :class:`GearGeometry` fields that do
+    not depend on the mate (the form diameters d_Ff, d_Fa from the generated profile; NaN when
+    there is no tooth to generate or the tip rounding does not fit: the findings report both).
+    """
     z, x = int(g.teeth), g.profile_shift
     d = m * z
     d_b = d * math.cos(alpha)
@@ -223,22 +208,28 @@ def _gear_alone(g: GearSpec, m: float, alpha: float, rack: RackSpec) -> GearGeom
     z_min = 2.0 * (h_lim - x) / sin2
     undercut = x < x_min - 1e-12
     cut = max(x_min - x, 0.0) if undercut else 0.0
-    geo = GearGeometry(
+    form = ToothForm(
         teeth=z, module_mm=m, pressure_angle_rad=alpha, profile_shift=x,
-        tip_shortening_coef=g.tip_shortening_coef, face_width_mm=g.face_width_mm,
         thickness_allowance_mm=g.thickness_allowance_mm, tip_rounding_mm=g.tip_rounding_mm,
-        rack=rack, d_mm=d, d_b_mm=d_b, d_a_mm=d_a, d_f_mm=d_f, s_mm=s, s_a_mm=s_a,
-        p_b_mm=math.pi * m * math.cos(alpha), x_min=x_min, z_min=z_min, undercut=undercut,
-        undercut_coef=cut, undercut_mm=cut * m, d_Ff_mm=math.nan, d_Fa_mm=math.nan,
+        rack=rack, d_mm=d, d_b_mm=d_b, d_a_mm=d_a, d_f_mm=d_f, s_mm=s, undercut=undercut,
     )
-    if d_f <= 0.0 or d_a <= d_b:
-        return geo  # no tooth to generate; reported by the findings
-    d_ff = 2.0 * profile.root_form_radius(geo)
-    try:
-        d_fa = 2.0 * profile.tip_form_radius(geo)
-    except ValueError:  # tip rounding does not fit: reported by the findings
-        d_fa = math.nan
-    return replace(geo, d_Ff_mm=d_ff, d_Fa_mm=d_fa)
+    d_ff = d_fa = math.nan  # stay NaN without a tooth to generate: reported by the findings
+    if not (d_f <= 0.0 or d_a <= d_b):
+        d_ff = 2.0 * profile.root_form_radius(form)
+        try:
+            d_fa = 2.0 * profile.tip_form_radius(form)
+        except ValueError:  # tip rounding does not fit: reported by the findings
+            pass
+    return form, {
+        "tip_shortening_coef": g.tip_shortening_coef, "face_width_mm": g.face_width_mm,
+        "s_a_mm": s_a, "p_b_mm": math.pi * m * math.cos(alpha), "x_min": x_min, "z_min": z_min,
+        "undercut_coef": cut, "undercut_mm": cut * m, "d_Ff_mm": d_ff, "d_Fa_mm": d_fa,
+    }
+
+
+def _form_fields(form: ToothForm) -> dict[str, object]:
+    """The fields of a tooth form by name (not deep-copied: the rack stays a RackSpec)."""
+    return {f.name: getattr(form, f.name) for f in fields(ToothForm)}
 
 
 def _sqrt(value: float) -> float:
@@ -288,35 +279,35 @@ def compute_pair_geometry(spec: PairSpec) -> PairGeometry:
     """
     _validate(spec)
     m, alpha = spec.module_mm, spec.pressure_angle_rad
-    g1 = _gear_alone(spec.pinion, m, alpha, spec.rack)
-    g2 = _gear_alone(spec.gear, m, alpha, spec.rack)
-    z_sum = g1.teeth + g2.teeth
+    f1, more1 = _gear_alone(spec.pinion, m, alpha, spec.rack)
+    f2, more2 = _gear_alone(spec.gear, m, alpha, spec.rack)
+    z_sum = f1.teeth + f2.teeth
     a = 0.5 * m * z_sum
     tan_a, inv_a = math.tan(alpha), inv(alpha)
-    x_sum = g1.profile_shift + g2.profile_shift
+    x_sum = f1.profile_shift + f2.profile_shift
     inv_w0 = inv_a + 2.0 * x_sum * tan_a / z_sum
     a_w0 = a * math.cos(alpha) / math.cos(inv_inverse(inv_w0)) if inv_w0 >= 0 else math.nan
     # zero backlash with the thickness allowances: s1 + s2 = π m + m z_sum (inv α_w − inv α)
-    inv_wj = inv_a + (g1.s_mm + g2.s_mm - math.pi * m) / (m * z_sum)
+    inv_wj = inv_a + (f1.s_mm + f2.s_mm - math.pi * m) / (m * z_sum)
     a_wj = a * math.cos(alpha) / math.cos(inv_inverse(inv_wj)) if inv_wj >= 0 else math.nan
     a_w = a_w0 if spec.centre_distance_mm is None else float(spec.centre_distance_mm)
     cos_w = a * math.cos(alpha) / a_w if math.isfinite(a_w) else math.nan
     alpha_w = math.acos(cos_w) if 0.0 < cos_w <= 1.0 else math.nan
     inv_w = inv(alpha_w) if math.isfinite(alpha_w) else math.nan
 
-    d_w1, d_w2 = 2.0 * a_w * g1.teeth / z_sum, 2.0 * a_w * g2.teeth / z_sum
-    s_w1 = d_w1 * (g1.s_mm / g1.d_mm + inv_a - inv_w)
-    s_w2 = d_w2 * (g2.s_mm / g2.d_mm + inv_a - inv_w)
-    j_wt = math.pi * d_w1 / g1.teeth - s_w1 - s_w2
+    d_w1, d_w2 = 2.0 * a_w * f1.teeth / z_sum, 2.0 * a_w * f2.teeth / z_sum
+    s_w1 = d_w1 * (f1.s_mm / f1.d_mm + inv_a - inv_w)
+    s_w2 = d_w2 * (f2.s_mm / f2.d_mm + inv_a - inv_w)
+    j_wt = math.pi * d_w1 / f1.teeth - s_w1 - s_w2
     if abs(j_wt) < 1e-12 * a_w:  # rounding of an exact zero-backlash mesh
         j_wt = 0.0
     j_n = j_wt * math.cos(alpha_w)
 
-    p_b = g1.p_b_mm
+    p_b = more1["p_b_mm"]
     t1t2 = a_w * math.sin(alpha_w)
-    e_pt = _sqrt((0.5 * g1.d_Fa_mm) ** 2 - g1.r_b_mm**2)
-    a_pt = t1t2 - _sqrt((0.5 * g2.d_Fa_mm) ** 2 - g2.r_b_mm**2)
-    c_pt = g1.r_b_mm * math.tan(alpha_w)
+    e_pt = _sqrt((0.5 * more1["d_Fa_mm"]) ** 2 - f1.r_b_mm**2)
+    a_pt = t1t2 - _sqrt((0.5 * more2["d_Fa_mm"]) ** 2 - f2.r_b_mm**2)
+    c_pt = f1.r_b_mm * math.tan(alpha_w)
     g_alpha = e_pt - a_pt
     eps = g_alpha / p_b
     fractions, single, double = _contact_fractions(eps)
@@ -326,15 +317,15 @@ def compute_pair_geometry(spec: PairSpec) -> PairGeometry:
             return math.nan
         return 2.0 * math.hypot(rb, roll_len) if roll_len >= 0.0 else 2.0 * rb  # beyond T: d_b
 
-    g1 = replace(
-        g1, d_w_mm=d_w1, d_Nf_mm=active_start(g1.r_b_mm, a_pt),
-        tip_clearance_mm=a_w - g1.r_a_mm - g2.r_f_mm,
-        root_clearance_mm=a_w - g2.r_a_mm - g1.r_f_mm,
+    g1 = GearGeometry(
+        **_form_fields(f1), **more1, d_w_mm=d_w1, d_Nf_mm=active_start(f1.r_b_mm, a_pt),
+        tip_clearance_mm=a_w - f1.r_a_mm - f2.r_f_mm,
+        root_clearance_mm=a_w - f2.r_a_mm - f1.r_f_mm,
     )
-    g2 = replace(
-        g2, d_w_mm=d_w2, d_Nf_mm=active_start(g2.r_b_mm, t1t2 - e_pt),
-        tip_clearance_mm=a_w - g2.r_a_mm - g1.r_f_mm,
-        root_clearance_mm=a_w - g1.r_a_mm - g2.r_f_mm,
+    g2 = GearGeometry(
+        **_form_fields(f2), **more2, d_w_mm=d_w2, d_Nf_mm=active_start(f2.r_b_mm, t1t2 - e_pt),
+        tip_clearance_mm=a_w - f2.r_a_mm - f1.r_f_mm,
+        root_clearance_mm=a_w - f1.r_a_mm - f2.r_f_mm,
     )
     geo = PairGeometry(
         pinion=g1, gear=g2, module_mm=m, pressure_angle_rad=alpha, a_mm=a, a_w_mm=a_w,

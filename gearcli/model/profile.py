@@ -27,23 +27,22 @@ Frames and conventions
   rounding centre). With undercut the fillet cuts the involute; the boundary then switches at
   their last crossing (the envelope loop beyond it is removed).
 
-All lengths in mm, angles in rad. Functions take a gear object with the attributes of
-:class:`gearcli.model.geometry.GearGeometry` (only the generating data are used).
+All lengths in mm, angles in rad. Functions take the gear's generating data, a
+:class:`gearcli.model.toothform.ToothForm` (a :class:`gearcli.model.geometry.GearGeometry`
+extends it and can be passed as well).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import brentq
 
 from gearcli.model.involute import half_thickness_angle, inv, inv_inverse, roll_angle_at_radius
-
-if TYPE_CHECKING:  # typing only; geometry imports this module at run time
-    from gearcli.model.geometry import GearGeometry
+from gearcli.model.toothform import ToothForm
 
 __all__ = [
     "TipCorner",
@@ -94,7 +93,7 @@ class _Cutter(NamedTuple):
     half_pitch_angle: float  # π / z
 
 
-def _cutter(gear: GearGeometry) -> _Cutter:
+def _cutter(gear: ToothForm) -> _Cutter:
     """Tool geometry from the basic rack (ISO 53 counterpart rack, see module notes)."""
     m, a = gear.module_mm, gear.pressure_angle_rad
     r = 0.5 * m * gear.teeth
@@ -108,7 +107,7 @@ def _cutter(gear: GearGeometry) -> _Cutter:
     return _Cutter(r, a, rho, xi_c, y_c, math.pi / gear.teeth)
 
 
-def flank_half_angle(gear: GearGeometry, radius_mm):
+def flank_half_angle(gear: ToothForm, radius_mm):
     """Angle ψ from the tooth centreline to the involute flank at a radius [rad].
 
     ψ = s/d + inv α − inv α_y (ISO 21771:2007, tooth thickness at a diameter) with s the
@@ -117,7 +116,7 @@ def flank_half_angle(gear: GearGeometry, radius_mm):
     return half_thickness_angle(gear.s_mm, gear.d_mm, gear.pressure_angle_rad, radius_mm)
 
 
-def _fillet_polar(gear: GearGeometry, theta) -> tuple[np.ndarray, np.ndarray]:
+def _fillet_polar(gear: ToothForm, theta) -> tuple[np.ndarray, np.ndarray]:
     """Fillet (envelope of the tool tip rounding) in polar form (R [mm], ψ [rad]).
 
     ``theta`` [rad] in [0, π/2 − α] is the direction of the tool normal measured from the
@@ -138,7 +137,7 @@ def _fillet_polar(gear: GearGeometry, theta) -> tuple[np.ndarray, np.ndarray]:
     return radius, psi
 
 
-def _undercut_gap(gear: GearGeometry, theta):
+def _undercut_gap(gear: ToothForm, theta):
     """ψ_fillet − ψ_involute at fillet points θ [rad]; −1 below the base circle (no involute).
 
     Negative: the fillet lies inside the involute (undercut, less material).
@@ -149,7 +148,7 @@ def _undercut_gap(gear: GearGeometry, theta):
     return float(gap) if gap.ndim == 0 else gap
 
 
-def _fillet_end_parameter(gear: GearGeometry) -> float:
+def _fillet_end_parameter(gear: ToothForm) -> float:
     """Fillet parameter θ* where the boundary switches from the fillet to the involute [rad].
 
     Without undercut this is the tangency θ_t = π/2 − α (the fillet meets the involute
@@ -170,12 +169,12 @@ def _fillet_end_parameter(gear: GearGeometry) -> float:
     return brentq(lambda t: _undercut_gap(gear, t), thetas[k], thetas[k + 1], xtol=1e-15)
 
 
-def fillet_points(gear: GearGeometry, n: int = 40) -> tuple[np.ndarray, np.ndarray]:
+def fillet_points(gear: ToothForm, n: int = 40) -> tuple[np.ndarray, np.ndarray]:
     """Root fillet of the counter-clockwise flank, from the root circle to the root form point.
 
     Parameters
     ----------
-    gear : GearGeometry
+    gear : ToothForm
         The gear (generating data are used).
     n : int
         Number of points.
@@ -190,7 +189,7 @@ def fillet_points(gear: GearGeometry, n: int = 40) -> tuple[np.ndarray, np.ndarr
     return _fillet_polar(gear, theta)
 
 
-def root_form_radius(gear: GearGeometry) -> float:
+def root_form_radius(gear: ToothForm) -> float:
     """Root form radius r_Ff = d_Ff / 2 [mm]: start of the generated, usable involute.
 
     Without undercut the end of the straight tool flank (height Y_t = r_f + ρ_fP (1 − sin α)
@@ -204,7 +203,7 @@ def root_form_radius(gear: GearGeometry) -> float:
     return float(radius)
 
 
-def _tip_rounding_centre(gear: GearGeometry) -> tuple[float, float, float]:
+def _tip_rounding_centre(gear: ToothForm) -> tuple[float, float, float]:
     """Tip rounding tangent to the involute and the tip circle.
 
     Returns (r_Fa, R_Q, ψ_Q) [mm, mm, rad]: the involute end radius and the polar position of
@@ -231,13 +230,13 @@ def _tip_rounding_centre(gear: GearGeometry) -> tuple[float, float, float]:
     return r_b * math.sqrt(1.0 + roll * roll), r_a - rho_a, psi_q
 
 
-def _pointed_radius(gear: GearGeometry) -> float:
+def _pointed_radius(gear: ToothForm) -> float:
     """Radius where both involutes meet (ψ = 0): r_b / cos(inv⁻¹(s/d + inv α)) [mm]."""
     alpha_y = inv_inverse(gear.s_mm / gear.d_mm + inv(gear.pressure_angle_rad))
     return gear.r_b_mm / math.cos(alpha_y)
 
 
-def tip_form_radius(gear: GearGeometry) -> float:
+def tip_form_radius(gear: ToothForm) -> float:
     """Radius where the involute ends, r_Fa [mm].
 
     r_a for a sharp tip, the tangency radius of the tip rounding (see
@@ -250,7 +249,7 @@ def tip_form_radius(gear: GearGeometry) -> float:
     return gear.r_a_mm
 
 
-def tip_corner(gear: GearGeometry) -> TipCorner:
+def tip_corner(gear: ToothForm) -> TipCorner:
     """Polar description of the tip corner (sharp) or the tip rounding (centre + radius).
 
     For a sharp tip: the corner at (r_a, ψ(r_a)), ψ from :func:`flank_half_angle`; a pointed
@@ -273,7 +272,7 @@ def _to_xy(radius, psi) -> tuple[np.ndarray, np.ndarray]:
 
 
 def involute_flank_points(
-    gear: GearGeometry,
+    gear: ToothForm,
     n: int = 50,
     r_start_mm: float | None = None,
     r_end_mm: float | None = None,
@@ -283,7 +282,7 @@ def involute_flank_points(
 
     Parameters
     ----------
-    gear : GearGeometry
+    gear : ToothForm
         The gear.
     n : int
         Number of points.
@@ -313,7 +312,7 @@ def _arc(cx: float, cy: float, rad: float, a0: float, a1: float, n: int):
     return cx + rad * np.cos(t), cy + rad * np.sin(t)
 
 
-def _left_side(gear: GearGeometry, n: int) -> tuple[np.ndarray, np.ndarray, float]:
+def _left_side(gear: ToothForm, n: int) -> tuple[np.ndarray, np.ndarray, float]:
     """Counter-clockwise side of one tooth, root-arc start → tip land start (x, y) [mm].
 
     Returns x, y and the angle ψ_tip [rad] where the tip arc (radius r_a) begins.
@@ -338,7 +337,7 @@ def _left_side(gear: GearGeometry, n: int) -> tuple[np.ndarray, np.ndarray, floa
     return x, y, psi_tip
 
 
-def tooth_outline(gear: GearGeometry, n_per_segment: int = 30) -> tuple[np.ndarray, np.ndarray]:
+def tooth_outline(gear: ToothForm, n_per_segment: int = 30) -> tuple[np.ndarray, np.ndarray]:
     """One tooth pitch in the tooth frame, counter-clockwise, space centre to space centre.
 
     Order: root arc (from ψ = −π/z), clockwise fillet and flank, tip rounding, tip land,
@@ -356,7 +355,7 @@ def tooth_outline(gear: GearGeometry, n_per_segment: int = 30) -> tuple[np.ndarr
 
 
 def gear_outline(
-    gear: GearGeometry,
+    gear: ToothForm,
     rotation_rad: float = 0.0,
     n_per_segment: int = 30,
     centre_mm: tuple[float, float] = (0.0, 0.0),
@@ -365,7 +364,7 @@ def gear_outline(
 
     Parameters
     ----------
-    gear : GearGeometry
+    gear : ToothForm
         The gear.
     rotation_rad : float
         Counter-clockwise rotation [rad]; 0 puts tooth 0 centred on +y.

@@ -44,7 +44,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from gearcli import units
 from gearcli.case.load import data_loc, validate_source
-from gearcli.case.overrides import apply_overrides
+from gearcli.case.overrides import apply_overrides, check_path
 from gearcli.case.schema import Case
 from gearcli.case.yamlsrc import Source, parse_source, read_source
 from gearcli.errors import CaseError
@@ -227,14 +227,12 @@ def _base_source(spec: StudyFile, src: Source, folder: Path) -> Source:
 
 
 def _check_keys(src: Source, where: tuple, mapping: dict) -> None:
-    from gearcli.case.overrides import _check_path  # noqa: PLC2701 - gearcli's own path check
-
     for key in mapping:
         if key == MESH_FREQUENCY and where == ("parameters",):
             continue
         path = tuple(key.split("."))
         try:
-            _check_path(path, Case, f"{key}=...")
+            check_path(path, Case, f"{key}=...")
         except CaseError as exc:
             msg = str(exc).split(": ", 1)[1] if ": " in str(exc) else str(exc)
             raise src.error((*where, key), msg) from None
