@@ -1,7 +1,7 @@
 """The case-file schema (pydantic v2, unknown keys rejected), values in internal units.
 
 Defaults are documented in each field's description (and by ``gearcli schema``). Physics is
-in ``../shared/docs/model.md``; section numbers below refer to it.
+in ``docs/theory.md``; section numbers below refer to it.
 """
 
 from __future__ import annotations
@@ -73,7 +73,7 @@ class Material(Section):
 
 
 class InertiaSpec(Section):
-    """Mass properties: a solid disc (model.md §2) or given values, plus extra inertia."""
+    """Mass properties: a solid disc (docs/theory.md §2) or given values, plus extra inertia."""
 
     model: Literal["disc", "given"] = Field("disc", description="'disc' (default) or 'given'")
     diameter: Length | None = qfield(units.LENGTH, None, "disc diameter; default pitch d", gt=0)
@@ -123,7 +123,7 @@ class Gears(Section):
 
 # --- §4 contact, §5 friction ---------------------------------------------------------------------
 class Contact(Section):
-    """Adams IMPACT contact law per tooth pair and flank (model.md §4)."""
+    """Adams IMPACT contact law per tooth pair and flank (docs/theory.md §4)."""
 
     law: Literal["impact"] = Field("impact", description="contact law (Adams IMPACT)")
     exponent: Coefficient = Field(1.5, ge=1.0, le=3.0, description="force exponent e (1.5)")
@@ -163,7 +163,7 @@ class Contact(Section):
 
 
 class Friction(Section):
-    """Adams contact friction (model.md §5); velocities are sliding speeds."""
+    """Adams contact friction (docs/theory.md §5); velocities are sliding speeds."""
 
     enabled: bool = Field(True, description="include friction (default true)")
     static_coefficient: Coefficient = Field(0.08, ge=0, description="mu_s (0.08)")
@@ -195,7 +195,7 @@ class MotorCurve(Section):
 
 
 class Drive(Section):
-    """How the pinion is driven (model.md §6)."""
+    """How the pinion is driven (docs/theory.md §6)."""
 
     type: Literal["speed", "shaft", "torque"] = Field(
         "speed",
@@ -239,7 +239,7 @@ class Drive(Section):
 
 
 class Load(Section):
-    """Load torque opposing rotation plus speed-dependent terms (model.md §6)."""
+    """Load torque opposing rotation plus speed-dependent terms (docs/theory.md §6)."""
 
     applied_to: Literal["gear", "pinion"] = Field("gear", description="body loaded ('gear')")
     torque: TorqueFunction = time_field(units.TORQUE, "load torque", 0.0)
@@ -424,7 +424,8 @@ class Case(Section):
             raise FieldError(
                 ("load", "applied_to"),
                 "a load on the pinion with drive type 'speed' is refused: a torque on a "
-                "motion-driven body never reaches the mesh (model.md §9); apply it to the gear",
+                "motion-driven body never reaches the mesh (docs/theory.md §9); apply it to the "
+                "gear",
             )
         for name in ("pinion", "gear"):
             dev = getattr(self.errors.pitch_deviation, name)

@@ -1,6 +1,6 @@
 """Drivetrain bodies around the mesh: drive side, load side, gear centres on their bearings.
 
-Equations (model.md §6; model/structure.py), with M1, M2 the mesh + friction torques on pinion
+Equations (docs/theory.md §6; model/structure.py), with M1, M2 the mesh + friction torques on pinion
 and gear [N*mm] from :mod:`gearcli.core.flank`:
 
 Drive (inputs from drive.forcing):
@@ -19,7 +19,7 @@ Lateral-torsional model: the centres u_i = (x_i, y_i) move on bearings (k, c per
 m_i u_i'' = F_mesh,i - K_i u_i - C_i u_i' with the mesh force on the pinion centre
 -F_d n_d - F_c n_c + f_d t_d + f_c t_c, n_d = (sin a_w, cos a_w), n_c = (sin a_w, -cos a_w),
 t_d = (-cos a_w, sin a_w), t_c = (cos a_w, sin a_w); the gear gets the opposite (Kahraman &
-Singh, J. Sound Vib. 146(1), 1991: the 6-DOF spur-pair model).
+Singh, J. Sound Vib. 144(3), 469-506, 1991: the 6-DOF spur-pair model).
 
 Every body returns its dissipation rate (dampers, load terms) [N*mm/s] and its spring energy
 sum k q^2 / 2 [N*mm], so the energy balance closes for every model.

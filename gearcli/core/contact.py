@@ -2,7 +2,7 @@
 
 References
 ----------
-MSC Software, "Adams Solver: Function Reference", IMPACT function; model.md §4.
+MSC Software, "Adams Solver: Function Reference", IMPACT function; docs/theory.md §4.
 """
 
 import math
@@ -53,7 +53,7 @@ def impact_force(pen, pen_rate, k, e, c_max, d_max):
 
     Notes
     -----
-    model.md §4: the force never pulls (the max), the damping ramps in with the penetration
+    docs/theory.md §4: the force never pulls (the max), the damping ramps in with the penetration
     (STEP) so the force is continuous at first touch.
     """
     if pen <= 0.0:
@@ -70,7 +70,7 @@ def impact_potential(pen, k, e):
     """Potential energy of the elastic part [N*mm]: ``k p^(e+1) / (e+1)`` for ``p > 0``, else 0.
 
     Its derivative with respect to ``p`` is ``k p^e``, so generalized forces
-    ``Q = -F dp/dq`` derived from it conserve energy (model.md §3-4).
+    ``Q = -F dp/dq`` derived from it conserve energy (docs/theory.md §3-4).
     """
     if pen <= 0.0:
         return 0.0

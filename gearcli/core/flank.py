@@ -1,10 +1,10 @@
-"""Mesh contact: the forces of all pair slots of one flank family (model.md §3-5).
+"""Mesh contact: the forces of all pair slots of one flank family (docs/theory.md §3-5).
 
 Coordinates and slots are described in :mod:`gearcli.core.rhs`; this module evaluates, for one
 flank family f (layout.DRIVE_FLANKS: sigma = +1, layout.COAST_FLANKS: sigma = -1), every pair
 slot's penetration from the gap tables, runout and tooth offsets, its contact force (Adams
-IMPACT, model.md §4), the generalized forces on the roll distances and the friction moments
-(Adams contact friction, model.md §5).
+IMPACT, docs/theory.md §4), the generalized forces on the roll distances and the friction moments
+(Adams contact friction, docs/theory.md §5).
 
 A new per-pair or per-tooth quantity (a stiffness table, a fault) is read here from a field of
 :class:`gearcli.core.bundles.Model`; the per-family constants come from ``model.family``

@@ -3,7 +3,7 @@
 References
 ----------
 MSC Software, "Adams Solver: Function Reference", IMPACT/contact friction (stiction and
-dynamic friction transition); model.md §5.
+dynamic friction transition); docs/theory.md §5.
 """
 
 from gearcli.core.jit import jit

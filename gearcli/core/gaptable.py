@@ -4,7 +4,7 @@ The caller tabulates each gap function (value and slope) on one uniform grid of 
 ``x_lo + i h``, ``i = 0 .. n-1``, ``h = (x_hi - x_lo)/(n - 1)`` [mm]. Between grid points the
 gap is the cubic Hermite interpolant, and the slope returned is the derivative OF THAT
 INTERPOLANT, so contact forces are exact gradients of the contact potential (energy
-consistent; model.md §3).
+consistent; docs/theory.md §3).
 
 References
 ----------

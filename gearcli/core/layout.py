@@ -6,7 +6,7 @@ names; the index constants (``P.r_b1``, ``C.delta_mm``, ...) are generated from 
 name never shifts an index by hand. Compiled code reads the index namedtuples as compile-time
 constants.
 
-Internal units (model.md §1, the Adams "MMKS" family): mm, N, s, tonne (t), rad;
+Internal units (docs/theory.md §1, the Adams "MMKS" family): mm, N, s, tonne (t), rad;
 1 N = 1 t·mm/s², inertia in t·mm², torque in N·mm, energy in N·mm = mJ, power in N·mm/s = mW.
 
 numba's on-disk cache does not notice when a module a kernel depends on changes (numba issue
@@ -48,7 +48,7 @@ _PARAM_SPEC = (
     ("J2", "t*mm^2", None),  # polar inertia, gear
     ("z1", "-", None),  # number of teeth (indexes the per-tooth offsets)
     ("z2", "-", None),
-    # mesh geometry along the LoA (model.md §2-3)
+    # mesh geometry along the LoA (docs/theory.md §2-3)
     ("p_b", "mm", None),  # base pitch
     ("T1A", "mm", None),  # |T1A|: distance of contact start A from T1 (friction arms)
     ("T1T2", "mm", None),  # |T1T2| = a_w sin(alpha_w)
@@ -71,17 +71,17 @@ _PARAM_SPEC = (
     ("phase2", "rad", 0.0),
     ("phase1_coast", "rad", 0.0),  # phase on the coast LoA (drive phase +- 2 alpha_w)
     ("phase2_coast", "rad", 0.0),
-    # contact law, Adams IMPACT (model.md §4)
+    # contact law, Adams IMPACT (docs/theory.md §4)
     ("k_contact", "N/mm^e", None),
     ("exponent", "-", None),
     ("c_max", "N*s/mm", 0.0),
     ("d_max", "mm", 0.1),
-    # friction, Adams (model.md §5); mu_s = mu_d = 0 switches it off
+    # friction, Adams (docs/theory.md §5); mu_s = mu_d = 0 switches it off
     ("mu_s", "-", 0.0),
     ("mu_d", "-", 0.0),
     ("v_s", "mm/s", 0.01),
     ("v_d", "mm/s", 0.1),
-    # drive (model.md §6)
+    # drive (docs/theory.md §6)
     ("drive_mode", "-", None),  # DRIVE_SPEED, DRIVE_SHAFT or DRIVE_TORQUE
     ("shaft_k", "N*mm/rad", 0.0),
     ("shaft_c", "N*mm*s/rad", 0.0),
@@ -134,7 +134,7 @@ ParamIndex = NamedTuple("ParamIndex", [(n, int) for n in PARAM_NAMES])
 P = ParamIndex(*range(len(PARAM_NAMES)))
 N_PARAMS = len(PARAM_NAMES)
 
-# Drive modes (model.md §6).
+# Drive modes (docs/theory.md §6).
 DRIVE_SPEED = 0  # prescribed omega1(t) (Adams MOTION); only the gear is integrated
 DRIVE_SHAFT = 1  # prescribed motor angle/speed through a torsional shaft to a free pinion
 DRIVE_TORQUE = 2  # prescribed T_drive(t), optional linear motor curve

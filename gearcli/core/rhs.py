@@ -1,9 +1,9 @@
-"""Right-hand side of the spur-pair model (model.md §1, §3-6; model/structure.py).
+"""Right-hand side of the spur-pair model (docs/theory.md §1, §3-6; model/structure.py).
 
 Coordinates [mm]: roll distances s1 = r_b1 theta1, s2 = r_b2 theta2 and the DTE
 delta = s1 - s2 (> 0 compresses the drive flanks). Integrated state: see layout.STATE_NAMES.
 
-Pair slots (model.md §3). Drive flank, slot j = 0 .. N-1:
+Pair slots (docs/theory.md §3). Drive flank, slot j = 0 .. N-1:
     r = s1 - s1_0,  n = floor(r / p_b),  u = r - n p_b in [0, p_b)
     x1_j = x_lo + u + j p_b        pinion roll position, measured from A [mm]
     x2_j = x1_j - delta            gear roll position [mm]
@@ -26,21 +26,21 @@ sigma s2, and
 Runout on a flank: e_i = ecc_i sin(theta_i + phase_i) (phase_i_coast on the coast LoA; the
 projection of the same rotating eccentricity on the mirrored LoA differs only in phase).
 
-Forces (model.md §4): F_j = IMPACT(p_j, pdot_j), pdot_j = dp/ds1 v1 + dp/ds2 v2 (chain rule);
+Forces (docs/theory.md §4): F_j = IMPACT(p_j, pdot_j), pdot_j = dp/ds1 v1 + dp/ds2 v2 (chain rule);
 generalized forces Q_s1 = -F dp/ds1, Q_s2 = -F dp/ds2 [N]: the gradient of the potential
 sum k p^(e+1)/(e+1) plus the damping part, so the elastic mesh conserves energy exactly.
 Torques r_b1 Q_s1 on the pinion, r_b2 Q_s2 on the gear [N*mm].
 
-Friction (model.md §5), both flanks: rho1 = T1A + x1_j, rho2 = T1T2 - rho1 [mm],
+Friction (docs/theory.md §5), both flanks: rho1 = T1A + x1_j, rho2 = T1T2 - rho1 [mm],
 v = omega1 rho1 - omega2 rho2 [mm/s], f = mu(v) F [N]; pinion torque += f rho1, gear torque
 -= f rho2. Power f (omega1 rho1 - omega2 rho2) = mu(v) F v <= 0. Coast mirrored: in mirrored
 coordinates v' = -v, mu(v') = -mu(v), f' = -f and the mirrored torques +f' rho1, -f' rho2 map
 back with one more sign change to +f rho1, -f rho2: the same formulas in the real coordinates
 (with the coast contact point's rho1 = T1A + x1c_j; the coast path has the drive path's length
 for the symmetric teeth this assumes). The contact point is taken on the LoA also outside the
-nominal path (extended contact): an approximation of the tip-contact arms of model.md §3.
+nominal path (extended contact): an approximation of the tip-contact arms of docs/theory.md §3.
 
-Equations of motion (model.md §6; the bodies in :mod:`gearcli.core.bodies`), M1, M2 the mesh +
+Equations of motion (docs/theory.md §6; the bodies in :mod:`gearcli.core.bodies`), M1, M2 the mesh +
 friction torques:
     J1 alpha1 = T_drive + M1 - c1 omega1
     J2 alpha2 = M2 - T_load(t) - cv omega2 - cq omega2 |omega2| - c2 omega2
@@ -63,7 +63,8 @@ Optional bodies (model/structure.py; states after N_STATE_BASE, integrated only 
   the approach (u1 - u2) . n adds to every pair's penetration on the flank family with line
   of action n (n_d, n_c), its rate to pdot, (u1' - u2') . t to the sliding speed; the mesh
   force on the pinion centre is -F_d n_d - F_c n_c + f_d t_d + f_c t_c, the gear gets the
-  opposite (Kahraman & Singh, J. Sound Vib. 146(1), 1991: the 6-DOF spur-pair model).
+  opposite (Kahraman & Singh, J. Sound Vib. 144(3), 469-506, 1991: the 6-DOF spur-pair
+  model).
 Energy: shafts and bearings store sum k q^2/2 (aux spring_energy), their dampers and the load
 terms dissipate into loss_bearing, so the energy balance closes for every model.
 """

@@ -2,7 +2,7 @@
 
 References
 ----------
-MSC Software, "Adams Solver: Function Reference", STEP function; model.md §4.
+MSC Software, "Adams Solver: Function Reference", STEP function; docs/theory.md §4.
 """
 
 from gearcli.core.jit import jit

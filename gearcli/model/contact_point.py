@@ -5,7 +5,7 @@ lies on the line of action: ρ1 = |T1P| = |T1A| + x, ρ2 = |T2P| = |T1T2| − ρ
 of curvature = length of the base tangent; ISO 21771, Litvin & Fuentes 2004 §10.2), and the
 force acts along the line of action at the flank radii r_i = √(r_bi² + ρ_i²).
 
-Outside the path (extended contact under load, model.md §3) a tip touches the mate's flank:
+Outside the path (extended contact under load, docs/theory.md §3) a tip touches the mate's flank:
 
 * with a tip rounding ρ_a, the rounding circle (centre Q) touches the mate's involute where the
   mate's involute normal through Q (the tangent from Q to the mate's base circle, at T')

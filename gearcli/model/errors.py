@@ -1,8 +1,9 @@
 """Manufacturing errors projected on the lines of action: pitch deviations and runout.
 
-model.md §3: each pair's penetration loses e_j(t), the errors of the teeth in mesh projected on
-the line of action; the kernel (core/flank.py) reads them as per-tooth flank offsets and as a
-runout gap ``e sin(theta + phase)`` per gear and flank family. All lengths in mm, angles in rad.
+docs/theory.md §3: each pair's penetration loses e_j(t), the errors of the teeth in mesh
+projected on the line of action; the kernel (core/flank.py) reads them as per-tooth flank
+offsets and as a runout gap ``e sin(theta + phase)`` per gear and flank family. All lengths
+in mm, angles in rad.
 
 References
 ----------

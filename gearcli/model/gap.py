@@ -1,6 +1,6 @@
-"""Flank-gap tables G1(x), G2(x) of a tooth pair along its path (model.md §3).
+"""Flank-gap tables G1(x), G2(x) of a tooth pair along its path (docs/theory.md §3).
 
-The drive-flank penetration of a tooth pair is (model.md §3, core/rhs.py)
+The drive-flank penetration of a tooth pair is (docs/theory.md §3, core/rhs.py)
 
     p = δ − G1(x1) − G2(x2) − e,      x1 = pinion roll position, x2 = x1 − δ,
 

@@ -339,7 +339,7 @@ def compute_pair_geometry(spec: PairSpec) -> PairGeometry:
 
 
 def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
-    """Feasibility checks (model.md §2; limits from ISO 21771 / Niemann/Winter II).
+    """Feasibility checks (docs/theory.md §2; limits from ISO 21771 / Niemann/Winter II).
 
     Errors: ε_α < 1; involute interference; negative backlash / undefined α_w; tip not above
     the base circle; d_f <= 0; negative tip clearance; s_a <= 0; tip rounding that does not
@@ -442,7 +442,7 @@ def mesh_frequencies(z1: int, pinion_speed_rad_s: float, i: float) -> tuple[floa
     Returns
     -------
     (f_z, n1, n2) : tuple of float [Hz]
-        n1 = ω1 / (2π), n2 = n1 / i, f_z = z1 n1 (model.md §7).
+        n1 = ω1 / (2π), n2 = n1 / i, f_z = z1 n1 (docs/theory.md §7).
     """
     n1 = pinion_speed_rad_s / (2.0 * math.pi)
     return z1 * n1, n1, n1 / i

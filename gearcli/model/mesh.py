@@ -1,13 +1,13 @@
 """Linearised mesh mode: stiffness, damping, natural frequency at the operating load.
 
-model.md §4 and §6. The Adams IMPACT law per pair, F = k p^e + STEP(p, 0, 0, d_max, c_max) ṗ
+docs/theory.md §4 and §6. The Adams IMPACT law per pair, F = k p^e + STEP(p, 0, 0, d_max, c_max) ṗ
 (MSC Adams Solver, IMPACT function), linearised about the static deflection p_s that carries
 the static normal force F_s shared by ε_α pairs on average:
 
     p_s = (F_s / (ε_α k))^(1/e),   k_pair = e k p_s^(e-1),   c_pair = STEP(p_s, 0, 0, d_max, c_max)
     k_mesh = ε_α k_pair,           c_mesh = ε_α c_pair
 
-Mesh mode (2-DOF torsional, model.md §6): with a prescribed pinion speed only the gear moves,
+Mesh mode (2-DOF torsional, docs/theory.md §6): with a prescribed pinion speed only the gear moves,
 m = J2 / r_b2²; with both gears free, m_e = 1 / (r_b1²/J1 + r_b2²/J2) (the rigid-body mode
 has zero frequency). f_n = √(k_mesh/m)/2π, ζ = c_mesh / (2 √(k_mesh m)).
 Units: N, mm, s, t (k in N/mm, c in N·s/mm, m in t = N·s²/mm).
@@ -23,7 +23,7 @@ from gearcli.core.stepfunc import step as adams_step  # Adams STEP (one implemen
 
 def static_normal_force_N(load_torque_Nmm: float, r_b2_mm: float) -> float:
     """Static normal tooth force F_n,static = |T_load| / r_b2 [N] of a load torque [N*mm] on
-    the gear with base radius r_b2 [mm] (model.md §7; the force acts along the line of action,
+    the gear with base radius r_b2 [mm] (docs/theory.md §7; the force acts along the line of action,
     tangent to the base circle)."""
     return abs(load_torque_Nmm) / r_b2_mm
 

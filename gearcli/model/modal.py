@@ -12,7 +12,7 @@ Coordinates q, only the active ones, in this order (:meth:`LinearSystem.dofs`)::
     theta_L_rad   load inertia, in the gear's sense (load shaft + load inertia)
     x1_mm, y1_mm, x2_mm, y2_mm   gear centres (model 'lateral-torsional')
 
-Linearised about the operating point (model.md §4, §6)::
+Linearised about the operating point (docs/theory.md §4, §6)::
 
     M q̈ + C q̇ + K q = 0
     M = diag(J_m, J1, J2, J_L, m1, m1, m2, m2)
@@ -22,7 +22,7 @@ Linearised about the operating point (model.md §4, §6)::
 - Mesh: the dynamic transmission error along the drive-flank line of action (structure.py)
   δ = r_b1 θ1 − r_b2 θ2 + (u1 − u2)·n_d, so g = ∂δ/∂q has r_b1 on θ1, −r_b2 on θ2, n_d on
   (x1, y1) and −n_d on (x2, y2), n_d = line_of_action(α_w, 'drive'): the classic 6-DOF
-  spur-pair model (Kahraman & Singh, J. Sound Vib. 146(1), 1991, with the mesh
+  spur-pair model (Kahraman & Singh, J. Sound Vib. 144(3), 469-506, 1991, with the mesh
   stiffness and damping at their mean values and the backlash closed on the drive flanks).
   A rigid rotation of the pair (δ = 0) has θ2/θ1 = r_b1/r_b2.
 - Shafts (s the shaft twist's gradient): drive shaft θm − θ1 (torque drive with a motor
@@ -98,7 +98,7 @@ def linearised_dampers(structure: Structure, drive_torque_Nmm: float,
 
     c_m = |T|/ω0 (torque drive with a linear motor curve T(t)(1 − ω/ω0); core/rhs.py);
     c_q,lin = 2 c_q |ω_L| with the load speed ω_L = ω2 = ω1 r_b1/r_b2 (rigid kinematics,
-    model.md §1; the load shaft turns with the gear). Derivatives of the torque laws with
+    docs/theory.md §1; the load shaft turns with the gear). Derivatives of the torque laws with
     respect to speed: the linearisation of Rao, Mechanical Vibrations, ch. 13 (small motion
     about an operating point).
     """

@@ -64,7 +64,7 @@ def gear_mass_properties(
     mass_t: float | None = None,
     extra_inertia_t_mm2: float = 0.0,
 ) -> MassProperties:
-    """Mass properties of a gear body (model.md §2).
+    """Mass properties of a gear body (docs/theory.md §2).
 
     ``model == "disc"``: a solid disc of ``diameter_mm`` (default: the pitch diameter) and the
     face width, from the density (:func:`disc_mass_inertia`); ``"given"``: ``inertia_t_mm2``

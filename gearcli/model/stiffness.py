@@ -1,4 +1,4 @@
-"""Mesh stiffness of spur gears from ISO 6336-1:2019, Method B (model.md §4, option "derived").
+"""Mesh stiffness of spur gears from ISO 6336-1:2019, Method B (docs/theory.md §4, "derived").
 
 Single-pair (tooth) stiffness per unit face width, ISO 6336-1 §9.3:
 
@@ -11,7 +11,7 @@ Single-pair (tooth) stiffness per unit face width, ISO 6336-1 §9.3:
 
 For a line load F_t K_A / b below 100 N/mm, c' is reduced by (F_t K_A / b / 100)^0.25 (same
 clause). Mean mesh stiffness c_γα = c' (0.75 ε_α + 0.25) (ISO 6336-1 §9.4). For spur gears
-z_n = z and β = 0. Beware public code that writes the C9 term with x1² (model.md §4).
+z_n = z and β = 0. Beware public code that writes the C9 term with x1² (docs/theory.md §4).
 
 Units: c' in N/(mm·µm); times the face width b [mm] it is a pair stiffness in N/µm
 (= 1000 N/mm).
@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-#: ISO 6336-1:2019 §9.3 (Method B), C1 … C9 (as model.md §4 lists them).
+#: ISO 6336-1:2019 §9.3 (Method B), C1 … C9 (as docs/theory.md §4 lists them).
 C_COEFFS = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
 C_M = 0.8  #: correction factor (theory vs measurement), ISO 6336-1 §9.3.2
 C_R_SOLID = 1.0  #: gear blank factor for solid gears, §9.3.3

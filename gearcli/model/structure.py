@@ -4,7 +4,7 @@
 their equations from a :class:`Structure`, so the time-domain and the modal results describe
 one model (issue 5). Internal units (gearcli.units): mm, N, s, t, rad.
 
-Torsional chain (model.md §6), drive side to load side::
+Torsional chain (docs/theory.md §6), drive side to load side::
 
     [motor J_m] --shaft k_s, c_s-- [pinion J1] ==mesh== [gear J2] --shaft k_L, c_L-- [load J_L]
 
@@ -16,8 +16,8 @@ Torsional chain (model.md §6), drive side to load side::
   load inertia, connected to the gear by the load shaft; otherwise they act on the gear.
 
 Lateral-torsional model (``model == 'lateral-torsional'``; the classic 6-DOF spur-pair model,
-Kahraman & Singh, J. Sound Vib. 146(1), 1991; Cai & Hayashi, J. Mech. Des. 116, 1994): each
-gear centre also moves in x and y on its bearings (stiffness and damping per direction).
+Kahraman & Singh, J. Sound Vib. 144(3), 469-506, 1991; Cai & Hayashi, J. Mech. Des. 116,
+1994): each gear centre also moves in x and y on its bearings (stiffness and damping per direction).
 
 Frame: origin at the pinion centre O1, x along the line of centres towards the gear centre
 O2, y perpendicular in the direction the pinion's pitch point moves (pinion turning

@@ -1,6 +1,6 @@
 """`gearcli analyze DIR`: steady-state metrics, spectra, mesh lines and checks of a finished run.
 
-Physics references: model.md §6 (mesh mode), §7 (static force, dynamic factor, spectra,
+Physics references: docs/theory.md §6 (mesh mode), §7 (static force, dynamic factor, spectra,
 aliasing). Deterministic: the same folder gives the same analysis.json byte for byte.
 """
 
@@ -167,7 +167,7 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
 
 
 def _resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
-    """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (model.md §7; issue 5).
+    """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (docs/theory.md §7; issue 5).
 
     summary["modes"] (gearcli.pipeline.modal.modes_summary: every mode of the linearised model,
     the same as `gearcli modal`) when the run has it, else the mesh mode of older results

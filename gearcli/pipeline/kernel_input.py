@@ -1,6 +1,6 @@
 """Case -> the compiled kernel's plain inputs (parameter vector, tables, time functions).
 
-Conventions (model.md §1, §3; core/rhs.py): θ1 = 0 is the instant a drive tooth pair touches
+Conventions (docs/theory.md §1, §3; core/rhs.py): θ1 = 0 is the instant a drive tooth pair touches
 at the pitch point C; the pinion turns counter-clockwise, the gear clockwise; roll positions x
 are measured from A along the line of action.
 """

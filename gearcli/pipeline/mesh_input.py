@@ -11,7 +11,7 @@ from gearcli.pipeline.geometry import GeometryResult
 
 
 def static_force_N(case: Case, geo: GeometryResult) -> float:
-    """F_n,static [N] of the load torque at the end of its ramps (model.md §7)."""
+    """F_n,static [N] of the load torque at the end of its ramps (docs/theory.md §7)."""
     final = case.load.torque.pp.final_value()
     torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
     return static_normal_force_N(torque, geo.geometry.gear.r_b_mm)
@@ -19,7 +19,7 @@ def static_force_N(case: Case, geo: GeometryResult) -> float:
 
 def contact_stiffness(case: Case, geo: GeometryResult) -> float:
     """k of the IMPACT law [N/mm^e]: given, or 'derived' = ISO 6336-1 c' b (e = 1) at the
-    static load (model.md §4)."""
+    static load (docs/theory.md §4)."""
     if case.contact.stiffness != "derived":
         return float(case.contact.stiffness)
     torque = static_force_N(case, geo) * geo.geometry.gear.r_b_mm
@@ -28,7 +28,7 @@ def contact_stiffness(case: Case, geo: GeometryResult) -> float:
 
 
 def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
-    """The mesh linearised at the static load (model.md §4, §6): with a prescribed pinion
+    """The mesh linearised at the static load (docs/theory.md §4, §6): with a prescribed pinion
     speed only the gear vibrates, else both gears are free."""
     g, ct = geo.geometry, case.contact
     return mesh_mode(static_force_N(case, geo), g.eps_alpha, contact_stiffness(case, geo),

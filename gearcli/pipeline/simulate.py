@@ -234,7 +234,7 @@ def energy_balance(k) -> dict:
 
 
 def collect_warnings(res: SimulationResult) -> list[str]:
-    """Warnings the terminal and the summary show (model.md §4, §7)."""
+    """Warnings the terminal and the summary show (docs/theory.md §4, §7)."""
     s, ki = res.summary, res.kernel_input
     out = []
     if s["mesh_damping_ratio"] > 1.0:

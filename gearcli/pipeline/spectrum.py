@@ -1,4 +1,4 @@
-"""Amplitude spectra and line (peak) measurement for mesh-frequency analysis (model.md §7).
+"""Amplitude spectra and line (peak) measurement for mesh-frequency analysis (docs/theory.md §7).
 
 Spectrum: the signal minus its mean, times a Hann window, one-sided |FFT| scaled by 2/Σw so a
 sinusoid of amplitude A reads A at its bin (amplitude-correct; Harris, "On the use of windows

@@ -50,7 +50,7 @@ def test_analysis_is_deterministic(seed_dir):
 
 
 def test_seed_1000_steps_aliases(tmp_path):
-    # The article's 1000 output steps: 200 Hz sampling, below 2 f_z (model.md §9 slip 4).
+    # The article's 1000 output steps: 200 Hz sampling, below 2 f_z (docs/theory.md §9 slip 4).
     folder = tmp_path / "run"
     write_simulation(run_simulation(SEED, ["run.output_steps=1000"]), folder, force=False)
     result = _analyze(folder)

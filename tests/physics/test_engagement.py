@@ -1,7 +1,7 @@
 """Tooth engagement, relief, backlash and runout in the time domain (issue 3).
 
 Realistic mesh damping (c_max = 5 N*s/mm, damping ratio ~0.1) and no friction keep the
-signatures clean; the seed's c_max = 100 N*s/mm is overdamped (model.md §4).
+signatures clean; the seed's c_max = 100 N*s/mm is overdamped (docs/theory.md §4).
 """
 
 import math

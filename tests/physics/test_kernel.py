@@ -1,15 +1,15 @@
 """The compiled simulation kernel (gearcli.core) against independent references.
 
-* contact law, STEP and Adams mu(v) against the formulas written out here (model.md §4-5);
+* contact law, STEP and Adams mu(v) against the formulas written out here (docs/theory.md §4-5);
 * the Dormand-Prince tableau, its error weights and dense output (order conditions);
-* a second method: the same physics (model.md §1, §3-6) written separately below in plain
+* a second method: the same physics (docs/theory.md §1, §3-6) written separately below in plain
   Python, integrated with scipy's DOP853 at rtol 1e-10;
 * energy: E_kin + V conserved for the elastic mesh with smooth (extended) tables, not for the
   rigid tables; the energy balance of the quadratures; friction power <= 0;
 * status codes of runs that must fail;
 * the seed case in steady state against statics and kinematics.
 
-Units: mm, N, s, t, rad (model.md §1).
+Units: mm, N, s, t, rad (docs/theory.md §1).
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ from gearcli.core.stepfunc import step
 from gearcli.core.timeloop import run
 from gearcli.model.timefunction import PiecewisePolynomial as PP
 
-# --- seed-like pair (model.md §9) -----------------------------------------------------------
+# --- seed-like pair (docs/theory.md §9) -----------------------------------------------------------
 Z1, Z2 = 17, 25
 R_B1, R_B2 = 79.874, 117.462  # base radii [mm]
 P_B = 29.5213  # base pitch [mm]
@@ -61,7 +61,7 @@ BASE = dict(
 
 
 def adams_step(x, x0, h0, x1, h1):
-    """Adams STEP written out (model.md §4)."""
+    """Adams STEP written out (docs/theory.md §4)."""
     if x <= x0:
         return h0
     if x >= x1:
@@ -71,7 +71,7 @@ def adams_step(x, x0, h0, x1, h1):
 
 
 def mu_reference(v, mu_s, mu_d, v_s, v_d):
-    """Adams friction coefficient, model.md §5, case by case."""
+    """Adams friction coefficient, docs/theory.md §5, case by case."""
     if abs(v) >= v_d:
         return -math.copysign(mu_d, v)
     if abs(v) >= v_s:
@@ -204,7 +204,7 @@ def test_make_params_names_and_layout_guard():
 
 # --- 2. second method -------------------------------------------------------------------------
 class Reference:
-    """The model of model.md §1, §3-6 in plain Python (scalar loops, analytic gap functions).
+    """The model of docs/theory.md §1, §3-6 in plain Python (scalar loops, analytic gap functions).
 
     ``drive``: "speed" (state delta, deltadot; pinion prescribed) or "torque" (state s1, v1,
     delta, deltadot with T_drive = 0). Positions from A; slot j of the drive flank at
@@ -417,7 +417,7 @@ def test_energy_is_conserved_with_extended_tables():
 
 def test_rigid_tables_are_not_conservative():
     """Regression: in the rigid model a pair enters with the full deflection, so the contact
-    energy jumps at every loaded entry (model.md §3)."""
+    energy jumps at every loaded entry (docs/theory.md §3)."""
     res, energy = _free_run(*rigid_tables(), t_end=30 * MESH_PERIOD)
     # measured: jumps of 0.87 times the largest contact energy (5e-4 of the total)
     assert np.abs(energy - energy[0]).max() > 0.1 * res.column("contact_energy_mJ").max()

@@ -39,7 +39,7 @@ def _inv_inverse_bisect(value: float) -> float:
 
 
 def seed_spec(**pair) -> PairSpec:
-    """The seed article's pair: z 17/25, m 10 mm, α 20°, b 100 mm (model.md §9)."""
+    """The seed article's pair: z 17/25, m 10 mm, α 20°, b 100 mm (docs/theory.md §9)."""
     return PairSpec(10.0, DEG20, GearSpec(17, 100.0), GearSpec(25, 100.0), **pair)
 
 
@@ -79,7 +79,7 @@ def test_inv_small_angle_series_matches_extended_precision():
     assert np.max(np.abs(inv(a) - exact) / exact) < 2e-14
 
 
-# --- seed pair (model.md §9) ------------------------------------------------------------------
+# --- seed pair (docs/theory.md §9) --------------------------------------------------------------
 
 def test_seed_geometry_matches_theory():
     g = compute_pair_geometry(seed_spec())

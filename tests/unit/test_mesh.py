@@ -31,7 +31,7 @@ def test_seed_mesh_mode_motion_driven_pinion():
     assert mm.natural_frequency_Hz == pytest.approx(math.sqrt(k_mesh / m) / (2 * math.pi))
     c = EPS * 100 * (p / 0.1) ** 2 * (3 - 2 * p / 0.1)
     assert mm.damping_ratio == pytest.approx(c / (2 * math.sqrt(k_mesh * m)), rel=1e-12)
-    assert mm.damping_ratio > 1.0  # the seed's c_max gives an overdamped mesh (model.md §4)
+    assert mm.damping_ratio > 1.0  # the seed's c_max gives an overdamped mesh (docs/theory.md §4)
 
 
 def test_free_pinion_uses_equivalent_mass():

@@ -5,7 +5,7 @@ pipeline functions `simulate` uses (case_modes, modes_summary).
 Closed forms are exact for their configuration unless a tolerance says otherwise; exact ones
 use rel 1e-9 (floating-point round-off of a symmetric eigenproblem, ~1e-13, with margin).
 Chains of rotors are written in pinion coordinates: the gear side reflected by (r_b1/r_b2)²
-(rigid kinematics r_b1 θ1 = r_b2 θ2, model.md §1), the mesh as a torsional spring k r_b1².
+(rigid kinematics r_b1 θ1 = r_b2 θ2, docs/theory.md §1), the mesh as a torsional spring k r_b1².
 """
 
 import dataclasses

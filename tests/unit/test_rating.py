@@ -92,7 +92,7 @@ def test_seed_pitch_point_nominal_contact_stress():
     cp = contact_points(geo, [geo.C_mm - geo.A_mm])
     at_c = hertz_line_contact_stress(st.force_normal_N, b, cp.rho1_mm, cp.rho2_mm, st.e_star_MPa)
     assert at_c[0] == pytest.approx(expected, rel=1e-12)
-    # Z_ε for ε_α = 1.5630 (model.md §9)
+    # Z_ε for ε_α = 1.5630 (docs/theory.md §9)
     assert st.Z_eps == pytest.approx(math.sqrt((4 - geo.eps_alpha) / 3), rel=1e-14)
 
 

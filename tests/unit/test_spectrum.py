@@ -56,5 +56,5 @@ def test_line_above_nyquist_is_not_resolvable():
 
 
 def test_alias_frequency_of_the_seed_at_1000_steps():
-    # 1000 output steps over 5 s: 200 Hz; 141.67 Hz folds to 58.33 Hz (model.md §9, slip 4)
+    # 1000 output steps over 5 s: 200 Hz; 141.67 Hz folds to 58.33 Hz (docs/theory.md §9, slip 4)
     assert alias_frequency(17 * 3000 / 360, 200.0) == pytest.approx(58.333, abs=1e-3)

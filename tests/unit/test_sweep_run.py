@@ -127,7 +127,7 @@ design: one_at_a_time
 
 
 def test_stiffer_mesh_has_a_higher_natural_frequency(tmp_path):
-    """Mesh mode (model.md §6): f_n = sqrt(k / m_eq) / 2 pi, so 4x the (linear) pair stiffness
+    """Mesh mode (docs/theory.md §6): f_n = sqrt(k / m_eq) / 2 pi, so 4x the (linear) pair stiffness
     gives 2x f_n; the transmission error fluctuation falls with stiffness (delta ~ F / k)."""
     study = _derived_study(tmp_path, """parameters:
   contact.stiffness: ["5e5 N/mm", "1e6 N/mm", "2e6 N/mm"]
