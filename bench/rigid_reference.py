@@ -1,7 +1,7 @@
 """Plain scipy reference of the seed case's rigid model, for the solver speed comparison.
 
 The classic line-of-action-only model (`contact.engagement=rigid friction.enabled=false`,
-model.md §3-6) written the way a user would write it with numpy/scipy: a Python right-hand
+docs/theory.md §3-6) written the way a user would write it with numpy/scipy: a Python right-hand
 side, ``scipy.integrate.solve_ivp(method="LSODA")``. It shares no code with the compiled
 kernel (only the numbers of the seed case: base radii, inertia, base pitch, path of contact,
 slot phases, IMPACT parameters, tolerances), so it also cross-checks the kernel.

@@ -225,9 +225,9 @@ def run(model, out, layout_key, i_first):
     atol[S.v1] = prm[P.atol_deltadot]
     atol[S.delta] = prm[P.atol_delta]
     atol[S.deltadot] = prm[P.atol_deltadot]
-    for i in range(S.x1, S.y2 + 1):  # centre displacements: like the DTE
-        atol[i] = prm[P.atol_delta]
-        atol[i + 4] = prm[P.atol_deltadot]
+    for pos, rate in ((S.x1, S.vx1), (S.y1, S.vy1), (S.x2, S.vx2), (S.y2, S.vy2)):
+        atol[pos] = prm[P.atol_delta]  # centre displacements and rates: like the DTE
+        atol[rate] = prm[P.atol_deltadot]
     atol[S.tw_m] = prm[P.atol_delta] / prm[P.r_b1]  # twists [rad]: the same at the base radius
     atol[S.tw_m_dot] = prm[P.atol_deltadot] / prm[P.r_b1]
     atol[S.tw_l] = prm[P.atol_delta] / prm[P.r_b2]

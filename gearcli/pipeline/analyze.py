@@ -166,7 +166,7 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
     }
 
 
-def _resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
+def resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
     """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (docs/theory.md §7; issue 5).
 
     summary["modes"] (gearcli.pipeline.modal.modes_summary: every mode of the linearised model,
@@ -239,7 +239,7 @@ def _checks(res: Analysis, case, s) -> list[Check]:
     out.append(Check("gmf_line_present", gmf.measured_Hz if gmf.resolvable else None,
                      f"line at f_z = {f_z:.3f} Hz +- 1 bin, > {LINE_PROMINENCE:g} x floor",
                      bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"))
-    out.append(_resonance_check(m, s, f_z, ck))
+    out.append(resonance_check(m, s, f_z, ck))
     if ck.dynamic_factor_max is not None and m["dynamic_factor"] is not None:
         out.append(Check("dynamic_factor", m["dynamic_factor"], f"<= {ck.dynamic_factor_max:g}",
                          m["dynamic_factor"] <= ck.dynamic_factor_max))

@@ -5,7 +5,6 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-import gearcli.cli.modal  # noqa: F401  (registers the command until cli/__init__ imports it)
 from gearcli.cli import app
 from tests.conftest import SEED
 

@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-import gearcli.cli.stress  # noqa: F401  (registers the command until cli/__init__ imports it)
 from gearcli.cli import app
 from gearcli.io.results import read_run
 from tests.conftest import SEED

@@ -8,7 +8,6 @@ import time
 
 from typer.testing import CliRunner
 
-import gearcli.cli.sweep  # noqa: F401  (registers the command until gearcli/cli/__init__ does)
 from gearcli.cli import app
 from gearcli.pipeline.sweep_run import SUMMARY
 from tests.unit.sweep_helpers import write_study
@@ -45,7 +44,7 @@ def test_resume_after_sigkill(tmp_path):
     study = write_study(tmp_path, "parameters:\n  mesh_frequency: "
                         "{linspace: [\"100 Hz\", \"200 Hz\"], num: 12}\n")
     out = tmp_path / "out"
-    cmd = [sys.executable, "-c", "import gearcli.cli.sweep; from gearcli.cli import app; app()",
+    cmd = [sys.executable, "-c", "from gearcli.cli import app; app()",
            "sweep", str(study), "-o", str(out), "--jobs", "1", "-q"]
     proc = subprocess.Popen(cmd, start_new_session=True)
     summary = out / SUMMARY

@@ -4,7 +4,7 @@ keys of older results folders. Unit level: the check's inputs are the summary di
 import pytest
 
 from gearcli.case.schema import Checks
-from gearcli.pipeline.analyze import _resonance_check
+from gearcli.pipeline.analyze import resonance_check
 from gearcli.pipeline.modal import modes_summary
 
 F_Z = 141.67  # Hz, the seed's gear-mesh frequency
@@ -20,7 +20,7 @@ def test_all_elastic_modes_are_checked_nearest_first():
     # mode 3 (lightly damped) lies 3 % above 3 f_z = 425.0 Hz; mode 2 is >= 19 % from all k f_z
     modes = [mode(1, None, None, rigid=True), mode(2, 350.0, 0.05), mode(3, 437.8, 0.02)]
     metrics = {}
-    check = _resonance_check(metrics, {"modes": modes}, F_Z, CHECKS)
+    check = resonance_check(metrics, {"modes": modes}, F_Z, CHECKS)
     assert not check.passed
     assert check.value == pytest.approx(abs(3 * F_Z - 437.8) / 437.8 * 100)
     assert "3 x f_z" in check.note and "mode 3" in check.note and "violated" in check.note
@@ -32,22 +32,22 @@ def test_all_elastic_modes_are_checked_nearest_first():
 
 def test_mode_without_peak_is_not_checked():
     modes = [mode(1, 437.8, 1.5), mode(2, 1000.0, 0.05)]  # 1000 Hz: 41 % above 5 f_z
-    check = _resonance_check({}, {"modes": modes}, F_Z, CHECKS)
+    check = resonance_check({}, {"modes": modes}, F_Z, CHECKS)
     assert check.passed and check.value == pytest.approx(abs(3 * F_Z - 437.8) / 437.8 * 100)
     assert "mode(s) 1 have no resonant peak" in check.note
 
 
 def test_older_folders_use_the_mesh_mode_keys():
     metrics = {"mesh_natural_frequency_Hz": 281.19, "mesh_damping_ratio": 0.05}
-    check = _resonance_check(metrics, {}, F_Z, CHECKS)
+    check = resonance_check(metrics, {}, F_Z, CHECKS)
     assert not check.passed  # 2 f_z = 283.3 Hz, 0.76 % away
     assert check.value == pytest.approx(abs(2 * F_Z - 281.19) / 281.19 * 100)
     assert "vs mesh mode 281.2 Hz" in check.note
     assert "resonance_margins" not in metrics
     metrics["mesh_damping_ratio"] = 1.89  # the seed's overdamped mesh: no peak, passes
-    assert _resonance_check(metrics, {}, F_Z, CHECKS).passed
+    assert resonance_check(metrics, {}, F_Z, CHECKS).passed
     # a summary whose "modes" list is empty (no modal result stored) falls back the same way
-    assert _resonance_check(metrics, {"modes": []}, F_Z, CHECKS).value == pytest.approx(
+    assert resonance_check(metrics, {"modes": []}, F_Z, CHECKS).value == pytest.approx(
         abs(2 * F_Z - 281.19) / 281.19 * 100)
 
 
@@ -56,5 +56,5 @@ def test_summary_from_modal_result_feeds_the_check():
     from tests.conftest import SEED
 
     result = run_modal(SEED, ["contact.max_damping=1"]).result  # 281.2 Hz, lightly damped
-    check = _resonance_check({}, {"modes": modes_summary(result)}, F_Z, CHECKS)
+    check = resonance_check({}, {"modes": modes_summary(result)}, F_Z, CHECKS)
     assert not check.passed and "2 x f_z" in check.note and "mode 1" in check.note
