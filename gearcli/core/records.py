@@ -28,10 +28,11 @@ def kinetic_energy(prm, s1dot, y):
 
 
 @jit_noalloc
-def write_row(out, i, t, y, aux, slot_force, prm):
-    """Fill output row ``i`` of ``out`` (bundles.Out) at time ``t`` [s] from the state and one
-    full RHS evaluation there (``aux``, ``slot_force`` of shape (N_FAMILIES, n_slots))."""
-    series = out.series
+def write_row(series, slot_series, i, t, y, aux, slot_force, prm):
+    """Fill output row ``i`` of ``series`` and ``slot_series`` (bundles.Out) at time ``t`` [s]
+    from the state and one full RHS evaluation there (``aux``, ``slot_force`` of shape
+    (N_FAMILIES, n_slots)). Takes the two output arrays, not the Out bundle: numba passes a
+    bundle as all its arrays, and this runs once per output row."""
     r_b1 = prm[P.r_b1]
     r_b2 = prm[P.r_b2]
     s1 = aux[A.s1]
@@ -75,7 +76,6 @@ def write_row(out, i, t, y, aux, slot_force, prm):
     row[C.drive_shaft_torque_Nmm] = aux[A.drive_shaft_torque]
     row[C.omega_load_rad_s] = aux[A.load_speed]
     row[C.load_shaft_torque_Nmm] = aux[A.load_shaft_torque]
-    slot_series = out.slot_series
     for f in range(N_FAMILIES):
         for j in range(slot_force.shape[1]):
             slot_series[f, i, j] = slot_force[f, j]
@@ -101,11 +101,10 @@ def init_extrema(extrema, slot_extrema):
 
 
 @jit_noalloc
-def update_extrema(out, t, y, aux, slot_force, lateral):
-    """Fold the state and forces of one accepted step end (time ``t`` [s]) into the extrema of
-    ``out`` (bundles.Out); per-slot extrema of the drive slots (row 0 of ``slot_force``)."""
-    extrema = out.extrema
-    slot_extrema = out.slot_extrema
+def update_extrema(extrema, slot_extrema, t, y, aux, slot_force, lateral):
+    """Fold the state and forces of one accepted step end (time ``t`` [s]) into ``extrema`` and
+    the drive slots' ``slot_extrema`` (bundles.Out; the arrays, not the bundle, as in
+    :func:`write_row`)."""
     if lateral:
         b1 = math.hypot(aux[A.bearing_fx1], aux[A.bearing_fy1])
         b2 = math.hypot(aux[A.bearing_fx2], aux[A.bearing_fy2])

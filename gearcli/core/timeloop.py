@@ -272,14 +272,15 @@ def run(model, out, layout_key, i_first):
     return _march(model, w, out, i_first, theta_offset, fresh, n_state)
 
 
-@jit_noalloc
+@jit_noalloc_inline
 def _sample(out, i_out, ts, ys, w, model, mode, theta_offset, ext_start, lateral):
-    """Output row ``i_out`` at ``ts`` [s] from the state ``ys`` there (and its extrema)."""
+    """Output row ``i_out`` at ``ts`` [s] from the state ``ys`` there (and its extrema).
+    Inlined: as a call it would pass every array of three bundles per output row."""
     _evaluate(ts, ys, w.dy, w.aux, w.slot_force, model, mode, theta_offset)
     out.counters[N.output_evaluations] += 1
-    write_row(out, i_out, ts, ys, w.aux, w.slot_force, model.prm)
+    write_row(out.series, out.slot_series, i_out, ts, ys, w.aux, w.slot_force, model.prm)
     if ts >= ext_start:  # samples are points of the solution too
-        update_extrema(out, ts, ys, w.aux, w.slot_force, lateral)
+        update_extrema(out.extrema, out.slot_extrema, ts, ys, w.aux, w.slot_force, lateral)
 
 
 @jit_noalloc
@@ -329,10 +330,10 @@ def _march(model, w, out, i_first, theta_offset, fresh, n_state):
     if not (_all_finite(y) and _all_finite(dy) and _all_finite(aux)):
         return STATUS_NAN, i_first
     if t >= ext_start:
-        update_extrema(out, t, y, aux, w.slot_force, lateral)
+        update_extrema(out.extrema, out.slot_extrema, t, y, aux, w.slot_force, lateral)
     i_out = i_first
     while i_out < n_out and t_out[i_out] <= t:
-        write_row(out, i_out, t_out[i_out], y, aux, w.slot_force, prm)
+        write_row(out.series, out.slot_series, i_out, t_out[i_out], y, aux, w.slot_force, prm)
         i_out += 1
 
     span = t_end - t
@@ -388,7 +389,7 @@ def _march(model, w, out, i_first, theta_offset, fresh, n_state):
                     y[S.s1] = aux[A.s1]
                     y[S.v1] = aux[A.v1]
                 if t >= ext_start:
-                    update_extrema(out, t, y, aux, w.slot_force, lateral)
+                    update_extrema(out.extrema, out.slot_extrema, t, y, aux, w.slot_force, lateral)
                 # the jump starts a new transient: restart below the last step size
                 h = EVENT_RESTART * min(h, h_cut)
                 hop_limit = 0.0
@@ -425,7 +426,8 @@ def _march(model, w, out, i_first, theta_offset, fresh, n_state):
             y_new[S.s1] = aux[A.s1]
             y_new[S.v1] = aux[A.v1]
         if t_new >= ext_start:
-            update_extrema(out, t_new, y_new, aux, w.slot_force, lateral)
+            update_extrema(out.extrema, out.slot_extrema, t_new, y_new, aux, w.slot_force,
+                           lateral)
         runaway = aux[A.max_penetration] > pen_limit
         while i_out < n_out and t_out[i_out] <= t_new:
             ts = t_out[i_out]
