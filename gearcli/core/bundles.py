@@ -6,7 +6,7 @@ vector inside is indexed by the names of :mod:`gearcli.core.layout`.
 
 A new per-pair or per-tooth array of the model (a stiffness table, a fault) is:
 1. one optional field of :class:`Model` below, after the required ones, with an empty default
-   of the right dimensions (``EMPTY_2D``: absent unless the case asks for it);
+   of the right dimensions (e.g. ``EMPTY_3D``: absent unless the case asks for it);
 2. its consumer in the compiled code (e.g. :func:`gearcli.core.flank.flank` reads
    ``model.<field>``, with a fast path when ``model.<field>.size == 0``);
 3. its physics in ``gearcli/model/`` and one entry in ``KernelInput.arrays``
@@ -20,8 +20,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-#: Default of an optional 2-D model array: absent (size 0).
-EMPTY_2D = np.zeros((0, 0))
+#: Default of an optional 3-D model array: absent (size 0).
+EMPTY_3D = np.zeros((0, 0, 0))
 
 
 class Model(NamedTuple):
@@ -38,6 +38,9 @@ class Model(NamedTuple):
     drive_pp: tuple  #: (breaks, coefs, origins): omega(t) [rad/s] or T(t) [N*mm]
     angle_pp: tuple  #: antiderivative of drive_pp [rad] (speed and shaft drives)
     load_pp: tuple  #: load torque T_load(t) [N*mm]
+    #: Tooth law (layout.LAW_TOOTH): pair stiffness k [N/mm] and its slope dk/dx [N/mm^2] per
+    #: flank family on the gap tables' grid of pinion roll positions, (N_FAMILIES, 2, n)
+    pair_stiffness: np.ndarray = EMPTY_3D
 
 
 class Work(NamedTuple):
@@ -49,6 +52,7 @@ class Work(NamedTuple):
     y_new: np.ndarray  #: (n_state,) state at t + h
     aux: np.ndarray  #: (N_AUX,) auxiliary results of the last full RHS evaluation, layout.A
     slot_force: np.ndarray  #: (N_FAMILIES, n_slots) force of every pair slot [N]
+    scratch: np.ndarray  #: (N_SCRATCH, n_slots) pairs in contact of one flank family, layout.SC
     K: np.ndarray  #: (N_STAGES + 1, n_state) Runge-Kutta stages, K[0] = f(t, y)
     atol: np.ndarray  #: (N_STATE,) absolute tolerance per state
 

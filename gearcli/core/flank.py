@@ -21,7 +21,7 @@ from gearcli.core.derive import table_of
 from gearcli.core.friction import adams_mu
 from gearcli.core.gaptable import hermite
 from gearcli.core.jit import jit
-from gearcli.core.layout import DRIVE_FLANKS, GEAR, PINION, D, F, P
+from gearcli.core.layout import DRIVE_FLANKS, GEAR, LAW_TOOTH, PINION, SC, D, F, P
 from gearcli.core.nrt import jit_noalloc_inline
 
 
@@ -31,6 +31,7 @@ class Kinematics(NamedTuple):
     s1: float  #: pinion roll distance r_b1 theta1 [mm]
     v1: float  #: its rate [mm/s]
     delta: float  #: DTE s1 - s2 [mm]
+    deltadot: float  #: its rate [mm/s]
     v2: float  #: gear roll rate [mm/s]
     omega1: float  #: [rad/s]
     omega2: float  #: [rad/s]
@@ -73,7 +74,19 @@ def runout(ecc, phase, theta, inv_r_b):
 
 
 @jit_noalloc_inline
-def flank(f, kin, app, model, slot_force, full):
+def _friction(prm, x1, omega1, omega2, slide, force, mu_s, mu_d):
+    """Adams contact friction of one pair (docs/theory.md §5): friction force f = mu(v) F [N],
+    its moments about O1, O2 [N*mm] (arms rho1 = T1A + x1, rho2 = T1T2 - rho1 [mm]) and its
+    power f v [N*mm/s] (<= 0), v = omega1 rho1 - omega2 rho2 + slide the sliding speed."""
+    rho1 = prm[P.T1A] + x1
+    rho2 = prm[P.T1T2] - rho1
+    vs = omega1 * rho1 - omega2 * rho2 + slide
+    fr = adams_mu(vs, mu_s, mu_d, prm[P.v_s], prm[P.v_d]) * force
+    return fr, fr * rho1, fr * rho2, fr * vs
+
+
+@jit_noalloc_inline
+def flank(f, kin, app, model, slot_force, scratch, full):
     """Forces of all pair slots of flank family ``f``.
 
     Parameters
@@ -86,6 +99,8 @@ def flank(f, kin, app, model, slot_force, full):
     model : gearcli.core.bundles.Model
     slot_force : ndarray, shape (N_FAMILIES, n_slots)
         Row ``f`` written when ``full``: the force of every slot [N] (0 out of contact).
+    scratch : ndarray, shape (N_SCRATCH, n_slots)
+        Work space of the tooth law (layout.SC): its first pass keeps every pair in contact.
     full : bool
         False at the inner Runge-Kutta stages, where only the derivatives are used.
 
@@ -95,6 +110,21 @@ def flank(f, kin, app, model, slot_force, full):
     inside a table's zero run (``F.zero_lo1 .. F.zero_hi1``, and 2 for the gear) the gap and
     its slope are exactly 0 and the table is not read; without per-tooth offsets
     (``derived[D.tooth_offsets_used] == 0``) the tooth indices are not tracked.
+
+    Contact laws (``prm[P.contact_law]``):
+
+    * layout.LAW_IMPACT (docs/theory.md §4): F_j = max(0, k p^e + STEP(p, 0, 0, d_max, c_max)
+      pdot) in one pass; potential k p^(e+1)/(e+1).
+    * layout.LAW_TOOTH (§4b, §4c): the pair stiffness k_j = k(x1_j) is read from
+      ``model.pair_stiffness[f]`` (cubic Hermite on the gap tables' grid) and the mesh damping
+      c_m (``prm[P.mesh_damping]``) acts on the mesh deflection rate v = sigma delta' + the
+      centres' approach rate, not on the gap-closure rate, shared by the pairs in contact in
+      proportion to their stiffness: F_j = max(0, k_j p_j + c_m v k_j / sum_i k_i). A first
+      pass finds the pairs in contact (``scratch``), a second computes their forces.
+      Potential V_j = k_j p_j^2 / 2 with k_j depending on x1_j: the generalized forces are
+      -dV/ds, Q_s1 = -(F_j dp/ds1 + p_j^2/2 dk/dx sigma), Q_s2 = -F_j dp/ds2 (dx1/ds1 = sigma),
+      so the elastic mesh conserves energy with a position-dependent stiffness; the damping
+      dissipation is (F_j - k_j p_j) pdot_j as for IMPACT.
 
     Returns
     -------
@@ -138,6 +168,9 @@ def flank(f, kin, app, model, slot_force, full):
     mu_s = prm[P.mu_s]
     mu_d = prm[P.mu_d]
     inv_e1 = derived[D.inv_exponent_plus_1]
+    tooth_law = prm[P.contact_law] == LAW_TOOTH
+    n_touch = 0  # tooth law: pairs in contact kept in the scratch
+    k_sum = 0.0  # tooth law: their stiffness sum [N/mm]
     use_friction = mu_s != 0.0 or mu_d != 0.0
     r = sigma * kin.s1 - fam[f, F.phase0]
     nf = np.floor(r * derived[D.inv_p_b])  # a float: math.floor's int costs two conversions
@@ -212,6 +245,19 @@ def flank(f, kin, app, model, slot_force, full):
         dp1 = sigma * (1.0 - dgap1) - de1  # dp/ds1 [-]
         dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
         pdot = dp1 * v1 + dp2 * v2 + lat_rate
+        if tooth_law:
+            _, kj, dkj = hermite(model.pair_stiffness, f, x_lo, x_hi, h_grid, inv_h, x1)
+            scratch[SC.slot, n_touch] = j
+            scratch[SC.x1, n_touch] = x1
+            scratch[SC.pen, n_touch] = pen
+            scratch[SC.pdot, n_touch] = pdot
+            scratch[SC.dp1, n_touch] = dp1
+            scratch[SC.dp2, n_touch] = dp2
+            scratch[SC.k, n_touch] = kj
+            scratch[SC.dk, n_touch] = dkj
+            n_touch += 1
+            k_sum += kj
+            continue
         force, fel = impact_force(pen, pdot, k, ex, c_max, d_max)
         pot += fel * pen * inv_e1  # k p^(e+1)/(e+1), contact.impact_potential
         # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0
@@ -225,12 +271,36 @@ def flank(f, kin, app, model, slot_force, full):
         q1 -= force * dp1
         q2 -= force * dp2
         if use_friction:
-            rho1 = prm[P.T1A] + x1
-            rho2 = prm[P.T1T2] - rho1
-            vs = omega1 * rho1 - omega2 * rho2 + slide
-            fr = adams_mu(vs, mu_s, mu_d, prm[P.v_s], prm[P.v_d]) * force
-            m1f += fr * rho1
-            m2f -= fr * rho2
+            fr, fm1, fm2, fp = _friction(prm, x1, omega1, omega2, slide, force, mu_s, mu_d)
+            m1f += fm1
+            m2f -= fm2
             ff_sum += fr
-            fpow += fr * vs
+            fpow += fp
+    if n_touch > 0:  # tooth law, second pass: damping shared by stiffness (docstring)
+        damp_per_k = prm[P.mesh_damping] * (sigma * kin.deltadot + lat_rate) / k_sum  # [mm]
+        for m in range(n_touch):
+            pen = scratch[SC.pen, m]
+            pdot = scratch[SC.pdot, m]
+            kj = scratch[SC.k, m]
+            fel = kj * pen
+            force = max(0.0, fel + kj * damp_per_k)
+            pot += 0.5 * fel * pen
+            pdamp += (force - fel) * pdot
+            # the position-dependent stiffness's generalized force, dV/dx1 dx1/ds1
+            q1 -= 0.5 * pen * pen * scratch[SC.dk, m] * sigma
+            if force <= 0.0:
+                continue
+            if full:
+                slot_force[f, int(scratch[SC.slot, m])] = force
+            f_sum += force
+            n_contact += 1
+            q1 -= force * scratch[SC.dp1, m]
+            q2 -= force * scratch[SC.dp2, m]
+            if use_friction:
+                fr, fm1, fm2, fp = _friction(prm, scratch[SC.x1, m], omega1, omega2, slide,
+                                             force, mu_s, mu_d)
+                m1f += fm1
+                m2f -= fm2
+                ff_sum += fr
+                fpow += fp
     return FlankForces(q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot, pen_max)

@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from gearcli.core.bundles import Model, Out
+from gearcli.core.bundles import EMPTY_3D, Model, Out
 from gearcli.core.derive import derive
 from gearcli.core.layout import (
     COAST_FLANKS,
@@ -26,6 +26,8 @@ from gearcli.core.layout import (
     DRIVE_SPEED,
     DRIVE_TORQUE,
     EXTREMA_NAMES,
+    LAW_IMPACT,
+    LAW_TOOTH,
     LAYOUT_KEY,
     N_COLUMNS,
     N_COUNTERS,
@@ -157,6 +159,13 @@ def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
         raise ValueError("speed and shaft drives need drive_angle_pp (antiderivative)")
     if drive_angle_pp is None:  # torque mode: unused, any valid piecewise polynomial
         drive_angle_pp = (np.zeros(0), np.zeros((1, 1)), np.zeros(1))
+    law = int(prm[P.contact_law])
+    if law not in (LAW_IMPACT, LAW_TOOTH):
+        raise ValueError(f"contact_law must be {LAW_IMPACT} or {LAW_TOOTH}, got {law}")
+    stiffness_shape = (N_FAMILIES, len(TABLE_ROWS), tables.shape[2])
+    if law == LAW_TOOTH and optional.get("pair_stiffness", EMPTY_3D).shape != stiffness_shape:
+        raise ValueError(f"the tooth law needs pair_stiffness of shape {stiffness_shape} (the gap "
+                         "tables' grid)")
     derived = np.zeros(N_DERIVED)
     family = np.zeros((N_FAMILIES, N_FAMILY))
     derive(prm, tables, offsets, derived, family)

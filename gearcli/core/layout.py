@@ -71,7 +71,9 @@ _PARAM_SPEC = (
     ("phase2", "rad", 0.0),
     ("phase1_coast", "rad", 0.0),  # phase on the coast LoA (drive phase +- 2 alpha_w)
     ("phase2_coast", "rad", 0.0),
-    # contact law, Adams IMPACT (docs/theory.md §4)
+    # contact law: LAW_IMPACT (Adams IMPACT, docs/theory.md §4) or LAW_TOOTH (§4b, §4c)
+    ("contact_law", "-", 0.0),
+    ("mesh_damping", "N*s/mm", 0.0),  # tooth law: c_m on the mesh deflection rate (§4c)
     ("k_contact", "N/mm^e", None),
     ("exponent", "-", None),
     ("c_max", "N*s/mm", 0.0),
@@ -133,6 +135,10 @@ ParamIndex = NamedTuple("ParamIndex", [(n, int) for n in PARAM_NAMES])
 #: Index constants of the parameter vector: ``params[P.r_b1]``.
 P = ParamIndex(*range(len(PARAM_NAMES)))
 N_PARAMS = len(PARAM_NAMES)
+
+# Contact laws (docs/theory.md §4, §4b).
+LAW_IMPACT = 0  # F = max(0, k p^e + STEP(p, 0, 0, d_max, c_max) pdot), one k per pair
+LAW_TOOTH = 1  # F = max(0, k(x) p + c_m v k(x)/sum k), k(x) tabulated (bundles.Model)
 
 # Drive modes (docs/theory.md §6).
 DRIVE_SPEED = 0  # prescribed omega1(t) (Adams MOTION); only the gear is integrated
@@ -381,6 +387,13 @@ ExtremaIndex = NamedTuple("ExtremaIndex", [(n, int) for n in EXTREMA_NAMES])
 X = ExtremaIndex(*range(len(EXTREMA_NAMES)))
 N_EXTREMA = len(EXTREMA_NAMES)
 
+#: Rows of the per-slot scratch of one flank family (work.scratch[SC.xxx, m], m the m-th pair in
+#: contact): what the tooth law's first pass over the slots keeps for the second (flank.py).
+SCRATCH_NAMES = ("slot", "x1", "pen", "pdot", "dp1", "dp2", "k", "dk")
+ScratchIndex = NamedTuple("ScratchIndex", [(n, int) for n in SCRATCH_NAMES])
+SC = ScratchIndex(*range(len(SCRATCH_NAMES)))
+N_SCRATCH = len(SCRATCH_NAMES)
+
 #: Per-slot extrema rows of the drive slots (slot_extrema[SX.xxx, j]).
 SLOT_EXTREMA_NAMES = ("force_max_N", "force_max_t_s", "force_min_N")
 SlotExtremaIndex = NamedTuple("SlotExtremaIndex", [(n, int) for n in SLOT_EXTREMA_NAMES])
@@ -408,7 +421,7 @@ def _layout_key() -> int:
     key = 1469598103934665603 % (1 << 62)
     layouts = (PARAM_NAMES, STATE_NAMES, AUX_NAMES, DERIVED_NAMES, FAMILY_NAMES, FLANK_FAMILIES,
                GEARS, TABLE_ROWS, COLUMN_NAMES, EXTREMA_NAMES, SLOT_EXTREMA_NAMES,
-               COUNTER_NAMES, RESUME_NAMES, tuple(STATUS_MESSAGES))
+               COUNTER_NAMES, RESUME_NAMES, SCRATCH_NAMES, tuple(STATUS_MESSAGES))
     for text in repr(layouts):
         key = (key * 1099511628211 + ord(text)) % (1 << 62)
     return key
@@ -419,7 +432,7 @@ def _check_layouts() -> None:
     """Sizes come from one constant each; names are unique (run once at import, so a new table,
     family or name cannot silently share another's slot)."""
     for names in (PARAM_NAMES, STATE_NAMES, AUX_NAMES, DERIVED_NAMES, FAMILY_NAMES,
-                  COLUMN_NAMES, EXTREMA_NAMES, COUNTER_NAMES, RESUME_NAMES):
+                  COLUMN_NAMES, EXTREMA_NAMES, COUNTER_NAMES, RESUME_NAMES, SCRATCH_NAMES):
         if len(set(names)) != len(names):
             raise RuntimeError(f"duplicate name in a kernel layout: {names}")
     if sorted(FAMILY_PARAMS) != sorted(FLANK_FAMILIES) or any(

@@ -76,7 +76,7 @@ from gearcli.core.nrt import jit_noalloc_inline
 
 
 @jit_noalloc_inline
-def rhs(t, y, dy, aux, slot_force, model, forcing, full):
+def rhs(t, y, dy, aux, slot_force, scratch, model, forcing, full):
     """Time derivative of the state and auxiliary results at time ``t`` [s].
 
     Parameters
@@ -91,6 +91,8 @@ def rhs(t, y, dy, aux, slot_force, model, forcing, full):
         Written when ``full``: auxiliary results (layout.A).
     slot_force : ndarray, shape (N_FAMILIES, n_slots)
         Written when ``full``: force per drive / coast slot [N].
+    scratch : ndarray, shape (N_SCRATCH, n_slots)
+        Work space of the flank loops (flank.flank).
     model : gearcli.core.bundles.Model
     forcing : gearcli.core.drive.Forcing
         Drive and load inputs at ``t`` (:func:`gearcli.core.drive.forcing`).
@@ -120,11 +122,11 @@ def rhs(t, y, dy, aux, slot_force, model, forcing, full):
     theta2 = (s1 - delta) * inv_r_b2
     omega1 = v1 * inv_r_b1
     omega2 = v2 * inv_r_b2
-    kin = Kinematics(s1, v1, delta, v2, omega1, omega2, theta1, theta2)
+    kin = Kinematics(s1, v1, delta, deltadot, v2, omega1, omega2, theta1, theta2)
     lateral = prm[P.lateral] != 0.0
     app_d, app_c = approaches(prm, y, lateral)
 
-    fl = flank(DRIVE_FLANKS, kin, app_d, model, slot_force, full)
+    fl = flank(DRIVE_FLANKS, kin, app_d, model, slot_force, scratch, full)
     q1 = fl.q1
     q2 = fl.q2
     m1f = fl.m1f
@@ -139,7 +141,7 @@ def rhs(t, y, dy, aux, slot_force, model, forcing, full):
     nc = 0
     ffc = 0.0
     if prm[P.coast_flanks] != 0.0:
-        co = flank(COAST_FLANKS, kin, app_c, model, slot_force, full)
+        co = flank(COAST_FLANKS, kin, app_c, model, slot_force, scratch, full)
         q1 += co.q1
         q2 += co.q2
         m1f += co.m1f

@@ -44,6 +44,7 @@ from gearcli.core.layout import (
     LAYOUT_KEY,
     N_AUX,
     N_FAMILIES,
+    N_SCRATCH,
     N_STATE,
     N_STATE_BASE,
     RESUME_Y,
@@ -104,10 +105,10 @@ def _row_finite(K, s):
 
 
 @jit_noalloc
-def _evaluate(t, y, dy, aux, slot_force, model, mode, theta_offset):
+def _evaluate(t, y, dy, aux, slot_force, scratch, model, mode, theta_offset):
     """One full RHS evaluation at ``t`` with the time functions evaluated there (off the hot
     path: start, hops, output samples)."""
-    rhs(t, y, dy, aux, slot_force, model, forcing(t, mode, theta_offset, model), True)
+    rhs(t, y, dy, aux, slot_force, scratch, model, forcing(t, mode, theta_offset, model), True)
 
 
 @jit_noalloc_inline
@@ -133,7 +134,7 @@ def _attempt(t, h, t_new, model, work, mode, theta_offset, first, count, rtol):
             solution(y, K, h, ys, first)
             ts = t_new
         # writes straight into the row of K (a view costs nothing without reference counts)
-        rhs(ts, ys, K[s], work.aux, work.slot_force, model,
+        rhs(ts, ys, K[s], work.aux, work.slot_force, work.scratch, model,
             forcing(ts, mode, theta_offset, model), s == N_STAGES)
     for i in range(y.shape[0]):
         y_new[i] = ys[i]
@@ -158,7 +159,7 @@ def _starting_step(t, model, work, mode, theta_offset, first, count, rtol, span)
     h0 = min(h0, span)
     for i in range(y.shape[0]):
         ys[i] = y[i] + h0 * f0[i]
-    _evaluate(t + h0, ys, dy, work.aux, work.slot_force, model, mode, theta_offset)
+    _evaluate(t + h0, ys, dy, work.aux, work.slot_force, work.scratch, model, mode, theta_offset)
     for i in range(y.shape[0]):
         dy[i] -= f0[i]
     d2 = scaled_rms(dy, y, first, count, atol, rtol) / h0
@@ -248,6 +249,7 @@ def run(model, out, layout_key, i_first):
         slot_force=work[5 * vec:n_vectors * vec].reshape((N_FAMILIES, vec))[:, :n_slots],
         K=work[n_vectors * vec:].reshape((N_STAGES + 1, vec))[:, :n_state],  # K[0] = f(t, y)
         atol=atol,
+        scratch=np.zeros((N_SCRATCH, n_slots)),
     )
     y = w.y
     if not fresh:
@@ -268,7 +270,7 @@ def run(model, out, layout_key, i_first):
 
     # f(t, y) here, not in _march: numba then compiles _evaluate in this simpler context
     # (6 s instead of 20 s of the first run's compilation, measured)
-    _evaluate(t, y, w.dy, w.aux, w.slot_force, model, mode, theta_offset)
+    _evaluate(t, y, w.dy, w.aux, w.slot_force, w.scratch, model, mode, theta_offset)
     return _march(model, w, out, i_first, theta_offset, fresh, n_state)
 
 
@@ -276,7 +278,7 @@ def run(model, out, layout_key, i_first):
 def _sample(out, i_out, ts, ys, w, model, mode, theta_offset, ext_start, lateral):
     """Output row ``i_out`` at ``ts`` [s] from the state ``ys`` there (and its extrema).
     Inlined: as a call it would pass every array of three bundles per output row."""
-    _evaluate(ts, ys, w.dy, w.aux, w.slot_force, model, mode, theta_offset)
+    _evaluate(ts, ys, w.dy, w.aux, w.slot_force, w.scratch, model, mode, theta_offset)
     out.counters[N.output_evaluations] += 1
     write_row(out.series, out.slot_series, i_out, ts, ys, w.aux, w.slot_force, model.prm)
     if ts >= ext_start:  # samples are points of the solution too
@@ -382,7 +384,7 @@ def _march(model, w, out, i_first, theta_offset, fresh, n_state):
                 for i in range(n_state):
                     y[i] += hop * K[0, i]
                 t = t_hop
-                _evaluate(t, y, dy, aux, w.slot_force, model, mode, theta_offset)
+                _evaluate(t, y, dy, aux, w.slot_force, w.scratch, model, mode, theta_offset)
                 counters[N.rhs_evaluations] += 1
                 store_row(K, 0, dy)
                 if speed_mode:
