@@ -82,3 +82,17 @@ def table_floor(tables, k, h):
             - 4.0 / 27.0 * h * (abs(tables[k, TABLE_SLOPE, i]) + abs(tables[k, TABLE_SLOPE, i + 1]))
         floor = min(floor, lo)
     return floor
+
+
+@jit_noalloc
+def hermite_many(tables, k, x_lo, x_hi, x, value, slope):
+    """:func:`hermite` of table ``k`` at every position of ``x`` [mm] into ``value`` [mm] and
+    ``slope`` [-] (NaN outside ``[x_lo, x_hi]``): the kernel's interpolant for set-up and
+    quasi-static code (model/ltca.py), one implementation."""
+    n = tables.shape[2]
+    h = (x_hi - x_lo) / (n - 1)
+    inv_h = 1.0 / h
+    for i in range(x.shape[0]):
+        inside, v, s = hermite(tables, k, x_lo, x_hi, h, inv_h, x[i])
+        value[i] = v if inside else math.nan
+        slope[i] = s if inside else math.nan

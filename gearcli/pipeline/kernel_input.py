@@ -99,6 +99,13 @@ def _gap_tables(geometry, mods, engagement: str, cap_mm: float) -> GapTables:
     return gap_tables(geometry, mods, engagement, cap_mm=cap_mm)
 
 
+def case_gap_tables(case: Case, geo: GeometryResult, mesh: MeshMode) -> tuple[GapTables, float]:
+    """The case's gap tables (model.gap) and their cap [mm]: tip gaps are tabulated up to well
+    beyond the deflections a run can reach, max(0.05 m, 20 static deflections)."""
+    cap = max(0.05 * geo.geometry.module_mm, 20.0 * mesh.static_deflection_mm)
+    return _gap_tables(geo.geometry, modifications(case), case.contact.engagement, cap), cap
+
+
 def _structure_params(st: Structure) -> dict[str, float]:
     """Kernel parameters of the optional bodies: motor and load inertias, lateral supports."""
     out = {"motor_J": st.motor_inertia_t_mm2, "load_J": st.load_inertia_t_mm2,
@@ -121,9 +128,7 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     mode = {"speed": layout.DRIVE_SPEED, "shaft": layout.DRIVE_SHAFT,
             "torque": layout.DRIVE_TORQUE}[dr.type]
     mesh = case_mesh(case, geo)
-    # Tip gaps are tabulated up to well beyond the deflections the run can reach.
-    cap = max(0.05 * g.module_mm, 20.0 * mesh.static_deflection_mm)
-    tables = _gap_tables(g, modifications(case), ct.engagement, cap)
+    tables, cap = case_gap_tables(case, geo, mesh)
 
     speed = geo.pinion_speed_rad_s
     f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None

@@ -1,0 +1,164 @@
+"""`gearcli mesh`: quasi-static loaded tooth contact of the case's pair (model.ltca), no dynamics.
+
+The same gaps (profile modifications, extended contact) and contact law as `simulate`, at the
+case's static load (or a given one): loaded static transmission error, load sharing, pair and
+mesh stiffness beside ISO 6336-1, and the Harris map on request.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.case.load import LoadedCase, load_case
+from gearcli.model.gap import slot_layout
+from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh
+from gearcli.model.stiffness import IsoStiffness, derived_pair_stiffness
+from gearcli.pipeline.geometry import GeometryResult, run_geometry
+from gearcli.pipeline.kernel_input import case_gap_tables
+from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness
+
+ARCSEC_PER_RAD = 180.0 / math.pi * 3600.0
+
+
+@dataclass(frozen=True)
+class MeshAnalysis:
+    source: LoadedCase  #: the case analysed
+    name: str
+    geometry: GeometryResult
+    law: str  #: contact law of the pairs
+    loaded: LoadedMesh
+    iso: IsoStiffness
+    harris: tuple[np.ndarray, np.ndarray] | None  #: loads [N], STE peak-to-peak [mm]
+    notes: tuple[str, ...]  #: what the quasi-static model leaves out for this case
+
+
+def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None,
+             load_N: float | None = None, harris: bool = False, *, cycles: int = 2,
+             points_per_cycle: int = 200) -> MeshAnalysis:
+    """Loaded tooth contact of a case at its static normal force (or ``load_N`` [N]) over
+    ``cycles`` mesh cycles; the Harris map (``harris``) at 20 loads from 0.1 to 2 times it,
+    100 positions per mesh cycle each."""
+    loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
+    case = loaded.case
+    geo = run_geometry(loaded)
+    g = geo.geometry
+    mesh = case_mesh(case, geo)
+    force = mesh.static_force_N if load_N is None else float(load_N)
+    if not force > 0.0:
+        raise loaded.error(("load", "torque"), "the static load is zero: give a load torque "
+                           "or --load with a force > 0 N") if load_N is None else \
+            ValueError(f"--load must be > 0 N, got {load_N}")
+    tables, _ = case_gap_tables(case, geo, mesh)
+    slots = int(slot_layout(g, tables)["n_slots"])
+    law = impact_law(contact_stiffness(case, geo), case.contact.exponent)
+    args = (tables.tables, tables.x_lo, tables.x_hi, g.p_b_mm, slots, law)
+    result = loaded_mesh(*args, force, cycles=cycles, points_per_cycle=points_per_cycle)
+    notes = []
+    if case.friction.enabled:
+        notes.append("friction is not included (it shifts the normal force by the friction "
+                     "moments, ~mu of it; simulate includes it)")
+    e = case.errors
+    if e.runout.pinion or e.runout.gear or e.pitch_deviation.pinion or e.pitch_deviation.gear:
+        notes.append("runout and pitch deviations are not included (they vary over whole "
+                     "revolutions; simulate includes them)")
+    iso = derived_pair_stiffness(g, case.gears.rack.dedendum, force * g.gear.r_b_mm)
+    law_name = f"IMPACT elastic part k p^{case.contact.exponent:g}"
+    return MeshAnalysis(loaded, loaded.name, geo, law_name,
+                        result, iso,
+                        harris_map(*args, force, cycles=1, points_per_cycle=100) if harris
+                        else None, tuple(notes))
+
+
+def mesh_document(res: MeshAnalysis) -> dict:
+    """JSON document of a mesh analysis (internal units, names carry units)."""
+    lm, g = res.loaded, res.geometry.geometry
+    to_arcsec = ARCSEC_PER_RAD / g.pinion.r_b_mm  # δ along the LoA -> pinion angle
+    harm = lm.ste_harmonics_mm(3)
+    doc = {
+        "case": res.name,
+        "contact_law": res.law,
+        "force_N": lm.force_N,
+        "mesh_cycles": lm.cycles,
+        "ste": {
+            "mean_um": 1e3 * float(lm.ste_mm.mean()),
+            "peak_to_peak_um": 1e3 * lm.ste_peak_to_peak_mm,
+            "peak_to_peak_arcsec": lm.ste_peak_to_peak_mm * to_arcsec,
+            "harmonics_um": {f"{k + 1}fz": 1e3 * float(a) for k, a in enumerate(harm)},
+            "unloaded_te_peak_to_peak_um": 1e3 * float(np.ptp(lm.unloaded_te_mm)),
+        },
+        "stiffness": {
+            "mesh_mean_N_mm": float(lm.mesh_stiffness_N_mm.mean()),
+            "single_pair_zone_N_mm": lm.zone_stiffness_N_mm(1),
+            "double_pair_zone_N_mm": lm.zone_stiffness_N_mm(2),
+            "iso6336_single_pair_c_prime_b_N_mm": res.iso.pair_stiffness_N_mm,
+            "iso6336_mean_c_gamma_alpha_b_N_mm":
+                res.iso.c_gamma_alpha * 1000.0 * min(g.pinion.face_width_mm,
+                                                     g.gear.face_width_mm),
+            "iso6336_low_load_factor": res.iso.load_factor,
+        },
+        "notes": list(res.notes),
+    }
+    if res.harris is not None:
+        loads, ptp = res.harris
+        doc["harris"] = {"force_N": loads.tolist(), "ste_peak_to_peak_um": (1e3 * ptp).tolist()}
+    return doc
+
+
+def mesh_table(res: MeshAnalysis):
+    """Per roll position: STE, mesh stiffness, pairs in contact and the force per slot, as
+    columns with units in their names (for CSV)."""
+    lm = res.loaded
+    cols = {"roll_mm": lm.roll_mm, "ste_um": 1e3 * lm.ste_mm,
+            "unloaded_te_um": 1e3 * lm.unloaded_te_mm,
+            "mesh_stiffness_N_mm": lm.mesh_stiffness_N_mm,
+            "pairs_in_contact": lm.pairs_in_contact.astype(float)}
+    for j in range(lm.pair_force_N.shape[1]):
+        cols[f"pair{j}_x_mm"] = lm.pair_x_mm[:, j]
+        cols[f"pair{j}_force_N"] = lm.pair_force_N[:, j]
+    return cols
+
+
+def save_mesh_plot(res: MeshAnalysis, path: str | Path) -> None:
+    """The figure of :func:`gearcli.plotting.mesh.plot_mesh`, written atomically."""
+    import io
+
+    from gearcli.io.files import write_atomic
+    from gearcli.plotting.mesh import plot_mesh
+
+    lm, doc = res.loaded, mesh_document(res)
+    st = doc["stiffness"]
+    harris = None if res.harris is None else (res.harris[0], 1e3 * res.harris[1])
+    fig = plot_mesh(lm.roll_mm, 1e3 * lm.ste_mm, 1e3 * lm.unloaded_te_mm, lm.pair_force_N,
+                    lm.mesh_stiffness_N_mm, force_N=lm.force_N,
+                    iso_single_N_mm=st["iso6336_single_pair_c_prime_b_N_mm"],
+                    iso_mean_N_mm=st["iso6336_mean_c_gamma_alpha_b_N_mm"],
+                    title=f"{res.name}: loaded contact at {lm.force_N:.0f} N ({res.law}); "
+                          f"STE {doc['ste']['peak_to_peak_um']:.2f} µm peak-to-peak",
+                    harris=harris)
+    buf = io.BytesIO()
+    fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=150)
+    write_atomic(path, buf.getvalue())
+
+
+def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
+               overrides: list[str] | None = None) -> Path:
+    """mesh.json, mesh.csv, mesh.png and manifest.json in ``folder``, all or nothing
+    (io.outdir.atomic_dir)."""
+    import json
+
+    from gearcli.io.manifest import manifest
+    from gearcli.io.outdir import atomic_dir
+    from gearcli.io.tables import columns_to_csv
+
+    case_json = json.loads(res.source.case.model_dump_json())
+    with atomic_dir(folder, force) as tmp:
+        (tmp / "mesh.json").write_text(json.dumps(mesh_document(res), indent=2) + "\n")
+        (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
+        save_mesh_plot(res, tmp / "mesh.png")
+        doc = manifest(res.source.source.file, case_json, overrides)
+        (tmp / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
+    return Path(folder)
