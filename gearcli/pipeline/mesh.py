@@ -16,10 +16,10 @@ import numpy as np
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.model.gap import slot_layout
 from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh
-from gearcli.model.stiffness import IsoStiffness, derived_pair_stiffness
+from gearcli.model.stiffness import IsoStiffness
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import case_gap_tables
-from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness
+from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness, iso_stiffness
 
 ARCSEC_PER_RAD = 180.0 / math.pi * 3600.0
 
@@ -65,7 +65,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     if e.runout.pinion or e.runout.gear or e.pitch_deviation.pinion or e.pitch_deviation.gear:
         notes.append("runout and pitch deviations are not included (they vary over whole "
                      "revolutions; simulate includes them)")
-    iso = derived_pair_stiffness(g, case.gears.rack.dedendum, force * g.gear.r_b_mm)
+    iso = iso_stiffness(case, geo, force)
     law_name = f"IMPACT elastic part k p^{case.contact.exponent:g}"
     return MeshAnalysis(loaded, loaded.name, geo, law_name,
                         result, iso,
@@ -95,10 +95,7 @@ def mesh_document(res: MeshAnalysis) -> dict:
             "single_pair_zone_N_mm": lm.zone_stiffness_N_mm(1),
             "double_pair_zone_N_mm": lm.zone_stiffness_N_mm(2),
             "iso6336_single_pair_c_prime_b_N_mm": res.iso.pair_stiffness_N_mm,
-            "iso6336_mean_c_gamma_alpha_b_N_mm":
-                res.iso.c_gamma_alpha * 1000.0 * min(g.pinion.face_width_mm,
-                                                     g.gear.face_width_mm),
-            "iso6336_low_load_factor": res.iso.load_factor,
+            "iso6336_mean_c_gamma_alpha_b_N_mm": res.iso.mesh_stiffness_N_mm,
         },
         "notes": list(res.notes),
     }

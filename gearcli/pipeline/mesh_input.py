@@ -17,14 +17,21 @@ def static_force_N(case: Case, geo: GeometryResult) -> float:
     return static_normal_force_N(torque, geo.geometry.gear.r_b_mm)
 
 
+def iso_stiffness(case: Case, geo: GeometryResult, force_N: float | None = None):
+    """ISO 6336-1 Method B stiffness of the case's pair (model.stiffness) at its static
+    normal force (or ``force_N`` [N]) and material."""
+    force = static_force_N(case, geo) if force_N is None else force_N
+    return derived_pair_stiffness(geo.geometry, case.gears.rack.dedendum,
+                                  force * geo.geometry.gear.r_b_mm,
+                                  case.material.youngs_modulus)
+
+
 def contact_stiffness(case: Case, geo: GeometryResult) -> float:
-    """k of the IMPACT law [N/mm^e]: given, or 'derived' = ISO 6336-1 c' b (e = 1) at the
-    static load (docs/theory.md §4)."""
+    """k of the IMPACT law [N/mm^e]: given, or 'derived' (e = 1): the constant pair stiffness
+    whose mean over the mesh cycle, ε_α k, is ISO 6336-1's c_γα b (docs/theory.md §4)."""
     if case.contact.stiffness != "derived":
         return float(case.contact.stiffness)
-    torque = static_force_N(case, geo) * geo.geometry.gear.r_b_mm
-    return derived_pair_stiffness(geo.geometry, case.gears.rack.dedendum,
-                                  torque).pair_stiffness_N_mm
+    return iso_stiffness(case, geo).mesh_stiffness_N_mm / geo.geometry.eps_alpha
 
 
 def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
