@@ -94,3 +94,47 @@ def mesh_mode(
         natural_frequency_Hz=omega / (2.0 * math.pi),
         damping_ratio=c_mesh / (2.0 * math.sqrt(k_mesh * m)),
     )
+
+
+def tooth_mesh_mode(static_force_N: float, x_mm, k_N_mm, g_alpha_mm: float, p_b_mm: float,
+                    damping_ratio: float, r_b1_mm: float, r_b2_mm: float, J1_t_mm2: float,
+                    J2_t_mm2: float, pinion_free: bool) -> MeshMode:
+    """The mesh mode of the tooth law (docs/theory.md §4b, §4c) from the pair stiffness k(x)
+    [N/mm] on pinion roll positions x from A [mm] (rigid kinematics: a pair is in contact on
+    0 <= x <= g_α).
+
+    Mean mesh stiffness over a cycle k_mean = (1/p_b) ∫_0^{g_α} k(x) dx (the pairs one base
+    pitch apart sum to it); single-pair zone g_α − p_b <= x <= p_b (B…D), double-pair zone the
+    rest; mesh damping c_m = 2 ζ sqrt(k_mean m) (Kahraman & Singh 1990, J. Sound Vib.
+    142:49-75), m as in :func:`mesh_mode`; static deflection F / k_mean.
+    """
+    import numpy as np
+
+    x = np.asarray(x_mm, float)
+    k = np.asarray(k_N_mm, float)
+    fine = np.linspace(0.0, g_alpha_mm, 2001)
+    k_fine = np.interp(fine, x, k)
+    k_mean = float(np.sum((k_fine[1:] + k_fine[:-1]) * 0.5 * np.diff(fine))) / p_b_mm
+    single = (fine >= g_alpha_mm - p_b_mm) & (fine <= p_b_mm)
+    lead = fine <= g_alpha_mm - p_b_mm  # the double-pair zone seen from the leading pair
+    k_single = float(k_fine[single].mean())
+    k_double = float((k_fine[lead] + np.interp(fine[lead] + p_b_mm, x, k)).mean()) \
+        if lead.any() else math.nan
+    if pinion_free:
+        m = 1.0 / (r_b1_mm**2 / J1_t_mm2 + r_b2_mm**2 / J2_t_mm2)
+    else:
+        m = J2_t_mm2 / r_b2_mm**2
+    c_m = 2.0 * damping_ratio * math.sqrt(k_mean * m)
+    f = max(static_force_N, 0.0)
+    return MeshMode(
+        static_force_N=f,
+        static_deflection_mm=f / k_mean,
+        pair_stiffness_N_mm=float(k_fine.mean()),
+        mesh_stiffness_N_mm=k_mean,
+        single_pair_stiffness_N_mm=k_single,
+        double_pair_stiffness_N_mm=k_double,
+        mesh_damping_Ns_mm=c_m,
+        modal_mass_t=m,
+        natural_frequency_Hz=math.sqrt(k_mean / m) / (2.0 * math.pi),
+        damping_ratio=damping_ratio,
+    )

@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 from gearcli.model.mesh import adams_step, mesh_mode
@@ -40,3 +41,19 @@ def test_free_pinion_uses_equivalent_mass():
     f = math.sqrt(k * (RB1**2 / J1 + RB2**2 / J2)) / (2 * math.pi)  # issue 5's closed form
     assert mm.natural_frequency_Hz == pytest.approx(f, rel=1e-12)
     assert mm.single_pair_stiffness_N_mm == 2e5 and mm.double_pair_stiffness_N_mm == 4e5
+
+
+def test_tooth_mesh_mode_of_a_constant_stiffness_is_the_rectangle_wave_mean():
+    """k(x) = k0 on the path: k_mean = ε_α k0, single k0, double 2 k0, c_m = 2 ζ sqrt(k m)."""
+    from gearcli.model.mesh import tooth_mesh_mode
+
+    k0, g_a, p_b = 1e6, 46.1485, 29.5213
+    x = np.linspace(-5.0, g_a + 5.0, 200)
+    mm = tooth_mesh_mode(3831.0, x, np.full(x.size, k0), g_a, p_b, 0.07, 80.0, 117.0, 60.0,
+                         300.0, pinion_free=False)
+    assert mm.mesh_stiffness_N_mm == pytest.approx(k0 * g_a / p_b, rel=1e-9)
+    assert mm.single_pair_stiffness_N_mm == pytest.approx(k0, rel=1e-12)
+    assert mm.double_pair_stiffness_N_mm == pytest.approx(2 * k0, rel=1e-12)
+    m = 300.0 / 117.0**2
+    assert mm.mesh_damping_Ns_mm == pytest.approx(2 * 0.07 * math.sqrt(k0 * g_a / p_b * m))
+    assert mm.static_deflection_mm == pytest.approx(3831.0 / (k0 * g_a / p_b))
