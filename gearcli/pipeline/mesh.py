@@ -156,6 +156,6 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
         (tmp / "mesh.json").write_text(json.dumps(mesh_document(res), indent=2) + "\n")
         (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
         save_mesh_plot(res, tmp / "mesh.png")
-        doc = manifest(res.source.source.file, case_json, overrides)
+        doc = manifest(res.source.source, case_json, overrides)
         (tmp / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
     return Path(folder)
