@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -9,6 +10,18 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors, rich_progress
+
+_ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.-]+):(\d{1,5})$")
+
+
+def _check_scheduler(value: str | None) -> str | None:
+    """'local' or PROTOCOL://HOST:PORT (a usage error, exit 2, otherwise)."""
+    if value is None or value == "local":
+        return value
+    m = _ADDRESS.match(value)
+    if m is None or not 0 < int(m.group(3)) < 65536:
+        raise typer.BadParameter(f"{value!r}: expected 'local' or tcp://HOST:PORT (or tls://)")
+    return value
 
 
 @app.command()
@@ -18,7 +31,7 @@ def sweep(
     out: Path = typer.Option(..., "-o", "--out", help="Output folder (summary.csv, trends)."),
     jobs: int = typer.Option(0, "--jobs", "-j", min=0,
                              help="Worker processes (0 = all cores; 1 = serial)."),
-    scheduler: str = typer.Option(None, "--scheduler",
+    scheduler: str = typer.Option(None, "--scheduler", callback=_check_scheduler,
                                   help="Dask: 'local' (embedded LocalCluster) or tcp://host:port."),
     keep_timeseries: bool = typer.Option(False, "--keep-timeseries",
                                          help="Also write each point's results folder."),
