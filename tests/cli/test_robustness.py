@@ -238,3 +238,11 @@ def test_run_shorter_than_the_window_needs_is_flagged():
     r = invoke("simulate", SEED, "-o", "-", "--set", "run.end_time=0.05")
     assert r.exit_code == 0
     assert "short run" in r.stderr
+
+
+def test_max_step_needing_more_steps_than_the_solver_takes_is_refused():
+    r = invoke("simulate", SEED, "-o", "-", "--set", "run.end_time=0.2",
+               "--set", "run.max_step=1e-9")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "run.max_step" in line and "steps" in line
