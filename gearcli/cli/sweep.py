@@ -24,12 +24,25 @@ def _check_scheduler(value: str | None) -> str | None:
     return value
 
 
+#: At most this many worker processes per CPU (more only costs memory).
+JOBS_PER_CPU = 4
+
+
+def _check_jobs(value: int) -> int:
+    import os
+
+    limit = JOBS_PER_CPU * (os.cpu_count() or 1)
+    if value > limit:
+        raise typer.BadParameter(f"{value}: expected at most {limit} ({JOBS_PER_CPU} per CPU)")
+    return value
+
+
 @app.command()
 @handle_errors
 def sweep(
     study: Path = typer.Argument(..., help="Study file (YAML): base case, parameters, design."),
     out: Path = typer.Option(..., "-o", "--out", help="Output folder (summary.csv, trends)."),
-    jobs: int = typer.Option(0, "--jobs", "-j", min=0,
+    jobs: int = typer.Option(0, "--jobs", "-j", min=0, callback=_check_jobs,
                              help="Worker processes (0 = all cores; 1 = serial)."),
     scheduler: str = typer.Option(None, "--scheduler", callback=_check_scheduler,
                                   help="Dask: 'local' (embedded LocalCluster) or tcp://host:port."),

@@ -246,3 +246,18 @@ def test_max_step_needing_more_steps_than_the_solver_takes_is_refused():
     assert r.exit_code == 1
     line = error_line(r)
     assert "run.max_step" in line and "steps" in line
+
+
+# --- command-line options with absurd values -------------------------------------------------
+@pytest.mark.parametrize("args, code", [
+    (["mesh", SEED, "--load", "inf"], 1),
+    (["mesh", SEED, "--load", "1e300"], 1),
+    (["mesh", SEED, "--set", "load.torque=1e11"], 1),
+    (["modal", SEED, "--speed-range", "0", "inf"], 1),
+    (["sweep", SEED, "-o", "x", "-j", "100000"], 2),
+])
+def test_absurd_option_values_are_clean_errors(args, code):
+    r = invoke(*args)
+    assert r.exit_code == code, r.stderr
+    assert "internal error" not in r.stderr and "Traceback" not in r.stderr
+

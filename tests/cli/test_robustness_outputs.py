@@ -172,6 +172,12 @@ def test_plot_never_silently_overwrites(tmp_path):
     assert r.exit_code == 0 and plot.read_text() != "mine"
 
 
+def test_report_into_a_folder_is_exit_1(finished, tmp_path):
+    r = invoke("report", finished, "-o", tmp_path)
+    assert r.exit_code == 1 and "is a folder" in r.stderr
+    no_internal_error(r)
+
+
 # --- nonsense refused: reverse drives --------------------------------------------------------
 @pytest.mark.parametrize("setting, key", [
     ("drive.speed=STEP(time, 0, 0, 1, -3000)", "drive.speed"),
