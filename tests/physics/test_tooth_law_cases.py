@@ -91,3 +91,33 @@ def test_impact_keys_with_the_tooth_law_are_refused(override, key):
 def test_damping_ratio_with_the_impact_law_is_refused():
     with pytest.raises(CaseError, match=r"contact.damping_ratio.*law 'tooth' only"):
         load_case(ROOT / "cases" / "seed.yaml", ["contact.damping_ratio=0.05"])
+
+
+def test_run_and_mesh_of_the_iso_pair_and_the_seed_geometry(tmp_path, write_case, seed_text):
+    """`gearcli run` and `gearcli mesh` with the tooth law on cases/iso_pair.yaml and on the seed
+    geometry (the seed file without its IMPACT keys): valid results, the tooth mesh mode."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from gearcli.cli import app
+
+    runner = CliRunner()
+    res = runner.invoke(app, ["run", str(ISO_PAIR), "-o", str(tmp_path / "iso"), "-q",
+                              "--set", "run.end_time=0.4"])
+    assert res.exit_code == 0, res.output
+    summary = json.loads((tmp_path / "iso" / "summary.json").read_text())
+    assert summary["status"] == "ok" and 1.0 < summary["scalars"]["dynamic_factor"] < 3.0
+    assert summary["scalars"]["mesh_damping_ratio"] == pytest.approx(0.07)
+    lines = [ln for ln in seed_text.splitlines()
+             if not ln.lstrip().startswith(("law:", "stiffness:", "exponent:", "max_damping:",
+                                            "penetration_depth:"))]
+    text = "\n".join(lines).replace("contact:", "contact:\n  law: tooth", 1)
+    seed_tooth = write_case(text + "\n", "seed_tooth.yaml")
+    res = runner.invoke(app, ["mesh", str(seed_tooth), "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.output)
+    assert doc["contact_law"].startswith("tooth")
+    st = doc["stiffness"]
+    ratio = st["double_pair_zone_N_mm"] / st["single_pair_zone_N_mm"]
+    assert 1.5 < ratio < 2.0  # the tooth law: double-pair stiffness below twice single
