@@ -18,10 +18,7 @@ at x is that of the unloaded rigid kinematics (:mod:`gearcli.model.contact_point
   through its centre; the force acts along that normal. ``contact_point.contact_points`` clamps
   a sharp corner to A/E because its Hertz STRESS is unbounded; the linearised Hertz
   compliance used here does not depend on the curvature, so the corner is evaluated where it
-  is: :func:`tip_contact` is the construction of ``contact_point`` (its private
-  ``_rounding_contact``) for a rounding radius ρ_a ≥ 0, repeated here because the layering
-  rule keeps private helpers inside their module (tests/unit/test_tooth_stiffness.py checks
-  that both give the same load lines).
+  is (``contact_point.tip_contact``, for a rounding radius ρ_a ≥ 0).
 
 Outside the path the corner tooth is loaded at its tip with a force turned away from the
 line of action and the mate is loaded below its active profile: the pair is softer there and
@@ -48,8 +45,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearcli.model import profile
-from gearcli.model.contact_point import pair_frame, tooth_angles
+from gearcli.model.contact_point import tip_contact
 from gearcli.model.geometry import PairGeometry
 from gearcli.model.rating import involute_load_line, load_line
 from gearcli.model.tooth_stiffness import (
@@ -61,7 +57,7 @@ from gearcli.model.tooth_stiffness import (
     tooth_section,
 )
 
-__all__ = ["PairContact", "PairStiffness", "MeshStiffness", "tip_contact", "pair_contact",
+__all__ = ["PairContact", "PairStiffness", "MeshStiffness", "pair_contact",
            "pair_stiffness", "mesh_stiffness"]
 
 _FD_STEP_MM = 1e-5  # central-difference step of dk/dx (as model.gap's corner-gap slope)
@@ -92,57 +88,6 @@ def _involute_contact(gear, radius):
     return y, y_l, a
 
 
-def tip_contact(pair: PairGeometry, x_mm, corner: str):
-    """A tip (rounding of radius ρ_a ≥ 0, or sharp corner) on the mate's involute at roll x.
-
-    The tip circle's centre Q (the corner itself for ρ_a = 0) touches the mate's involute where
-    the mate's involute normal through Q, the tangent from Q to the mate's base circle at T',
-    meets it: ρ_mate = |T'Q| − ρ_a, P = Q − ρ_a (Q − T')/|T'Q| (the envelope of a circle; the
-    distance model.gap tabulates). Positions in the pair frame of ``contact_point.pair_frame``
-    at the rigid-kinematic tooth angles of ``contact_point.tooth_angles``.
-
-    Parameters
-    ----------
-    pair : PairGeometry
-    x_mm : array
-        Pinion roll positions [mm] (x < 0 for the gear's tip, x > g_α for the pinion's).
-    corner : {"gear", "pinion"}
-        Whose tip touches.
-
-    Returns
-    -------
-    point : (n, 2) array
-        Contact point relative to the tip gear's centre [mm].
-    force : (n, 2) array
-        Unit direction of the force on the tip tooth [-].
-    beta : array
-        Polar angle of the tip tooth's centreline [rad].
-    r_mate : array
-        Radius of the contact point on the mate's involute [mm] (NaN where Q lies inside the
-        mate's base circle).
-    """
-    x = np.asarray(x_mm, float)
-    o1, o2, _, _ = pair_frame(pair)
-    b1, b2 = tooth_angles(pair, x)
-    if corner == "gear":
-        tip, own_c, mate_c, beta, mate = profile.tip_corner(pair.gear), o2, o1, b2, pair.pinion
-    else:
-        tip, own_c, mate_c, beta, mate = profile.tip_corner(pair.pinion), o1, o2, b1, pair.gear
-    ang = beta + tip.angle_rad
-    q = own_c + tip.radius_mm * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
-    rel = q - mate_c
-    big_r = np.hypot(rel[..., 0], rel[..., 1])
-    with np.errstate(invalid="ignore"):
-        phi_t = np.arctan2(rel[..., 1], rel[..., 0]) - np.arccos(mate.r_b_mm / big_r)
-        length = np.sqrt(big_r**2 - mate.r_b_mm**2)
-    tangent = mate_c + mate.r_b_mm * np.stack([np.cos(phi_t), np.sin(phi_t)], axis=-1)
-    unit = (q - tangent) / length[..., None]  # the mate's flank normal, away from its base
-    point = q - tip.rounding_radius_mm * unit - own_c
-    r_mate = np.hypot(mate.r_b_mm, length - tip.rounding_radius_mm)
-    # the driving pinion pushes the gear's tip along +unit; the gear pushes the pinion's back
-    return point, (unit if corner == "gear" else -unit), beta, r_mate
-
-
 def pair_contact(pair: PairGeometry, x_mm) -> PairContact:
     """Rigid-kinematics contact of a tooth pair at pinion roll positions ``x_mm`` (from A).
 
@@ -162,7 +107,7 @@ def pair_contact(pair: PairGeometry, x_mm) -> PairContact:
         sel = region == side
         if not sel.any():
             continue
-        point, force, beta, r_mate = tip_contact(pair, x[sel], corner)
+        _, point, force, beta, r_mate = tip_contact(pair, x[sel], corner)
         if not np.all(np.isfinite(r_mate)):
             raise ValueError(
                 f"roll positions {x[sel][~np.isfinite(r_mate)].min():.6g} mm: the {corner}'s tip "
