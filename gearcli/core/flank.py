@@ -202,17 +202,19 @@ def flank(f, kin, app, model, slot_force, scratch, full):
     pen_max = 0.0
     # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (rhs.py docstring)
     use_offsets = derived[D.tooth_offsets_used] != 0.0
+    use_factors = derived[D.tooth_factors_used] != 0.0
+    track = derived[D.teeth_tracked] != 0.0
     zlo1 = fam[f, F.zero_lo1]
     zhi1 = fam[f, F.zero_hi1]
     zlo2 = fam[f, F.zero_lo2]
     zhi2 = fam[f, F.zero_hi2]
     i1 = 0
     i2 = 0
-    if use_offsets:
+    if track:
         i1 = (int(fam[f, F.tooth_k1]) + isig * n) % z1
         i2 = (int(fam[f, F.tooth_k2]) + isig * n) % z2
     for j in range(slot_force.shape[1]):
-        if j > 0 and use_offsets:
+        if j > 0 and track:
             i1 -= isig
             i2 -= isig
             if i1 < 0:
@@ -253,6 +255,11 @@ def flank(f, kin, app, model, slot_force, scratch, full):
         pdot = dp1 * v1 + dp2 * v2 + lat_rate
         if tooth_law:
             _, kj, dkj = hermite(model.pair_stiffness, f, x_lo, x_hi, h_grid, inv_h, x1)
+            if use_factors:  # this pair's teeth: the factor is constant along its path
+                fac = model.tooth_stiffness_factor[PINION, i1] \
+                    * model.tooth_stiffness_factor[GEAR, i2]
+                kj *= fac
+                dkj *= fac
             scratch[SC.slot, n_touch] = j
             scratch[SC.x1, n_touch] = x1
             scratch[SC.pen, n_touch] = pen

@@ -262,6 +262,8 @@ TABLE_SLOPE = TABLE_ROWS.index("slope")
 DERIVED_NAMES = (
     "error_bound",  # largest overlap runout + tooth offsets add on either flank family [mm]
     "tooth_offsets_used",  # 1 when any per-tooth flank offset is non-zero, else 0
+    "tooth_factors_used",  # 1 when per-tooth stiffness factors are given (tooth law), else 0
+    "teeth_tracked",  # 1 when either needs the tooth index of every slot, else 0
     "inv_exponent_plus_1",  # 1/(e + 1) [-]
     "grid_step",  # gap-table spacing (x_hi - x_lo)/(n - 1) [mm]
     "inv_grid_step",  # [1/mm]

@@ -27,8 +27,11 @@ from tests.physics.test_kernel import (
     G_ALPHA,
     MESH_PERIOD,
     OMEGA1,
+    P_B,
+    R_B1,
     R_B2,
     T_LOAD,
+    Z1,
     Z2,
     extended_tables,
     n_slots,
@@ -92,6 +95,7 @@ def test_energy_balance_of_a_loaded_mesh_with_a_position_dependent_stiffness():
 
 def _steady_run(tables, x_lo, x_hi, stiffness, mesh_damping, omega=0.2 * OMEGA1, t_end=0.6,
                 **extra):
+    arrays = {k: extra.pop(k) for k in list(extra) if k == "tooth_stiffness_factor"}
     speed, load = PP.step(0.0, 0.0, 0.1, omega), PP.step(0.0, 0.0, 0.1, T_LOAD)
     prm = layout.make_params(**BASE, x_lo=x_lo, x_hi=x_hi, n_slots=n_slots(x_lo, x_hi),
                              drive_mode=layout.DRIVE_SPEED, t_end=t_end, coast_flanks=0.0,
@@ -100,7 +104,7 @@ def _steady_run(tables, x_lo, x_hi, stiffness, mesh_damping, omega=0.2 * OMEGA1,
     t_out = np.linspace(0.0, t_end, 6001)
     res = simulate(prm, tables, t_out=t_out, drive_pp=pp_arrays(speed), load_pp=pp_arrays(load),
                    drive_angle_pp=pp_arrays(speed.antiderivative()),
-                   pair_stiffness=stiffness)
+                   pair_stiffness=stiffness, **arrays)
     assert res.ok, res.message
     return res
 
@@ -144,6 +148,38 @@ def test_mesh_damping_is_shared_not_per_pair():
     heavy = loaded & (elastic >= f_ref)
     assert heavy.sum() > 1000 and np.abs(rate[heavy]).max() > 1.0  # damping is at work
     assert np.allclose(f[loaded], expected[loaded], rtol=1e-9, atol=1e-6 * T_LOAD / R_B2)
+
+
+def test_tooth_stiffness_factors_scale_the_pairs_of_their_tooth():
+    """Per-tooth stiffness factors (the hook for faults): all ones give the run without them
+    bit for bit; a factor 1/2 on one pinion tooth doubles the single-pair deflection F/k while
+    that tooth carries the load alone, once per pinion revolution (rigid tables, constant k)."""
+    tables, x_lo, x_hi = np.zeros((4, 2, 2)), 0.0, G_ALPHA
+    stiffness = np.full((layout.N_FAMILIES, 2, 2), K0)
+    stiffness[:, 1] = 0.0
+    c_m = 2.0 * 0.1 * np.sqrt(1.56 * K0 * BASE["J2"] / R_B2**2)
+    run = 1.0  # [s]: settled from 0.3 s, then more than one pinion revolution (0.6 s)
+    plain = _steady_run(tables, x_lo, x_hi, stiffness, c_m, t_end=run)
+    ones = _steady_run(tables, x_lo, x_hi, stiffness, c_m, t_end=run,
+                       tooth_stiffness_factor=np.ones((layout.N_GEARS, Z2)))
+    np.testing.assert_array_equal(plain.series, ones.series)
+    factors = np.ones((layout.N_GEARS, Z2))
+    factors[layout.PINION, 3] = 0.5
+    weak = _steady_run(tables, x_lo, x_hi, stiffness, c_m, t_end=run,
+                       tooth_stiffness_factor=factors)
+    steady = weak.column("t_s") > 0.3
+    delta = weak.column("delta_mm")[steady]
+    single = weak.column("pairs_in_contact")[steady] == 1
+    # the tooth in the single-pair zone g_a - p_b <= x1 <= p_b: slot j = 0 there (x_lo = 0,
+    # phase 0, tooth offset index 0: slot j holds pinion tooth (n - j) mod z1, core/rhs.py)
+    s1 = weak.column("theta1_rad")[steady] * R_B1
+    n = np.floor(s1 / P_B).astype(int)
+    weak_tooth = single & (np.mod(n, Z1) == 3)
+    f_static = T_LOAD / R_B2
+    # median: each zone change is a step in the mesh stiffness that rings (rigid tables)
+    assert weak_tooth.sum() > 20
+    assert np.median(delta[weak_tooth]) == pytest.approx(2.0 * f_static / K0, rel=0.01)
+    assert np.median(delta[single & ~weak_tooth]) == pytest.approx(f_static / K0, rel=0.01)
 
 
 def test_tooth_law_needs_its_table_on_the_gap_grid():
