@@ -54,16 +54,17 @@ class CaseError(GearcliError):
 
     def format(self) -> str:
         parts = []
-        if self.file is not None:
-            parts.append(self.file + (f":{self.line}" if self.line is not None else ""))
+        if self.file is not None:  # "--set key=VALUE" may be long: clipped like values
+            parts.append(_clip(self.file, 160) + (f":{self.line}" if self.line is not None
+                                                  else ""))
         if self.path:
-            parts.append(self.path)
+            parts.append(_clip(self.path, 120))
         text = ": ".join(parts) + ": " if parts else ""
         if self.has_value:
             text += f"got {format_value(self.value)}; "
         text += self.message
         if self.source_line is not None and self.line is not None:
-            text += f"\n    {self.line:>4} | {self.source_line.rstrip()}"
+            text += f"\n    {self.line:>4} | {_clip(self.source_line.rstrip(), 120)}"
         return text
 
 
@@ -90,8 +91,16 @@ class CheckFailed(GearcliError):
 
 
 def format_value(value: object) -> str:
-    """Render a user value compactly for an error message."""
+    """Render a user value compactly for an error message (at most ~80 characters)."""
     if isinstance(value, str):
-        return repr(value)
+        return repr(_clip(value, 80)) if len(value) > 80 else repr(value)
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 10**30:
+        return f"an integer of ~{int(abs(value).bit_length() * 0.30103) + 1} digits"
     text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _clip(text: str, limit: int) -> str:
+    from gearcli.guards import clip
+
+    return clip(text, limit)

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli import guards
 from gearcli.model.timefunction import PiecewisePolynomial
 
 _FUNCTIONS = {
@@ -35,6 +36,7 @@ _ARGUMENTS = "(time, t0, h0, t1, h1)"
 _MAX_EXPONENT = 10
 _MAX_DEGREE = 20
 _MAX_DEPTH = 50
+MAX_LENGTH = guards.MAX_EXPRESSION_CHARS
 _TOKEN = re.compile(
     r"\s*(?:(?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z_][A-Za-z0-9_]*)|(?P<op>\*\*|[-+*/^(),]))"
@@ -287,5 +289,8 @@ def parse_time_function(text: str) -> PiecewisePolynomial:
     """
     if not isinstance(text, str):
         raise ExpressionError(f"expected text, got {type(text).__name__}", 1)
+    if len(text) > MAX_LENGTH:  # bounds the work: each term merges the breakpoints so far
+        raise ExpressionError(f"expression of {len(text):,} characters; expected at most "
+                              f"{MAX_LENGTH:,}", MAX_LENGTH + 1)
     with np.errstate(all="ignore"):
         return _Parser(text).parse()

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from pydantic import ValidationError
 
+from gearcli.case.bounds import magnitude_errors
 from gearcli.case.keypaths import allowed_keys, field_at
 from gearcli.case.overrides import apply_overrides
 from gearcli.case.schema import Case, FieldError
@@ -56,6 +57,9 @@ def validate_source(src: Source, stem: str) -> LoadedCase:
         case = Case.model_validate(src.data)
     except ValidationError as exc:
         raise _first_error(exc, src) from None
+    for loc, _, message in magnitude_errors(case):
+        value, has_value = _raw_value(src.data, loc)
+        raise src.error(loc, message, value, has_value and not isinstance(value, dict | list))
     return LoadedCase(case, src, case.name or stem)
 
 

@@ -38,6 +38,7 @@ from gearcli.case.types import (
     TorsionalDamping,
     TorsionalStiffness,
     Velocity,
+    checked_quantity,
     qfield,
     time_field,
 )
@@ -198,7 +199,7 @@ class Contact(Section):
         if value == "derived":
             return value
         exponent = info.data.get("exponent", 1.5)
-        k = units.parse_quantity(value, units.contact_stiffness_dim(exponent))
+        k = checked_quantity(value, units.contact_stiffness_dim(exponent))
         if not k > 0.0:
             raise ValueError("expected a contact stiffness > 0 (or 'derived')")
         return k

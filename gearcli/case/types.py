@@ -14,13 +14,28 @@ from typing import Annotated, Any
 
 from pydantic import BeforeValidator, Field, PlainSerializer, WithJsonSchema
 
-from gearcli import units
+from gearcli import guards, units
 from gearcli.units import Dim
+
+
+def checked_quantity(value: Any, dim: Dim) -> float:
+    """:func:`gearcli.units.parse_quantity` behind the guards of :mod:`gearcli.guards`: a
+    string must start with a number ("mm" alone is not 1 mm) and have small, unchained
+    powers (pint never returns from "9**9**9**9")."""
+    if isinstance(value, str):
+        guards.check_unit_text(value, need_number=True)
+    return units.parse_quantity(value, dim)
+
+
+def checked_unit(unit: str, dim: Dim) -> float:
+    """:func:`gearcli.units.unit_factor` of a unit string ("N*m") behind the same guards."""
+    guards.check_unit_text(unit, need_number=False)
+    return units.unit_factor(unit, dim)
 
 
 def _quantity_validator(dim: Dim):
     def validate(value: Any) -> float:
-        return units.parse_quantity(value, dim)
+        return checked_quantity(value, dim)
 
     validate.dim = dim  # lets error messages show limits in the default unit
     return validate
@@ -91,7 +106,7 @@ class TimeFunction:
     def pp(self):
         from gearcli.case.expr import parse_time_function
 
-        return parse_time_function(self.expression).scale(units.unit_factor(self.unit, self.dim))
+        return parse_time_function(self.expression).scale(checked_unit(self.unit, self.dim))
 
     def to_json(self) -> dict[str, str]:
         return {"function": self.expression, "unit": self.unit}
@@ -112,7 +127,7 @@ def _time_function_validator(dim: Dim):
                     "'STEP(time, 0, 0, 1, 450)') and optional 'unit'"
                 )
             unit = str(value.get("unit", dim.default))
-            units.unit_factor(unit, dim)  # validates the unit and its dimension
+            checked_unit(unit, dim)  # validates the unit and its dimension
             value = value["function"]
             if isinstance(value, int | float) and not isinstance(value, bool):
                 value = repr(float(value))
@@ -127,7 +142,7 @@ def _time_function_validator(dim: Dim):
             except ExpressionError as exc:
                 raise ValueError(f"malformed expression: {exc}") from None
             return TimeFunction(" ".join(value.split()), unit, dim)
-        constant = units.parse_quantity(value, dim)
+        constant = checked_quantity(value, dim)
         return TimeFunction(repr(constant), dim.internal, dim)
 
     return validate

@@ -6,11 +6,13 @@ parsers silently resolve by keeping the last one, are refused.
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
 
+from gearcli import guards
 from gearcli.errors import CaseError
 
 Loc = tuple[str | int, ...]
@@ -25,6 +27,7 @@ class Source:
     lines: list[str]
     key_lines: dict[Loc, int] = field(default_factory=dict)
     overridden: dict[Loc, str] = field(default_factory=dict)  #: key path -> the --set text
+    sha256: str = ""  #: of the bytes that were parsed (the manifest records it)
 
     def line_of(self, loc: Loc) -> int | None:
         """1-based line of the deepest existing key on ``loc``."""
@@ -71,7 +74,11 @@ class Source:
 
 
 def read_source(path: str | Path) -> Source:
-    """Read and parse a YAML case file; every failure is a :class:`CaseError`."""
+    """Read and parse a YAML case file; every failure is a :class:`CaseError`.
+
+    The file may be a pipe (``<(...)``, ``/dev/stdin``); it is read once, at most
+    :data:`gearcli.guards.MAX_INPUT_BYTES`, and the hash of exactly those bytes is kept.
+    """
     p = Path(path)
     name = str(path)
     if not p.exists():
@@ -79,25 +86,43 @@ def read_source(path: str | Path) -> Source:
     if p.is_dir():
         raise CaseError("is a directory; expected a YAML case file", file=name)
     try:
-        text = p.read_text(encoding="utf-8")
-    except UnicodeDecodeError as exc:
-        raise CaseError(
-            f"not UTF-8 text ({exc.reason}); expected a YAML case file", file=name
-        ) from None
+        raw = guards.read_bounded(p)
+    except guards.InputTooLarge as exc:
+        raise CaseError(f"too large: {exc}", file=name) from None
+    except TimeoutError as exc:
+        raise CaseError(f"cannot read ({exc}); expected a YAML case file", file=name) from None
     except OSError as exc:
         raise CaseError(
             f"cannot read ({exc.strerror}); expected a readable file", file=name
         ) from None
-    return parse_source(text, name)
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise CaseError(
+            f"not UTF-8 text ({exc.reason}); expected a YAML case file", file=name
+        ) from None
+    src = parse_source(text, name)
+    src.sha256 = hashlib.sha256(raw).hexdigest()
+    return src
 
 
 def parse_source(text: str, name: str = "<case>") -> Source:
-    """Parse YAML text into a :class:`Source` (mapping at the top level)."""
+    """Parse YAML text into a :class:`Source` (mapping at the top level).
+
+    Bounded: at most :data:`gearcli.guards.MAX_YAML_DEPTH` levels and
+    :data:`gearcli.guards.MAX_YAML_NODES` values, aliases counted at every use (a "billion
+    laughs" document is refused before anything walks its expansion).
+    """
     lines = text.splitlines()
     if not text.strip():
         raise CaseError("file is empty; expected a YAML mapping of case keys", file=name)
+    if len(text) > guards.MAX_INPUT_BYTES:
+        raise CaseError(f"too large: {guards.too_large(len(text), guards.MAX_INPUT_BYTES)}",
+                        file=name)
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)
+        if node is not None:
+            _check_size(node, name, lines)
         data = yaml.load(text, Loader=yaml.SafeLoader)  # noqa: S506 - SafeLoader
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
@@ -109,9 +134,15 @@ def parse_source(text: str, name: str = "<case>") -> Source:
             line=line,
             source_line=lines[line - 1] if line and line <= len(lines) else None,
         ) from None
+    except RecursionError:  # PyYAML's composer recurses once per level of nesting
+        raise CaseError(f"nested too deeply; expected at most {guards.MAX_YAML_DEPTH} levels "
+                        "of mappings and lists", file=name) from None
+    except (ValueError, OverflowError) as exc:  # e.g. an integer of more than 4300 digits
+        raise CaseError(f"invalid YAML value ({guards.clip(str(exc), 120)}); expected a YAML "
+                        "mapping of case keys", file=name) from None
     if node is None or data is None:
         raise CaseError("file holds no data; expected a YAML mapping of case keys", file=name)
-    src = Source(name, data, lines)
+    src = Source(name, data, lines, sha256=hashlib.sha256(text.encode("utf-8")).hexdigest())
     if not isinstance(data, dict):
         line = node.start_mark.line + 1
         raise CaseError(
@@ -124,6 +155,33 @@ def parse_source(text: str, name: str = "<case>") -> Source:
     src.key_lines[()] = node.start_mark.line + 1
     _index(node, (), src)
     return src
+
+
+def _check_size(root: yaml.Node, name: str, lines: list[str]) -> None:
+    """Refuse a document nested deeper than MAX_YAML_DEPTH or expanding (through aliases) to
+    more than MAX_YAML_NODES nodes. Iterative, and it stops at the limit: the expansion itself
+    is never walked."""
+    count = 0
+    stack: list[tuple[yaml.Node, int]] = [(root, 1)]
+    while stack:
+        node, depth = stack.pop()
+        count += 1
+        line = node.start_mark.line + 1
+        if count > guards.MAX_YAML_NODES:
+            raise CaseError(
+                f"the document expands to more than {guards.MAX_YAML_NODES:,} values (YAML "
+                "aliases are counted at every use); expected a case file", file=name,
+                line=line, source_line=guards.clip(lines[line - 1], 120)
+                if line <= len(lines) else None)
+        if depth > guards.MAX_YAML_DEPTH:
+            raise CaseError(f"nested too deeply; expected at most {guards.MAX_YAML_DEPTH} "
+                            "levels of mappings and lists", file=name, line=line)
+        if isinstance(node, yaml.MappingNode):
+            for key_node, value_node in node.value:
+                stack.append((key_node, depth + 1))
+                stack.append((value_node, depth + 1))
+        elif isinstance(node, yaml.SequenceNode):
+            stack.extend((item, depth + 1) for item in node.value)
 
 
 def _index(node: yaml.Node, loc: Loc, src: Source) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 import functools
 import os
 import sys
@@ -13,34 +14,70 @@ from pathlib import Path
 import typer
 
 from gearcli.errors import ExitCode, GearcliError
+from gearcli.guards import clip_message
+
+#: errno values of a full or broken output stream or disk: the user's environment, not a bug.
+_OUTPUT_ERRNOS = frozenset(getattr(errno, n) for n in (
+    "ENOSPC", "EDQUOT", "EFBIG", "EPIPE", "EIO", "EROFS", "EACCES", "EPERM", "ENXIO")
+    if hasattr(errno, n))
 
 
 def handle_errors(func):
     """Decorator for every command: GearcliError -> one message line + its exit code;
-    Ctrl-C -> 130; anything else -> exit 3 with the traceback written to a log file."""
+    a full disk or a closed output stream -> exit 1; Ctrl-C -> 130; anything else -> exit 3
+    with the traceback written to a log file."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
-            return func(*args, **kwargs)
+            result = func(*args, **kwargs)
+            sys.stdout.flush()  # a full disk or a closed pipe on stdout shows up here, not at exit
+            return result
         except (typer.Exit, typer.Abort, SystemExit):
             raise
         except GearcliError as exc:
-            typer.echo(f"error: {exc}", err=True)
+            _echo_err(f"error: {clip_message(str(exc))}")
             raise typer.Exit(int(exc.exit_code)) from None
         except KeyboardInterrupt:
-            typer.echo("interrupted", err=True)
+            _echo_err("interrupted")
             raise typer.Exit(int(ExitCode.INTERRUPTED)) from None
+        except OSError as exc:
+            if exc.errno not in _OUTPUT_ERRNOS:
+                return _internal()
+            _detach_stdout()
+            where = f"{exc.filename}" if exc.filename else "writing the output"
+            _echo_err(f"error: {where}: {exc.strerror or exc}")
+            raise typer.Exit(int(ExitCode.INPUT)) from None
         except Exception:  # a bug: keep the traceback for the report, not on the screen
-            log = _write_log(traceback.format_exc())
-            typer.echo(
-                f"internal error: {sys.exc_info()[1]!r}; traceback written to {log} "
-                "(please report it)",
-                err=True,
-            )
-            raise typer.Exit(int(ExitCode.INTERNAL)) from None
+            return _internal()
 
     return wrapper
+
+
+def _internal():
+    log = _write_log(traceback.format_exc())
+    _echo_err(f"internal error: {clip_message(repr(sys.exc_info()[1]))}; traceback written "
+              f"to {log} (please report it)")
+    raise typer.Exit(int(ExitCode.INTERNAL)) from None
+
+
+def _echo_err(text: str) -> None:
+    """A message on stderr; a broken stderr is ignored (the exit code still tells)."""
+    try:
+        typer.echo(text, err=True)
+    except OSError:
+        pass
+
+
+def _detach_stdout() -> None:
+    """After stdout failed: point it at /dev/null so the interpreter's final flush does not
+    fail again (and print a second, Python-level error)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):
+        pass
 
 
 def _write_log(text: str) -> Path:

@@ -14,10 +14,15 @@ import numpy as np
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import SolverError
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
-from gearcli.pipeline.kernel_input import HARMONICS_RESOLVED, KernelInput, build_kernel_input
+from gearcli.pipeline.kernel_input import (
+    HARMONICS_RESOLVED,
+    SAMPLES_PER_PERIOD,
+    KernelInput,
+    build_kernel_input,
+)
 from gearcli.pipeline.spectrum import alias_frequency
 from gearcli.pipeline.structure import refuse_unsupported
-from gearcli.pipeline.window import Window, steady_window
+from gearcli.pipeline.window import MIN_MESH_CYCLES, Window, steady_window
 
 
 @dataclass
@@ -111,6 +116,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     case = loaded.case
     refuse_unsupported(loaded)
     geo = run_geometry(loaded)
+    check_run_size(loaded, geo)  # before anything is sized by the run
     ki = build_kernel_input(case, geo)
     last_ramp = max(case.drive.speed.pp.last_breakpoint if case.drive.speed else 0.0,
                     case.drive.torque.pp.last_breakpoint if case.drive.torque else 0.0,
@@ -145,6 +151,57 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     result.summary = summarize(result)
     result.warnings = collect_warnings(result)
     return result
+
+
+def output_rows(case, f_z: float | None) -> tuple[float, str]:
+    """Number of output samples of the run and the key that sets it, computed as
+    :func:`gearcli.pipeline.kernel_input.output_times` does but without allocating (a float:
+    it may be astronomically large). The unit tests check both agree."""
+    run = case.run
+    if run.output_steps is not None:
+        return float(run.output_steps + 1), "output_steps"
+    if run.output_rate is not None:
+        rate, key = run.output_rate, "output_rate"
+    elif f_z is not None and f_z > 0.0:
+        rate, key = SAMPLES_PER_PERIOD * HARMONICS_RESOLVED * f_z, "end_time"
+    else:
+        rate, key = 10_000.0, "end_time"
+    return max(math.ceil(run.end_time * rate) if math.isfinite(run.end_time * rate)
+               else math.inf, 10) + 1.0, key
+
+
+def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
+    """Refuse a run too large to hold (output samples) or too short to mean anything (less
+    than one mesh cycle), with the key to change. Runs shorter than the steady window needs
+    are allowed and flagged (see :func:`collect_warnings`)."""
+    from gearcli import guards
+    from gearcli.model.geometry import mesh_frequencies
+
+    case, g = loaded.case, geo.geometry
+    speed = geo.pinion_speed_rad_s
+    f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None
+    rows, key = output_rows(case, f_z)
+    if rows > guards.MAX_OUTPUT_ROWS:
+        value, has = _raw(loaded, ("run", key))
+        raise loaded.error(("run", key), guards.output_rows_message(
+            rows, f"a run of {case.run.end_time:g} s" + (
+                f" with {case.run.output_steps:,} output steps" if key == "output_steps" else
+                f" sampled at {rows / case.run.end_time:.6g} Hz")), value, has)
+    if f_z and f_z > 0.0 and case.run.end_time < 1.0 / f_z:
+        value, has = _raw(loaded, ("run", "end_time"))
+        raise loaded.error(("run", "end_time"), f"{case.run.end_time:g} s is shorter than one "
+                           f"mesh cycle ({1.0 / f_z:.4g} s at f_z = {f_z:.5g} Hz); expected at "
+                           f"least one mesh cycle (a steady window needs {MIN_MESH_CYCLES}: "
+                           f"{MIN_MESH_CYCLES / f_z:.4g} s)", value, has)
+
+
+def _raw(loaded: LoadedCase, loc: tuple) -> tuple[object, bool]:
+    node = loaded.source.data
+    for part in loc:
+        if not isinstance(node, dict) or part not in node:
+            return None, False
+        node = node[part]
+    return node, not isinstance(node, dict | list)
 
 
 def summarize(res: SimulationResult) -> dict:
@@ -267,4 +324,7 @@ def collect_warnings(res: SimulationResult) -> list[str]:
                    "deflection; the rigid-tooth contact model is outside its validity here")
     if res.window.reason.startswith("the second half"):
         out.append("no steady state: the run ends before the ramps have settled")
+    elif res.window.reason.startswith("the whole run"):
+        out.append(f"short run: fewer than {MIN_MESH_CYCLES} mesh cycles; the spectra and "
+                   "steady-state values are not meaningful")
     return out

@@ -32,8 +32,9 @@ def settling_time_s(natural_frequency_Hz: float, damping_ratio: float) -> float:
     z = damping_ratio
     if z <= 0.0 or wn <= 0.0:
         return math.inf
-    rate = z * wn if z < 1.0 else wn * (z - math.sqrt(z * z - 1.0))
-    return SETTLING_TIME_CONSTANTS / rate
+    # z - sqrt(z^2 - 1) written without the cancellation that makes it 0 for a large z
+    rate = z * wn if z < 1.0 else wn / (z + math.sqrt(z * z - 1.0))
+    return SETTLING_TIME_CONSTANTS / rate if rate > 0.0 else math.inf
 
 
 def steady_window(
@@ -59,8 +60,11 @@ def steady_window(
     t0 = max(last_ramp_s, 0.0) + settle
     if gear_mesh_frequency_Hz:
         latest = t_end_s - MIN_MESH_CYCLES / gear_mesh_frequency_Hz
+        if latest <= 0.0:
+            return Window(0.0, t_end_s, f"the whole run (shorter than {MIN_MESH_CYCLES} mesh "
+                          "cycles)")
         if not t0 <= latest:
-            t0 = max(latest, 0.0)
+            t0 = latest
             reason = f"the last {MIN_MESH_CYCLES} mesh cycles (the run is short for settling)"
     if not t0 < t_end_s:
         t0 = 0.5 * t_end_s

@@ -1,0 +1,109 @@
+"""Plausible magnitudes of case values, checked once after validation (issue 18).
+
+The schema bounds signs and ranges that have a physical meaning (``module > 0``); this guard
+bounds magnitudes no gear pair has, by dimension, so that values such as ``module: 1e300``,
+``teeth: 10**300`` or ``drive.speed: 1e308`` are refused with the key that holds them instead
+of overflowing somewhere in the model. The limits are deliberately generous (a 1 km module
+is allowed): they are there to keep the arithmetic finite, not to judge designs.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from pydantic import BaseModel
+
+from gearcli.case.types import TimeFunction
+from gearcli.units import Dim
+
+#: Largest magnitude per dimension name, in internal units (see gearcli.units).
+LIMITS: dict[str, float] = {
+    "length": 1e6,  # mm (1 km)
+    "angle": 1e4,  # rad
+    "angular velocity": 1e5,  # rad/s (~955 000 rpm)
+    "torque": 1e12,  # N*mm
+    "time": 1e6,  # s
+    "frequency": 1e9,  # Hz
+    "mass": 1e6,  # t
+    "density": 1e-3,  # t/mm^3 (130 times osmium)
+    "stress": 1e8,  # MPa
+    "velocity": 1e9,  # mm/s
+}
+#: Any other quantity (stiffness, damping, inertia) and plain coefficients.
+DEFAULT_LIMIT = 1e15
+#: Largest integer per key name; any other integer: INT_LIMIT.
+COUNT_LIMITS = {"teeth": 10_000}
+INT_LIMIT = 2**63 - 1
+
+
+def magnitude_errors(case: BaseModel) -> Iterator[tuple[tuple, object, str]]:
+    """(key path, value, message) of every value beyond its plausible magnitude."""
+    yield from _walk(case, ())
+
+
+def _walk(model: BaseModel, loc: tuple) -> Iterator[tuple[tuple, object, str]]:
+    for name, field in type(model).model_fields.items():
+        value = getattr(model, name)
+        yield from _check(value, (*loc, name), name, _dim_of(field), model)
+
+
+def _check(value, loc, name, dim, parent) -> Iterator[tuple[tuple, object, str]]:
+    if isinstance(value, BaseModel):
+        yield from _walk(value, loc)
+    elif isinstance(value, list | tuple):
+        for i, item in enumerate(value):
+            yield from _check(item, (*loc, i), name, dim, parent)
+    elif isinstance(value, bool) or value is None or isinstance(value, str):
+        return
+    elif isinstance(value, int):
+        limit = COUNT_LIMITS.get(name, INT_LIMIT)
+        if abs(value) > limit:
+            yield loc, value, f"expected an integer of at most {limit:,}"
+    elif isinstance(value, float):
+        if not abs(value) <= _limit(dim):
+            yield loc, value, _message(dim)
+    elif isinstance(value, TimeFunction):
+        if not _function_peak(value) <= _limit(value.dim):
+            yield loc, None, (f"reaches {_shown(_function_peak(value), value.dim)}; "
+                              + _message(value.dim))
+
+
+def _function_peak(fn: TimeFunction) -> float:
+    """Largest |value| at t = 0, the breakpoints and their end (internal units)."""
+    try:
+        pp = fn.pp
+        times = [0.0, *pp.breakpoints, max(pp.breakpoints, default=0.0) + 1.0]
+        return max(abs(float(pp(t))) for t in times)
+    except (ValueError, OverflowError, ArithmeticError):
+        return math.inf
+
+
+def _dim_of(field) -> Dim | None:
+    for meta in getattr(field, "metadata", ()):
+        dim = getattr(getattr(meta, "func", None), "dim", None)
+        if dim is not None:
+            return dim
+    for arg in getattr(field.annotation, "__args__", ()):  # list[Length], Length | None
+        for meta in getattr(arg, "__metadata__", ()):
+            dim = getattr(getattr(meta, "func", None), "dim", None)
+            if dim is not None:
+                return dim
+    return None
+
+
+def _limit(dim: Dim | None) -> float:
+    return LIMITS.get(dim.name, DEFAULT_LIMIT) if dim is not None else DEFAULT_LIMIT
+
+
+def _shown(value: float, dim: Dim) -> str:
+    return f"{value / dim.factor:.3g} {dim.default}"
+
+
+def _message(dim: Dim | None) -> str:
+    if dim is None:
+        return f"expected a magnitude of at most {DEFAULT_LIMIT:g}"
+    article = "an" if dim.name[0] in "aeiou" else "a"
+    return (f"expected {article} {dim.name} of magnitude at most {_shown(_limit(dim), dim)} "
+            "(beyond any gear pair; the arithmetic would overflow)")
+

@@ -1,0 +1,240 @@
+"""Issue 18: every bad input a clean error (exit 1 or 2, one located line), bounded work, no
+silent nonsense. One test per reported class; the property-based fuzz is in test_fuzz.py."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+from typer.testing import CliRunner
+
+from gearcli import guards
+from gearcli.cli import app
+from tests.conftest import ROOT, SEED
+
+runner = CliRunner()
+
+
+def invoke(*args: str, input: str | None = None):
+    return runner.invoke(app, [str(a) for a in args], input=input)
+
+
+def error_line(result) -> str:
+    """The first stderr line; asserts there is no traceback and at most two lines (the message
+    and the offending YAML line)."""
+    text = result.stderr
+    assert "Traceback" not in text and "internal error" not in text, text
+    assert 1 <= len(text.splitlines()) <= 2, text
+    return text.splitlines()[0]
+
+
+def seed_variant(tmp_path, old: str, new: str, name: str = "case.yaml"):
+    text = SEED.read_text()
+    assert old in text
+    path = tmp_path / name
+    path.write_text(text.replace(old, new, 1))
+    return path
+
+
+# --- hangs and memory: bounded before the work ------------------------------------------------
+def test_yaml_alias_bomb_is_refused_quickly(tmp_path):
+    lines = ["a: &a [x, x, x, x, x, x, x, x, x]"]
+    for prev, name in zip("abcdefgh", "bcdefghi", strict=True):
+        lines.append(f"{name}: &{name} [" + ", ".join([f"*{prev}"] * 9) + "]")
+    path = tmp_path / "bomb.yaml"
+    path.write_text("\n".join(lines) + "\n")
+    assert path.stat().st_size < 500
+    r = invoke("geometry", path)
+    assert r.exit_code == 1
+    assert "expands to more than" in error_line(r)
+
+
+def test_deep_nesting_is_refused(tmp_path):
+    path = tmp_path / "deep.yaml"
+    path.write_text("a: " + "[" * 5000 + "]" * 5000 + "\n")
+    r = invoke("geometry", path)
+    assert r.exit_code == 1
+    assert "nested too deeply" in error_line(r)
+
+
+def test_moderate_nesting_beyond_the_limit_is_refused(tmp_path):
+    path = tmp_path / "deep.yaml"
+    path.write_text("a: " + "[" * 60 + "]" * 60 + "\n")
+    r = invoke("geometry", path)
+    assert r.exit_code == 1
+    assert "nested too deeply" in error_line(r)
+
+
+@pytest.mark.parametrize("text", ["10 ** 10 ** 10 mm", "9**9**9**9", "10 mm^99999",
+                                  "2 ** 1000000 mm", "(9**9)**9 mm"])
+def test_unit_powers_are_bounded(text):
+    r = invoke("simulate", SEED, "-o", "-", "--set", f"gears.module={text}")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "gears.module" in line and "power" in line
+
+
+def test_unit_powers_are_bounded_in_units_and_stiffness():
+    r = invoke("simulate", SEED, "-o", "-", "--set", "contact.stiffness=9**9**9**9")
+    assert r.exit_code == 1 and "contact.stiffness" in error_line(r)
+    r = invoke("simulate", SEED, "-o", "-", "--set",
+               'drive.speed={function: "STEP(time,0,0,1,3)", unit: "rpm**99999"}')
+    assert r.exit_code == 1 and "drive.speed" in error_line(r)
+
+
+def test_plain_unit_powers_still_work():
+    from gearcli.case.load import load_case
+
+    c = load_case(SEED, ["contact.stiffness=1e5 N/mm^1.5", "material.density=7.85e-6 kg/mm**3",
+                         "load.viscous=1 N*mm*s/rad"]).case
+    assert c.contact.stiffness == pytest.approx(1e5)
+
+
+def test_huge_file_and_devices_are_refused(tmp_path):
+    path = tmp_path / "big.yaml"
+    path.write_text("name: x\ndescription: " + "x" * (guards.MAX_INPUT_BYTES + 10) + "\n")
+    r = invoke("geometry", path)
+    assert r.exit_code == 1 and "too large" in error_line(r)
+    r = invoke("geometry", "/dev/zero")
+    assert r.exit_code == 1 and "too large" in error_line(r)
+
+
+def test_fifo_without_writer_times_out(tmp_path, monkeypatch):
+    monkeypatch.setattr(guards, "READ_TIMEOUT_S", 0.2)
+    fifo = tmp_path / "case.fifo"
+    os.mkfifo(fifo)
+    r = invoke("geometry", fifo)
+    assert r.exit_code == 1 and "no data" in error_line(r)
+
+
+def test_case_from_a_pipe_is_read_and_hashed(tmp_path):
+    import hashlib
+    import threading
+
+    from gearcli.case.yamlsrc import read_source
+
+    fifo = tmp_path / "case.fifo"
+    os.mkfifo(fifo)
+    raw = SEED.read_bytes()
+
+    def write():
+        with open(fifo, "wb") as fh:
+            fh.write(raw)
+
+    writer = threading.Thread(target=write)
+    writer.start()
+    src = read_source(fifo)
+    writer.join()
+    assert src.sha256 == hashlib.sha256(raw).hexdigest()
+    assert src.data["name"] == "seed"
+
+
+def test_long_expression_is_refused():
+    expr = "+".join(["STEP(time, 0, 0, 1, 1)"] * 200)
+    r = invoke("simulate", SEED, "-o", "-", "--set", f"drive.speed={expr}")
+    assert r.exit_code == 1
+    assert "expected at most" in error_line(r)
+
+
+# --- messages stay readable ------------------------------------------------------------------
+def test_long_values_are_clipped_in_messages(tmp_path):
+    path = seed_variant(tmp_path, "name: seed", "name: seed\nnot_a_key: " + "x" * 200_000)
+    r = invoke("geometry", path)
+    assert r.exit_code == 1
+    assert len(r.stderr) < 2000
+    assert "not_a_key" in error_line(r)
+
+
+def test_unit_without_a_number_is_refused(tmp_path):
+    path = seed_variant(tmp_path, "  module: 10 ", "  module: mm ")
+    r = invoke("geometry", path)
+    assert r.exit_code == 1
+    assert "gears.module" in error_line(r) and "unit alone" in error_line(r)
+
+
+# --- exit 3 for user causes: extreme magnitudes, full disks --------------------------------
+@pytest.mark.parametrize("old, new, key", [
+    ("    teeth: 17 ", "    teeth: 1" + "0" * 300 + " ", "gears.pinion.teeth"),
+    ("  module: 10 ", "  module: 1e300 ", "gears.module"),
+    ("  face_width: 100 ", "  face_width: '1e200 km' ", "gears.face_width"),
+    ("speed: STEP(time, 0, 0, 1, 3000)", "speed: 1e308", "drive.speed"),
+    ("speed: STEP(time, 0, 0, 1, 3000)", "speed: STEP(time, 0, 0, 1, 1e300)", "drive.speed"),
+])
+def test_absurd_magnitudes_are_located_errors(tmp_path, old, new, key):
+    path = seed_variant(tmp_path, old, new)
+    r = invoke("geometry", path)
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert key in line and "at most" in line
+
+
+def test_integer_beyond_python_digit_limit(tmp_path):
+    path = seed_variant(tmp_path, "    teeth: 17 ", "    teeth: 1" + "0" * 5000 + " ")
+    r = invoke("geometry", path)
+    assert r.exit_code == 1
+    error_line(r)
+
+
+def test_tiny_module_is_no_internal_error():
+    r = invoke("simulate", SEED, "-o", "-", "--set", "gears.module=1e-12",
+               "--set", "run.end_time=0.2")
+    assert r.exit_code in (0, 1)
+    assert "internal error" not in r.stderr and "Traceback" not in r.stderr
+    if r.exit_code == 0:
+        assert "warning" in r.stderr
+
+
+def test_full_disk_on_stdout_is_exit_1():
+    import subprocess
+    import sys
+
+    with open("/dev/full", "w") as full:
+        p = subprocess.run([sys.executable, "-m", "gearcli", "schema"], stdout=full,
+                           stderr=subprocess.PIPE, text=True, timeout=60, cwd=ROOT,
+                           env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert p.returncode == 1
+    assert p.stderr.strip().startswith("error:") and "No space left" in p.stderr
+    assert "Traceback" not in p.stderr
+
+
+# --- run size: refused before anything is allocated; short runs refused or flagged -------------
+@pytest.mark.parametrize("setting, key", [("run.end_time=20000", "run.end_time"),
+                                          ("run.output_steps=1000000000000", "run.output_steps"),
+                                          ("run.output_rate=1e9", "run.output_rate")])
+def test_output_size_is_checked_before_allocation(setting, key):
+    r = invoke("simulate", SEED, "-o", "-", "--set", setting)
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert key in line and "output samples" in line and "in memory" in line
+
+
+def test_output_rows_agree_with_the_sampling():
+    from gearcli.case.load import load_case
+    from gearcli.pipeline.geometry import run_geometry
+    from gearcli.pipeline.kernel_input import output_times
+    from gearcli.pipeline.simulate import output_rows
+
+    for extra in ([], ["run.output_steps=123"], ["run.output_rate=777"], ["drive.speed=0"],
+                  ["run.end_time=1e-4"]):
+        loaded = load_case(SEED, extra)
+        geo = run_geometry(loaded)
+        from gearcli.model.geometry import mesh_frequencies
+
+        g = geo.geometry
+        speed = geo.pinion_speed_rad_s
+        f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None
+        t, _ = output_times(loaded.case, f_z)
+        assert output_rows(loaded.case, f_z)[0] == t.size, extra
+
+
+def test_run_shorter_than_a_mesh_cycle_is_refused(tmp_path):
+    r = invoke("simulate", SEED, "-o", tmp_path / "out", "--set", "run.end_time=1e-9")
+    assert r.exit_code == 1
+    assert "run.end_time" in error_line(r) and "mesh cycle" in error_line(r)
+    assert not (tmp_path / "out").exists()
+
+
+def test_run_shorter_than_the_window_needs_is_flagged():
+    r = invoke("simulate", SEED, "-o", "-", "--set", "run.end_time=0.05")
+    assert r.exit_code == 0
+    assert "short run" in r.stderr
