@@ -19,7 +19,7 @@ $(STAMP): pyproject.toml
 
 demo: $(STAMP)
 	@mkdir -p $(dir $(OUT))
-	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg
+	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg --force
 	$(BIN)/gearcli run $(CASE) -o $(OUT) --force
 
 test: lint

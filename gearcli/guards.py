@@ -164,8 +164,8 @@ def check_unit_text(text: str, need_number: bool) -> None:
                              f"{clip(text[m.start():m.end()].strip())!r}")
         pos = m.end()
     if need_number and not _LEADING_NUMBER.match(text):
-        raise ValueError("expected a number with units, e.g. '10 mm' (a unit alone is not a "
-                         "value)")
+        raise ValueError("expected a number with units, e.g. '10 mm' (no number in front: a "
+                         "unit alone is not a value)")
 
 
 def _powered_group(text: str, op: int) -> bool:

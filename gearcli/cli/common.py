@@ -5,6 +5,7 @@ from __future__ import annotations
 import errno
 import functools
 import os
+import signal
 import sys
 import tempfile
 import traceback
@@ -30,11 +31,15 @@ def handle_errors(func):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
-            result = func(*args, **kwargs)
-            sys.stdout.flush()  # a full disk or a closed pipe on stdout shows up here, not at exit
+            with _signals_raise():
+                result = func(*args, **kwargs)
+                sys.stdout.flush()  # a full disk or a closed stdout shows up here, not at exit
             return result
         except (typer.Exit, typer.Abort, SystemExit):
             raise
+        except Terminated as exc:  # temporary folders were removed on the way out
+            _echo_err(f"terminated ({signal.Signals(exc.signum).name})")
+            raise typer.Exit(128 + exc.signum) from None
         except GearcliError as exc:
             _echo_err(f"error: {clip_message(str(exc))}")
             raise typer.Exit(int(exc.exit_code)) from None
@@ -52,6 +57,36 @@ def handle_errors(func):
             return _internal()
 
     return wrapper
+
+
+class Terminated(BaseException):
+    """SIGTERM or SIGHUP, raised in the main thread so that ``finally`` blocks and the
+    cleanup of temporary folders (gearcli.io.outdir) run, as for Ctrl-C."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated(signum)
+
+
+@contextmanager
+def _signals_raise():
+    """SIGTERM and SIGHUP raise :class:`Terminated` during a command (main thread only)."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    names = [n for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
+    previous = {n: signal.signal(getattr(signal, n), _raise_terminated) for n in names}
+    try:
+        yield
+    finally:
+        for n, handler in previous.items():
+            signal.signal(getattr(signal, n), handler)
 
 
 def _internal():

@@ -64,6 +64,7 @@ def geometry(
     plot: Path | None = typer.Option(
         None, "--plot", help="Draw the pair in mesh to FILE (.png, .svg or .pdf)."
     ),
+    force: bool = typer.Option(False, "--force", help="Replace an existing --plot file."),
 ) -> None:
     """Involute geometry of the pair, checked (ISO 21771): per gear, per pair, warnings."""
     from gearcli.pipeline.geometry import geometry_dict, run_geometry
@@ -72,6 +73,9 @@ def geometry(
         from gearcli.errors import OutputError
 
         raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
+    from gearcli.io.files import check_new_file
+
+    check_new_file(plot, force, "--plot")
     result = run_geometry(case)
     data = geometry_dict(result)
     if plot is not None:

@@ -22,7 +22,8 @@ def mesh(
     plot: Path | None = typer.Option(None, "--plot", help="Write the figure (.png, .svg, .pdf)."),
     out: Path | None = typer.Option(None, "-o", "--out", help="Write mesh.json, mesh.csv, "
                                     "mesh.png and manifest.json into this folder."),
-    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder."),
+    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder "
+                               "or --plot file."),
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
 ) -> None:
@@ -43,6 +44,12 @@ def mesh(
 
     if load is not None and not load > 0.0:
         raise CaseError(f"--load must be a force > 0 N, got {load}")
+    from gearcli.io.files import check_new_file
+    from gearcli.io.outdir import check_target
+
+    check_new_file(plot, force, "--plot")
+    if out is not None:
+        check_target(out, force)  # before the work, not after
     res = run_mesh(case, set_, load, harris)
     doc = mesh_document(res)
     if out is not None:

@@ -22,6 +22,7 @@ def modal(
                                      "mode shapes (.png, .svg, .pdf)."),
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
+    force: bool = typer.Option(False, "--force", help="Replace an existing --plot file."),
 ) -> None:
     """Modes of the linearised model that `simulate` integrates (case key `model`: torsional
     or lateral-torsional), crossings of the mesh harmonics and shaft orders, and the
@@ -32,8 +33,10 @@ def modal(
     import json
 
     from gearcli.errors import CheckFailed
+    from gearcli.io.files import check_new_file
     from gearcli.pipeline.modal import modal_document, run_modal, save_campbell_plot
 
+    check_new_file(plot, force, "--plot")
     res = run_modal(case, set_, speed_range)
     doc = modal_document(res)
     if plot is not None:

@@ -39,26 +39,34 @@ def run(
     fmt: str = typer.Option("html", "--format", help="Report format: html or md."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors and the report path."),
 ) -> None:
-    """simulate + analyze + report in one go; the exit code is analyze's (4: a check failed)."""
+    """simulate + analyze + report in one go; the exit code is analyze's (4: a check failed).
+
+    All or nothing: the results, the analysis and the report are written into one temporary
+    folder that replaces DIR only when all of them are complete (earlier results survive
+    until then)."""
     from gearcli.cli.analyze import print_checks
-    from gearcli.errors import CheckFailed
-    from gearcli.io.outdir import check_target
+    from gearcli.errors import CheckFailed, OutputError
+    from gearcli.io.outdir import atomic_dir, check_target
     from gearcli.pipeline.analysis_io import write_analysis
     from gearcli.pipeline.analyze import analyze as run_analysis
-    from gearcli.pipeline.outputs import write_simulation
+    from gearcli.pipeline.outputs import write_simulation_files
     from gearcli.pipeline.simulate import run_simulation
     from gearcli.report import build_report
 
+    if fmt not in ("html", "md"):
+        raise OutputError(f"--format {fmt}: expected html or md")
     check_target(out, force)
     with status_reporter(enabled=not quiet) as status:
         result = run_simulation(case, set_, status=status,
-                                    progress=status.progress if status else None)
-        write_simulation(result, out, force, set_)
+                                progress=status.progress if status else None)
         if status:
             status("analysing and writing the report")
-        analysis = run_analysis(out)
-        doc = write_analysis(analysis)
-        path = build_report(out, fmt, None)
+        with atomic_dir(out, force) as tmp:
+            write_simulation_files(result, tmp, set_)
+            analysis = run_analysis(tmp)
+            doc = write_analysis(analysis)
+            name = build_report(tmp, fmt, None).name
+    path = out / name
     if not quiet:
         print_checks(doc)
         for w in result.warnings:

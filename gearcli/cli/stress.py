@@ -27,6 +27,7 @@ def stress(
         False, "--safety", help="Require safety factors: error when the case lacks "
         "contact_fatigue_limit / bending_fatigue_limit."
     ),
+    force: bool = typer.Option(False, "--force", help="Replace an existing --plot file."),
 ) -> None:
     """Hertz contact stress and ISO 6336-3 root stress of every tooth pair from the simulated
     forces; writes DIR/stress.csv (histories) and DIR/stress.json (maxima, ISO static values,
@@ -38,6 +39,9 @@ def stress(
 
     if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
         raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
+    from gearcli.io.files import check_new_file
+
+    check_new_file(plot, force, "--plot")
     result = compute_stress(folder, window, require_limits=safety)
     doc = write_stress(result)
     if plot is not None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -10,15 +11,40 @@ import typer
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors, rich_progress
 
+_ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.-]+):(\d{1,5})$")
+
+
+def _check_scheduler(value: str | None) -> str | None:
+    """'local' or PROTOCOL://HOST:PORT (a usage error, exit 2, otherwise)."""
+    if value is None or value == "local":
+        return value
+    m = _ADDRESS.match(value)
+    if m is None or not 0 < int(m.group(3)) < 65536:
+        raise typer.BadParameter(f"{value!r}: expected 'local' or tcp://HOST:PORT (or tls://)")
+    return value
+
+
+#: At most this many worker processes per CPU (more only costs memory).
+JOBS_PER_CPU = 4
+
+
+def _check_jobs(value: int) -> int:
+    import os
+
+    limit = JOBS_PER_CPU * (os.cpu_count() or 1)
+    if value > limit:
+        raise typer.BadParameter(f"{value}: expected at most {limit} ({JOBS_PER_CPU} per CPU)")
+    return value
+
 
 @app.command()
 @handle_errors
 def sweep(
     study: Path = typer.Argument(..., help="Study file (YAML): base case, parameters, design."),
     out: Path = typer.Option(..., "-o", "--out", help="Output folder (summary.csv, trends)."),
-    jobs: int = typer.Option(0, "--jobs", "-j", min=0,
+    jobs: int = typer.Option(0, "--jobs", "-j", min=0, callback=_check_jobs,
                              help="Worker processes (0 = all cores; 1 = serial)."),
-    scheduler: str = typer.Option(None, "--scheduler",
+    scheduler: str = typer.Option(None, "--scheduler", callback=_check_scheduler,
                                   help="Dask: 'local' (embedded LocalCluster) or tcp://host:port."),
     keep_timeseries: bool = typer.Option(False, "--keep-timeseries",
                                          help="Also write each point's results folder."),

@@ -26,6 +26,23 @@ def write_new_text(path: str | Path, text: str) -> None:
         os.unlink(tmp)
 
 
+def check_new_file(path: str | Path | None, force: bool, option: str) -> None:
+    """Refuse to replace an existing file named by ``option`` (e.g. ``--plot``) without
+    ``force``; refuse a folder or a path in a missing folder. Call before the work."""
+    if path is None:
+        return
+    p = Path(path)
+    if str(path).strip() == "":
+        raise OutputError(f"{option} '': empty path; expected a file name")
+    if p.is_dir():
+        raise OutputError(f"{option} {p}: is a folder; expected a file name")
+    if (p.exists() or p.is_symlink()) and not force:
+        raise OutputError(f"{option} {p}: already exists; use --force to replace it")
+    if not p.parent.is_dir():
+        raise OutputError(f"{option} {p}: folder {p.parent} does not exist; expected an "
+                          "existing folder")
+
+
 def write_atomic(path: str | Path, data: bytes | str) -> None:
     """Write ``data`` to ``path`` via a temp file in the same folder and an atomic rename."""
     p = Path(path)
@@ -43,12 +60,12 @@ def _temp_with(p: Path, raw: bytes) -> str:
         fh.write(raw)
         fh.flush()
         os.fsync(fh.fileno())
-    os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; results are ordinary files
+    os.chmod(tmp, 0o666 & ~umask())  # mkstemp makes 0600; results are ordinary files
     return tmp
 
 
 @functools.cache
-def _umask() -> int:
+def umask() -> int:
     """The process umask, read once (os.umask can only be read by setting it)."""
     mask = os.umask(0)
     os.umask(mask)

@@ -23,12 +23,15 @@ def sha256_of(path) -> str:
         return hashlib.sha256(fh.read()).hexdigest()
 
 
-def manifest(case_path, resolved_case: dict, overrides: list[str] | None) -> dict:
+def manifest(source, resolved_case: dict, overrides: list[str] | None) -> dict:
+    """The manifest of a results folder. ``source`` is the case's
+    :class:`gearcli.case.yamlsrc.Source`: its hash is that of the bytes that were parsed (the
+    file is not read again: it may be a pipe, or have changed or gone since)."""
     return {
         "gearcli_manifest": 1,
         "versions": versions(),
-        "case_file": str(case_path),
-        "case_sha256": sha256_of(case_path),
+        "case_file": str(source.file),
+        "case_sha256": source.sha256 or None,
         "overrides": list(overrides or []),
         "command_line": sys.argv,
         "resolved_case": resolved_case,

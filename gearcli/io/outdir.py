@@ -1,29 +1,49 @@
 """Result folders written atomically: complete earlier results or complete new ones, never a mix.
 
 Files are written into a hidden temporary folder beside the target, which replaces the target
-only when everything is written (``os.replace``). Existing results are replaced only with
-``force``; a folder that holds other files is never replaced.
+only when everything is written. Existing results are replaced only with ``force``; a folder
+that holds other files is never replaced. The earlier folder is swapped out in one step where
+the system allows it (Linux ``renameat2(RENAME_EXCHANGE)``), else moved aside, the new one moved
+in, the old one deleted. A failure or a signal (SIGTERM, SIGHUP, Ctrl-C: see
+:func:`gearcli.cli.common.handle_errors`) removes the temporary folder; the folder gets the
+permissions of an ordinary new folder (the umask), not mkdtemp's 0700.
 """
 
 from __future__ import annotations
 
 import contextlib
+import ctypes
+import ctypes.util
 import os
 import shutil
 import tempfile
 from pathlib import Path
 
 from gearcli.errors import OutputError
+from gearcli.io.files import umask
 
 #: A folder holding this file is a gearcli result folder.
 MARKER = "manifest.json"
 
 
 def check_target(target: str | Path, force: bool) -> Path:
-    """Refuse targets that would lose data; returns the target as a Path."""
+    """Refuse targets that would lose data or cannot be replaced; returns the target as a
+    Path."""
+    if str(target).strip() == "":
+        raise OutputError("-o '': empty path; expected the name of a results folder")
     p = Path(target)
+    if p.is_symlink():
+        state = "a dangling symbolic link" if not p.exists() else "a symbolic link"
+        raise OutputError(f"{p}: is {state}; expected a folder name (give the link's target "
+                          "itself)")
     if p.exists() and not p.is_dir():
         raise OutputError(f"{p}: exists and is not a folder; expected a results folder")
+    if p.is_dir():
+        here = p.resolve()
+        if here == Path.cwd().resolve() or here in Path.cwd().resolve().parents \
+                or here.parent == here:
+            raise OutputError(f"{p}: is the current folder or one of its parents; expected "
+                              "a new folder name")
     if p.is_dir() and any(p.iterdir()):
         if not (p / MARKER).exists():
             raise OutputError(f"{p}: folder holds other files; expected a new or empty folder "
@@ -41,17 +61,52 @@ def atomic_dir(target: str | Path, force: bool):
     try:
         parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.", suffix=".tmp", dir=parent))
+        os.chmod(tmp, 0o777 & ~umask())
     except OSError as exc:
         raise OutputError(f"{p}: cannot create the results folder ({exc.strerror})") from None
     try:
         yield tmp
-        if p.exists():
-            old = tmp.with_name(tmp.name + ".old")
-            os.replace(p, old)
-            os.replace(tmp, p)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            os.replace(tmp, p)
+        check_target(p, force)  # nothing else appeared there meanwhile
+        _install(tmp, p)
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
+
+
+def _install(tmp: Path, p: Path) -> None:
+    """Move the finished ``tmp`` to ``p``; an earlier ``p`` is removed only afterwards."""
+    try:
+        if not p.exists():
+            os.replace(tmp, p)
+            return
+        if _exchange(tmp, p):  # p is now the new folder, tmp the old one
+            shutil.rmtree(tmp, ignore_errors=True)
+            return
+        old = tmp.with_name(tmp.name + ".old")
+        os.replace(p, old)
+        try:
+            os.replace(tmp, p)
+        except BaseException:
+            os.replace(old, p)  # put the earlier results back
+            raise
+        shutil.rmtree(old, ignore_errors=True)
+    except OSError as exc:
+        raise OutputError(f"{p}: cannot move the new results into place ({exc.strerror}); "
+                          "the earlier results are unchanged") from None
+
+
+_RENAME_EXCHANGE = 2
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two paths atomically (Linux renameat2 RENAME_EXCHANGE); False where unsupported."""
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True)
+        renameat2 = libc.renameat2
+    except (OSError, AttributeError):
+        return False
+    at_fdcwd = -100
+    renameat2.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p,
+                          ctypes.c_uint]
+    rc = renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), _RENAME_EXCHANGE)
+    return rc == 0

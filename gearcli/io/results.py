@@ -39,19 +39,92 @@ def read_run(folder: str | Path) -> StoredRun:
     if not isinstance(manifest, dict) or manifest.get("gearcli_manifest") != 1:
         raise ResultsError(f"{p / 'manifest.json'}: not a gearcli manifest; expected a folder "
                            "written by gearcli simulate")
+    if not isinstance(manifest.get("resolved_case"), dict):
+        raise ResultsError(f"{p / 'manifest.json'}: no resolved_case mapping; expected a "
+                           "manifest written by gearcli simulate")
     summary = read_json(p / "summary.json")
     if not isinstance(summary, dict) or summary.get("status") != "ok" or "rows" not in summary:
         raise ResultsError(f"{p / 'summary.json'}: incomplete summary; expected a finished "
                            "gearcli simulate run")
-    columns = read_columns(p / "timeseries.csv", "t_s", int(summary["rows"]))
+    check_summary(p / "summary.json", summary)
+    columns = read_columns(p / "timeseries.csv", "t_s", summary["rows"])
+    missing = [c for c in REQUIRED_COLUMNS if c not in columns]
+    if missing:
+        raise ResultsError(f"{p / 'timeseries.csv'}: no {', '.join(missing)} column"
+                           f"{'s' if len(missing) > 1 else ''}; expected a table written by "
+                           "gearcli simulate (was it edited?)")
     return StoredRun(p, manifest, summary, columns)
+
+
+#: Columns of timeseries.csv that analyze, stress and report read.
+REQUIRED_COLUMNS = ("t_s", "omega1_rad_s", "omega2_rad_s", "delta_mm", "force_total_N",
+                    "force_coast_N", "pairs_in_contact", "friction_power_mW",
+                    "drive_torque_Nmm", "load_torque_Nmm")
+_NUMBER, _OPTIONAL, _TEXT, _PAIR = "a number", "a number or null", "text", "two numbers"
+#: Entries of summary.json's "scalars" that analyze, stress and report read, by kind.
+REQUIRED_SCALARS = {
+    "window_s": _PAIR, "window_reason": _TEXT, "output_rate_Hz": _NUMBER,
+    "gear_mesh_frequency_Hz": _OPTIONAL, "pinion_speed_mean_deg_s": _NUMBER,
+    "gear_speed_mean_deg_s": _NUMBER, "force_max_N": _NUMBER, "force_max_t_s": _NUMBER,
+    "force_static_N": _NUMBER, "mesh_natural_frequency_Hz": _NUMBER,
+    "mesh_damping_ratio": _NUMBER,
+}
+#: Keys of each entry of scalars.modes (optional list).
+MODE_KEYS = {"mode": _NUMBER, "natural_frequency_Hz": _OPTIONAL, "damping_ratio": _NUMBER}
+
+
+def _is(value, kind: str) -> bool:
+    number = isinstance(value, int | float) and not isinstance(value, bool)
+    if kind == _NUMBER:
+        return number and np.isfinite(value)
+    if kind == _OPTIONAL:
+        return value is None or (number and np.isfinite(value))
+    if kind == _TEXT:
+        return isinstance(value, str)
+    return (isinstance(value, list) and len(value) == 2
+            and all(_is(v, _NUMBER) for v in value))
+
+
+def check_summary(path: Path, summary: dict) -> None:
+    """Refuse a summary.json without the entries later steps read (a hand-edited or foreign
+    file) with the first entry that is missing or of the wrong kind."""
+    def bad(key: str, kind: str) -> ResultsError:
+        return ResultsError(f"{path}: {key} missing or not {kind}; expected a summary written "
+                            "by gearcli simulate (was it edited?)")
+
+    rows = summary.get("rows")
+    if not isinstance(rows, int) or isinstance(rows, bool) or rows < 1:
+        raise bad("rows", "a positive integer")
+    scalars = summary.get("scalars")
+    if not isinstance(scalars, dict):
+        raise bad("scalars", "a mapping")
+    for key, kind in REQUIRED_SCALARS.items():
+        if key not in scalars or not _is(scalars[key], kind):
+            raise bad(f"scalars.{key}", kind)
+    balance = scalars.get("energy_balance")
+    if not isinstance(balance, dict) or not _is(balance.get("relative_residual"), _NUMBER):
+        raise bad("scalars.energy_balance.relative_residual", _NUMBER)
+    modes = scalars.get("modes", [])
+    if not isinstance(modes, list):
+        raise bad("scalars.modes", "a list")
+    for i, mode in enumerate(modes):
+        if not isinstance(mode, dict) or not isinstance(mode.get("rigid_body"), bool):
+            raise bad(f"scalars.modes.{i}.rigid_body", "true or false")
+        for key, kind in MODE_KEYS.items():
+            if key not in mode or not _is(mode[key], kind):
+                raise bad(f"scalars.modes.{i}.{key}", kind)
+    warnings = summary.get("warnings", [])
+    if not isinstance(warnings, list):
+        raise bad("warnings", "a list")
+    if not isinstance(summary.get("solver", {}), dict):
+        raise bad("solver", "a mapping")
 
 
 def read_json(path: Path, remedy: str = "expected gearcli output"):
     """A JSON file of a results folder; unreadable -> ResultsError saying ``remedy``."""
     try:
-        return json.loads(path.read_text())
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError, RecursionError) as exc:
         raise ResultsError(f"{path}: unreadable JSON ({exc}); {remedy}") from None
 
 
@@ -62,7 +135,7 @@ def read_columns(path: Path, key: str, rows: int | None = None) -> dict[str, np.
     shorter file was truncated).
     """
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise ResultsError(f"{path}: unreadable ({exc})") from None
     lines = text.splitlines()

@@ -51,10 +51,39 @@ _ROOT_CAUSE_ORDER = [
 ]
 
 
+def refuse_reverse_drive(loaded: LoadedCase) -> None:
+    """A reverse drive (negative pinion speed or drive torque) is refused with its key.
+
+    gearcli's conventions (docs/theory.md §1) have the pinion turning forward: frequencies,
+    drive/coast flanks and the window all assume it. A reverse run is the mirror image of a
+    forward one: give the speed (torque) as a positive value.
+    """
+    d = loaded.case.drive
+    for key, fn in (("speed", d.speed), ("torque", d.torque)):
+        if fn is None:
+            continue
+        pp = fn.pp
+        times = [0.0, *pp.breakpoints]
+        low = min(float(pp(t)) for t in times)
+        final = pp.final_value()
+        if low < 0.0 or (final is not None and final < 0.0):
+            raw = loaded.source.data.get("drive", {}).get(key)
+            raise loaded.error(("drive", key), f"a reverse drive (negative {key}) is not "
+                               f"supported; expected a {key} >= 0 (the pinion turns forward: "
+                               "a reverse run is the mirror image of a forward one)", raw,
+                               isinstance(raw, str | int | float))
+    if d.initial_speed < 0.0:
+        raw = loaded.source.data.get("drive", {}).get("initial_speed")
+        raise loaded.error(("drive", "initial_speed"), "a reverse drive (negative speed) is not "
+                           "supported; expected initial_speed >= 0", raw,
+                           isinstance(raw, str | int | float))
+
+
 def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
     """Load (if needed) and check the case's geometry; geometry errors raise a located CaseError."""
     loaded = source if isinstance(source, LoadedCase) else load_case(source)
     case = loaded.case
+    refuse_reverse_drive(loaded)
     try:
         geo = compute_pair_geometry(pair_spec(case))
     except ValueError as exc:  # impossible input the schema cannot see (e.g. a rack that

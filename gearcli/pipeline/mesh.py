@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.case.load import LoadedCase, load_case
+from gearcli.errors import CaseError
 from gearcli.model.gap import slot_layout
 from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh, tooth_law
 from gearcli.model.stiffness import IsoStiffness
@@ -67,7 +68,14 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         law = impact_law(contact_stiffness(case, geo), case.contact.exponent)
         law_name = f"IMPACT elastic part k p^{case.contact.exponent:g}"
     args = (tables.tables, tables.x_lo, tables.x_hi, g.p_b_mm, slots, law)
-    result = loaded_mesh(*args, force, cycles=cycles, points_per_cycle=points_per_cycle)
+    try:
+        result = loaded_mesh(*args, force, cycles=cycles, points_per_cycle=points_per_cycle)
+        harris = harris_map(*args, force, cycles=1, points_per_cycle=100) if harris else None
+    except ValueError as exc:  # model.ltca: no equilibrium within its deflection range
+        where = f"--load {load_N:g} N" if load_N is not None else f"{force:.6g} N"
+        raise (loaded.error(("load", "torque"), f"{exc} at {where}; expected a load the teeth "
+                            "can carry") if load_N is None else
+               CaseError(f"{where}: {exc}; expected a smaller load")) from None
     notes = []
     if case.friction.enabled:
         notes.append("friction is not included (it shifts the normal force by the friction "
@@ -77,10 +85,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         notes.append("runout and pitch deviations are not included (they vary over whole "
                      "revolutions; simulate includes them)")
     iso = iso_stiffness(case, geo, force)
-    return MeshAnalysis(loaded, loaded.name, geo, law_name,
-                        result, iso,
-                        harris_map(*args, force, cycles=1, points_per_cycle=100) if harris
-                        else None, tuple(notes))
+    return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))
 
 
 def mesh_document(res: MeshAnalysis) -> dict:
@@ -166,6 +171,6 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
         (tmp / "mesh.json").write_text(json.dumps(mesh_document(res), indent=2) + "\n")
         (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
         save_mesh_plot(res, tmp / "mesh.png")
-        doc = manifest(res.source.source.file, case_json, overrides)
+        doc = manifest(res.source.source, case_json, overrides)
         (tmp / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
     return Path(folder)

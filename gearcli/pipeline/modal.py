@@ -38,6 +38,9 @@ DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
 SPEED_RANGE_FACTOR = 1.5
 
+#: Largest speed of a Campbell diagram [deg/s] (1e5 rad/s, the case files' limit).
+MAX_SPEED_DEG_S = 1e5 * 180.0 / math.pi
+
 
 @dataclass
 class ModalCheck:
@@ -140,8 +143,9 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
             top = SPEED_RANGE_FACTOR * f_top / g.pinion.teeth * 360.0
         speed_range_deg_s = (0.0, top)
     lo, hi = speed_range_deg_s
-    if not (0.0 <= lo < hi):
-        raise CaseError(f"--speed-range: got {lo:g} {hi:g} deg/s; expected 0 <= A < B")
+    if not (0.0 <= lo < hi <= MAX_SPEED_DEG_S):
+        raise CaseError(f"--speed-range: got {lo:g} {hi:g} deg/s; expected 0 <= A < B <= "
+                        f"{MAX_SPEED_DEG_S:g}")
     out = ModalAnalysis(loaded, geo, system, mesh, result, orders, cross, case_deg_s,
                         (lo, hi))
     if case_deg_s:

@@ -33,10 +33,16 @@ def summary_document(res: SimulationResult) -> dict:
 def write_simulation(res: SimulationResult, target: str | Path, force: bool,
                      overrides: list[str] | None = None) -> Path:
     """Write the three files atomically into ``target`` (see io.outdir)."""
-    case_json = json.loads(res.loaded.case.model_dump_json())
     with atomic_dir(target, force) as tmp:
-        (tmp / "timeseries.csv").write_text(columns_to_csv(res.columns()))
-        (tmp / "summary.json").write_text(json.dumps(summary_document(res), indent=2) + "\n")
-        doc = manifest(res.loaded.source.file, case_json, overrides)
-        (tmp / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
+        write_simulation_files(res, tmp, overrides)
     return Path(target)
+
+
+def write_simulation_files(res: SimulationResult, folder: Path,
+                           overrides: list[str] | None = None) -> None:
+    """timeseries.csv, summary.json and manifest.json into an existing (temporary) folder."""
+    case_json = json.loads(res.loaded.case.model_dump_json())
+    (folder / "timeseries.csv").write_text(columns_to_csv(res.columns()))
+    (folder / "summary.json").write_text(json.dumps(summary_document(res), indent=2) + "\n")
+    doc = manifest(res.loaded.source, case_json, overrides)
+    (folder / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")

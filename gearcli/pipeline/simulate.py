@@ -175,6 +175,7 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
     than one mesh cycle), with the key to change. Runs shorter than the steady window needs
     are allowed and flagged (see :func:`collect_warnings`)."""
     from gearcli import guards
+    from gearcli.core.layout import PARAM_DEFAULTS
     from gearcli.model.geometry import mesh_frequencies
 
     case, g = loaded.case, geo.geometry
@@ -187,6 +188,14 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
             rows, f"a run of {case.run.end_time:g} s" + (
                 f" with {case.run.output_steps:,} output steps" if key == "output_steps" else
                 f" sampled at {rows / case.run.end_time:.6g} Hz")), value, has)
+    max_steps = PARAM_DEFAULTS["max_steps"]
+    if case.run.max_step is not None and case.run.end_time / case.run.max_step > max_steps:
+        value, has = _raw(loaded, ("run", "max_step"))
+        raise loaded.error(("run", "max_step"), f"a run of {case.run.end_time:g} s in steps of "
+                           f"at most {case.run.max_step:g} s needs "
+                           f"{case.run.end_time / case.run.max_step:.3g} steps; the solver "
+                           f"stops at {max_steps:.3g}: expected max_step >= "
+                           f"{case.run.end_time / max_steps:.3g} s", value, has)
     if f_z and f_z > 0.0 and case.run.end_time < 1.0 / f_z:
         value, has = _raw(loaded, ("run", "end_time"))
         raise loaded.error(("run", "end_time"), f"{case.run.end_time:g} s is shorter than one "

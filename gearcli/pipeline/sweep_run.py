@@ -12,6 +12,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import os
@@ -20,11 +21,14 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+from gearcli import guards
 from gearcli.errors import GearcliError, OutputError
 from gearcli.pipeline.sweep_metrics import METRICS
 from gearcli.pipeline.sweep_study import Study
 
 SUMMARY = "summary.csv"
+#: Largest summary.csv read back for resuming [bytes] (~1 kB a row, 100 000 points).
+MAX_SUMMARY_BYTES = 200_000_000
 #: Columns that differ between runs of the same point (timings): not compared across executors.
 TIMING_COLUMNS = ("wall_time_s", "solver_time_s")
 
@@ -83,17 +87,80 @@ def _case_from_json(text: str, name: str):
     return validate_source(Source(name, json.loads(text), text.splitlines()), name)
 
 
-def _warm_up() -> None:
-    """Worker initializer: import the pipeline (and load the compiled solver) once."""
+def _warm_up(parent_pid: int | None = None) -> None:
+    """Worker initializer: import the pipeline (and load the compiled solver) once; with
+    ``parent_pid``, end the worker when that process (the sweep) is gone."""
+    if parent_pid is not None:
+        watch_parent(parent_pid)
+        _default_signals()
     import gearcli.pipeline.simulate  # noqa: F401
+
+
+def _default_signals() -> None:
+    """In a forked worker: SIGTERM/SIGHUP end it (not the CLI's handler inherited from the
+    sweep, which would only fail the point in flight); Ctrl-C is the sweep's to handle."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+#: How often a worker checks that the sweep that started it still runs [s].
+PARENT_POLL_S = 0.5
+
+
+def watch_parent(pid: int) -> None:
+    """End this process soon after process ``pid`` ends, even by kill -9 (which runs no
+    cleanup in the sweep): a daemon thread polls it. Idempotent per process."""
+    import threading
+
+    if getattr(watch_parent, "watching", None) == pid:
+        return
+    watch_parent.watching = pid
+
+    def watch() -> None:
+        while True:
+            time.sleep(PARENT_POLL_S)
+            if not _alive(pid):
+                os._exit(1)
+
+    threading.Thread(target=watch, name="gearcli-parent-watch", daemon=True).start()
+
+
+def _alive(pid: int) -> bool:
+    if os.getppid() == 1 and pid != 1:  # re-parented to init: the parent is gone
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 # --- summary.csv -------------------------------------------------------------------------------
 def read_summary(path: Path, columns: list[str]) -> dict[str, dict]:
     """Complete rows of an earlier summary.csv by case hash; a torn last line is ignored."""
-    if not path.exists():
+    if not path.exists() and not path.is_symlink():
         return {}
-    text = path.read_text(encoding="utf-8")
+    if not path.is_file():
+        raise OutputError(f"{path}: exists and is not a file; remove it or choose another "
+                          "output folder")
+    try:
+        raw = guards.read_bounded(path, limit=MAX_SUMMARY_BYTES)
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise OutputError(f"{path}: not UTF-8 text; expected the summary.csv of an earlier "
+                          "sweep (use --force to start over)") from None
+    except (OSError, TimeoutError, guards.InputTooLarge) as exc:
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise OutputError(f"{path}: cannot read ({reason}); use --force to start over") from None
     lines = text.splitlines(keepends=True)
     if lines and not lines[-1].endswith("\n"):
         lines = lines[:-1]  # a line cut by a kill: never complete
@@ -128,11 +195,16 @@ def _cell(value) -> str:
 
 def _write_atomic(path: Path, text: str) -> None:
     tmp = path.with_name(f".{path.name}.tmp")
-    with open(tmp, "w", encoding="utf-8") as fh:
-        fh.write(text)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.replace(tmp, path)
+    try:
+        with open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(text)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:  # a full disk, a signal: no hidden leftover
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
 
 
 # --- executors ---------------------------------------------------------------------------------
@@ -147,15 +219,28 @@ def _processes(payloads: list[dict], jobs: int, scheduler) -> Iterator[dict]:
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else None
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_warm_up) as pool:
-        futures = [pool.submit(run_point, p) for p in payloads]
-        try:
-            for fut in as_completed(futures):
-                yield fut.result()
-        except BaseException:
-            for f in futures:
-                f.cancel()
-            raise
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_warm_up,
+                               initargs=(os.getpid(),))
+    futures = [pool.submit(run_point, p) for p in payloads]
+    try:
+        for fut in as_completed(futures):
+            yield fut.result()
+    except BaseException:  # Ctrl-C, SIGTERM, a closed generator: points in flight are lost
+        procs = list((getattr(pool, "_processes", None) or {}).values())  # shutdown drops them
+        pool.shutdown(wait=False, cancel_futures=True)
+        _terminate(procs)
+        raise
+    pool.shutdown(wait=True)
+
+
+def _terminate(procs: list) -> None:
+    """Stop worker processes now (the pool's shutdown alone waits for running points)."""
+    for proc in procs:
+        with contextlib.suppress(Exception):
+            proc.terminate()
+    for proc in procs:
+        with contextlib.suppress(Exception):
+            proc.join(5.0)
 
 
 def _dask(payloads: list[dict], jobs: int, scheduler: str) -> Iterator[dict]:
@@ -164,17 +249,25 @@ def _dask(payloads: list[dict], jobs: int, scheduler: str) -> Iterator[dict]:
     except ImportError:
         raise OutputError("--scheduler needs Dask: pip install 'dask[distributed]'") from None
     cluster = None
+    timeout = guards.NETWORK_TIMEOUT_S
     if scheduler == "local":
         cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
                                dashboard_address=None)
         client = Client(cluster)
     else:
-        try:
-            client = Client(scheduler, timeout="10s")
-        except OSError as exc:
-            raise OutputError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+        probe_scheduler(scheduler, timeout)
+        client = _bounded(lambda: Client(scheduler, timeout=f"{timeout}s"), timeout * 2,
+                          f"--scheduler {scheduler}")
     try:
-        client.run(_warm_up)
+        try:
+            client.wait_for_workers(1, timeout=timeout * 3)
+        except (TimeoutError, OSError) as exc:
+            raise OutputError(f"--scheduler {scheduler}: no worker joined within "
+                              f"{3 * timeout:g} s ({exc.__class__.__name__})") from None
+        pid = os.getpid() if cluster is not None else None  # local workers end with the sweep
+        client.run(_warm_up, pid)
+        if pid is not None:
+            client.run(watch_parent, pid, nanny=True)
         futures = [client.submit(run_point, p, pure=False) for p in payloads]
         for fut in as_completed(futures):
             yield fut.result()
@@ -182,6 +275,57 @@ def _dask(payloads: list[dict], jobs: int, scheduler: str) -> Iterator[dict]:
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+def probe_scheduler(address: str, timeout: float) -> None:
+    """Connect to a ``tcp://host:port`` scheduler and wait for the first bytes of its Dask
+    handshake (a scheduler writes it as soon as it accepts): a peer that accepts but never
+    speaks Dask is refused after ``timeout`` instead of hanging the client forever."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if not address.startswith("tcp://"):
+        return  # tls:// and others: the client's own timeouts
+    parts = urlsplit(address)
+    try:
+        with socket.create_connection((parts.hostname, parts.port), timeout=timeout) as sock:
+            sock.settimeout(timeout)
+            if not sock.recv(1):
+                raise OutputError(f"--scheduler {address}: the peer closed the connection; "
+                                  "expected a Dask scheduler")
+    except TimeoutError:
+        raise OutputError(f"--scheduler {address}: accepts connections but sent no Dask "
+                          f"handshake within {timeout:g} s; expected a Dask scheduler") from None
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise OutputError(f"--scheduler {address}: cannot connect ({reason})") from None
+
+
+def _bounded(make, timeout: float, what: str):
+    """``make()`` in a daemon thread, given up after ``timeout`` s (an OutputError naming
+    ``what``). A connection that hangs past its own timeouts then cannot hang the sweep."""
+    import threading
+
+    box: dict = {}
+
+    def target() -> None:
+        try:
+            box["value"] = make()
+        except BaseException as exc:  # re-raised in the caller
+            box["error"] = exc
+
+    thread = threading.Thread(target=target, name="gearcli-dask-connect", daemon=True)
+    thread.start()
+    thread.join(timeout)
+    if thread.is_alive():
+        raise OutputError(f"{what}: no Dask handshake within {timeout:g} s; expected a Dask "
+                          "scheduler")
+    if "error" in box:
+        exc = box["error"]
+        if isinstance(exc, OSError | TimeoutError | ValueError):
+            raise OutputError(f"{what}: cannot connect ({exc})") from None
+        raise exc
+    return box["value"]
 
 
 @dataclass
@@ -203,13 +347,21 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
               force: bool = False, progress: Progress | None = None) -> SweepOutcome:
     """Run the points of ``study`` that have no row yet; returns all rows, sorted by point."""
     t_start = time.perf_counter()
+    if str(folder).strip() == "":
+        raise OutputError("-o '': empty path; expected the name of an output folder")
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise OutputError(f"{out}: exists and is not a folder")
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot create the output folder ({exc.strerror})") from None
     path = out / SUMMARY
+    if (path.exists() or path.is_symlink()) and not path.is_file():
+        raise OutputError(f"{path}: exists and is not a file; remove it or choose another "
+                          "output folder")
     columns = summary_columns(study)
-    if force and path.exists():
+    if force and path.is_file():
         path.unlink()
     earlier = read_summary(path, columns)
     by_hash = {p.case_hash: p for p in study.points}

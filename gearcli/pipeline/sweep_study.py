@@ -42,15 +42,20 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
-from gearcli import units
+from gearcli import guards, units
 from gearcli.case.load import data_loc, validate_source
 from gearcli.case.overrides import apply_overrides, check_path
 from gearcli.case.schema import Case
+from gearcli.case.types import checked_quantity
 from gearcli.case.yamlsrc import Source, parse_source, read_source
 from gearcli.errors import CaseError
 
 #: Without ``--yes``, studies with more points than this are refused.
 MAX_POINTS = 1000
+#: Studies with more points than this are refused even with ``--yes``.
+MAX_POINTS_YES = 100_000
+#: File types a study's ``base:`` may name.
+CASE_SUFFIXES = (".yaml", ".yml", ".json")
 #: A virtual parameter: the gear-mesh frequency f_z [Hz], set through ``drive.speed``.
 MESH_FREQUENCY = "mesh_frequency"
 _RAMP = re.compile(r"^\s*(STEP5?|RAMP)\s*\(\s*time\s*,([^,]+),([^,]+),([^,]+),([^,()]+)\)\s*$",
@@ -184,10 +189,16 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         if isinstance(spec_p, Range) and spec_p.with_:
             _check_keys(src, ("parameters", key, "with"), spec_p.with_)
     _check_design(src, spec, params)
-    combos = _design(spec, params)
-    if len(combos) > MAX_POINTS and not allow_large:
-        raise src.error(("parameters",), f"the {spec.design} has {len(combos)} points "
+    size = design_size(spec, params)  # before the design is built: it may be astronomical
+    where = ("samples",) if spec.design == "lhs" else ("parameters",)
+    if size > MAX_POINTS_YES:
+        raise src.error(where, f"the {spec.design} has {size:,} points; expected at most "
+                        f"{MAX_POINTS_YES:,} (even with --yes): split the study")
+    if size > MAX_POINTS and not allow_large:
+        raise src.error(where, f"the {spec.design} has {size} points "
                         f"(> {MAX_POINTS}); pass --yes to run it")
+    _check_metrics(src, spec)
+    combos = _design(spec, params)
     base_values = {p.column: _base_value(base_src.data, p) for p in params}
     points = []
     for i, combo in enumerate(combos):
@@ -198,15 +209,39 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
             overrides.append((p, p.values[j]))
         points.append(_resolve(src, base_src, i, values, overrides, stem))
     metrics = spec.metrics
-    if metrics:
-        from gearcli.pipeline.sweep_metrics import METRICS
-
-        for k, m in enumerate(metrics):
-            if m not in METRICS:
-                raise src.error(("metrics", k), f"unknown metric '{m}'; expected one of: "
-                                + ", ".join(METRICS))
     return Study(spec.name or stem, src.file, spec.design, params, points, metrics, spec.checks,
                  _canonical(base), base_values)
+
+
+def design_size(spec: StudyFile, params: list[Parameter]) -> int:
+    """Number of points of the design, computed without building it."""
+    if spec.design == "grid":
+        return math.prod(len(p.values) for p in params)
+    if spec.design == "zip":
+        return len(params[0].values)
+    if spec.design == "one_at_a_time":
+        return 1 + sum(len(p.values) for p in params)
+    return int(spec.samples or 0)
+
+
+def _check_metrics(src: Source, spec: StudyFile) -> None:
+    """Kept metrics and the metrics of checks must exist (and checks must be kept)."""
+    from gearcli.pipeline.sweep_metrics import METRICS
+
+    for k, m in enumerate(spec.metrics or ()):
+        if m not in METRICS:
+            raise src.error(("metrics", k), f"unknown metric '{m}'; expected one of: "
+                            + ", ".join(METRICS))
+    kept = spec.metrics or METRICS
+    for k, c in enumerate(spec.checks):
+        if c.metric not in METRICS:
+            raise src.error(("checks", k, "metric"), f"unknown metric '{c.metric}'; expected "
+                            "one of: " + ", ".join(METRICS))
+        if c.metric not in kept:
+            raise src.error(("checks", k, "metric"), f"'{c.metric}' is not among the study's "
+                            "metrics; add it to 'metrics' or drop the check")
+        if c.min is None and c.max is None:
+            raise src.error(("checks", k), "a check needs 'min' and/or 'max'")
 
 
 def _yaml(value) -> str:
@@ -223,7 +258,13 @@ def _base_source(spec: StudyFile, src: Source, folder: Path) -> Source:
     if not path.is_file():
         raise src.error(("base",), f"base case {str(path)!r} not found; expected a case file "
                         "path relative to the study file, or an inline case mapping")
-    return read_source(path)
+    if path.suffix.lower() not in CASE_SUFFIXES:
+        raise src.error(("base",), f"base case {str(path)!r}: expected a case file ending in "
+                        + ", ".join(CASE_SUFFIXES))
+    try:
+        return read_source(path)
+    except CaseError as exc:  # said without quoting the file: it is not known to be a case
+        raise src.error(("base",), f"base case {str(path)!r}: {exc.message}") from None
 
 
 def _check_keys(src: Source, where: tuple, mapping: dict) -> None:
@@ -254,6 +295,8 @@ def _split(value) -> tuple[float, str] | None:
 def _to_unit(number: float, unit: str, target: str) -> float:
     if unit == target:
         return number
+    for text in (unit, target):
+        guards.check_unit_text(text, need_number=False)  # before pint sees it
     q = units.registry().Quantity(number, unit or "dimensionless")
     return float(q.to(target or "dimensionless").magnitude)
 
@@ -295,6 +338,7 @@ def _range(src: Source, key: str, spec: Range) -> Parameter:
     try:
         lo, hi = parts[0][0], _to_unit(parts[1][0], parts[1][1], unit)
         if unit:
+            guards.check_unit_text(unit, need_number=False)
             units.registry().Quantity(1.0, unit)
     except Exception:
         raise src.error((*loc, kind), f"got {ends!r}: wrong or inconsistent units; both ends "
@@ -421,7 +465,7 @@ def _speed_override(src: Source, data: dict, overrides: list, value) -> str:
     teeth = next((v for p, v in overrides if p.key == "gears.pinion.teeth"), None)
     teeth = teeth or data.get("gears", {}).get("pinion", {}).get("teeth")
     try:
-        f_z = units.parse_quantity(value, units.FREQUENCY)
+        f_z = checked_quantity(value, units.FREQUENCY)
         n1_deg_s = f_z / float(teeth) * 360.0
     except (units.UnitError, TypeError, ValueError) as exc:
         raise src.error(("parameters", MESH_FREQUENCY), f"got {value!r}: {exc}") from None

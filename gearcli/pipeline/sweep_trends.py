@@ -23,6 +23,8 @@ TREND_METRICS = ("force_max_N", "dynamic_factor", "dte_peak_to_peak_mm",
                  "gear_speed_gmf_amplitude_rad_s")
 TREND_COLUMNS = ("parameter", "metric", "points", "parameter_min", "parameter_max",
                  "metric_at_min", "metric_at_max", "change_percent", "spearman_rho", "direction")
+#: Further metrics of the speed plot.
+PLOT_METRICS = ("dte_rms_mm", "mesh_natural_frequency_Hz")
 #: |Spearman rho| needed to call a trend monotonic.
 MONOTONIC_RHO = 0.8
 #: Relative changes below this [%] are "no effect".
@@ -118,6 +120,9 @@ def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Pat
     paths = [out / "trends.csv", out / "trends.md"]
     tdf.to_csv(paths[0], index=False, float_format="%.6g")
     paths[1].write_text(_markdown(study, df, trends))
+    for m in (*TREND_METRICS, *PLOT_METRICS):  # metrics the study left out: empty panels
+        if m not in df.columns:
+            df[m] = np.nan
     paths += _plots(out, study, df)
     return paths
 

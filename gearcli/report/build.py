@@ -44,6 +44,8 @@ def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | N
         raise ValueError(f"report format must be one of {', '.join(FORMATS)}; got {fmt!r}")
     data = load_report_data(folder)
     out = Path(out_file) if out_file is not None else data.folder / f"report.{fmt}"
+    if out.is_dir():
+        raise OutputError(f"{out}: is a folder; expected a report file name")
     if not out.parent.is_dir():
         raise OutputError(f"{out}: folder {out.parent} does not exist; expected an existing "
                           "folder")

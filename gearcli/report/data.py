@@ -86,12 +86,17 @@ def load_report_data(folder: str | Path) -> ReportData:
     analysis = read_json(path, "run gearcli analyze again")
     if not isinstance(analysis, dict) or "checks" not in analysis or "metrics" not in analysis:
         raise ResultsError(f"{path}: not an analysis of gearcli analyze; run it again")
+    check_analysis(path, analysis)
     if not (run.folder / "spectrum.csv").is_file():
         raise ResultsError(f"{run.folder}: no spectrum.csv; run gearcli analyze first")
     spectrum = read_columns(run.folder / "spectrum.csv", "frequency_Hz")
     try:
         loaded = load_case_text(json.dumps(run.manifest["resolved_case"]),
                                 str(run.folder / "manifest.json"))
+    except GearcliError as exc:  # the tables read the stored case: it must be one
+        raise ResultsError(f"{run.folder / 'manifest.json'}: resolved_case is not a valid "
+                           f"case ({str(exc).splitlines()[0]})") from None
+    try:
         geometry, error = compute_pair_geometry(pair_spec(loaded.case)), ""
     except (GearcliError, KeyError, TypeError, ValueError) as exc:
         geometry, error = None, f"{type(exc).__name__}: {exc}"
@@ -99,6 +104,53 @@ def load_report_data(folder: str | Path) -> ReportData:
     if (run.folder / "stress.json").is_file():
         stress = read_json(run.folder / "stress.json", "run gearcli stress again")
     return ReportData(run, analysis, spectrum, geometry, error, stress)
+
+
+#: Non-numeric entries of analysis.json's metrics, by kind; every other entry is a number or null.
+_TEXT_METRICS = ("window_reason", "force_max_source")
+_LIST_METRICS = ("window_s", "resonance_margins_percent", "resonance_margins")
+
+
+def check_analysis(path: Path, doc: dict) -> None:
+    """Refuse an analysis.json whose entries the report cannot read (hand-edited, foreign):
+    the first wrong entry, and the remedy (run gearcli analyze again)."""
+    def bad(key: str, kind: str) -> ResultsError:
+        return ResultsError(f"{path}: {key} is not {kind}; run gearcli analyze again (was the "
+                            "file edited?)")
+
+    def number(v) -> bool:
+        return v is None or (isinstance(v, int | float) and not isinstance(v, bool))
+
+    window = doc.get("window_s")
+    if window is not None and not (isinstance(window, list) and len(window) == 2
+                                   and all(number(v) and v is not None for v in window)):
+        raise bad("window_s", "two numbers")
+    metrics = doc["metrics"]
+    if not isinstance(metrics, dict):
+        raise bad("metrics", "a mapping")
+    for key, value in metrics.items():
+        if key in _TEXT_METRICS:
+            ok = value is None or isinstance(value, str)
+        elif key in _LIST_METRICS:
+            ok = value is None or isinstance(value, list)
+        else:
+            ok = number(value)
+        if not ok:
+            raise bad(f"metrics.{key}", "text" if key in _TEXT_METRICS else
+                      "a list" if key in _LIST_METRICS else "a number or null")
+    if not isinstance(doc["checks"], list):
+        raise bad("checks", "a list")
+    for i, check in enumerate(doc["checks"]):
+        if not (isinstance(check, dict) and isinstance(check.get("name"), str)
+                and isinstance(check.get("passed"), bool)):
+            raise bad(f"checks.{i}", "a check (name, value, limit, passed, note)")
+    lines = doc.get("lines", {})
+    if not isinstance(lines, dict) or not all(
+            isinstance(v, dict) and all(isinstance(ln, dict) for ln in v.values())
+            for v in lines.values()):
+        raise bad("lines", "a mapping of signals to lines")
+    if not isinstance(doc.get("warnings", []), list):
+        raise bad("warnings", "a list")
 
 
 # --- the stored case for display: values are "number unit" strings in internal units -------

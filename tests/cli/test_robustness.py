@@ -238,3 +238,26 @@ def test_run_shorter_than_the_window_needs_is_flagged():
     r = invoke("simulate", SEED, "-o", "-", "--set", "run.end_time=0.05")
     assert r.exit_code == 0
     assert "short run" in r.stderr
+
+
+def test_max_step_needing_more_steps_than_the_solver_takes_is_refused():
+    r = invoke("simulate", SEED, "-o", "-", "--set", "run.end_time=0.2",
+               "--set", "run.max_step=1e-9")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "run.max_step" in line and "steps" in line
+
+
+# --- command-line options with absurd values -------------------------------------------------
+@pytest.mark.parametrize("args, code", [
+    (["mesh", SEED, "--load", "inf"], 1),
+    (["mesh", SEED, "--load", "1e300"], 1),
+    (["mesh", SEED, "--set", "load.torque=1e11"], 1),
+    (["modal", SEED, "--speed-range", "0", "inf"], 1),
+    (["sweep", SEED, "-o", "x", "-j", "100000"], 2),
+])
+def test_absurd_option_values_are_clean_errors(args, code):
+    r = invoke(*args)
+    assert r.exit_code == code, r.stderr
+    assert "internal error" not in r.stderr and "Traceback" not in r.stderr
+

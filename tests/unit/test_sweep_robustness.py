@@ -1,0 +1,179 @@
+"""Issue 18 for `gearcli sweep`: designs sized before they are built, checks on real metrics,
+bounded network handshakes, readable resume files, workers that end with the sweep."""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+from typer.testing import CliRunner
+
+from gearcli.cli import app
+from gearcli.errors import CaseError, OutputError
+from gearcli.pipeline.sweep_study import MAX_POINTS_YES, load_study
+from tests.conftest import ROOT
+from tests.unit.sweep_helpers import write_study
+
+runner = CliRunner()
+
+
+def _error(tmp_path, body: str, **kw) -> str:
+    with pytest.raises(CaseError) as err:
+        load_study(write_study(tmp_path, body), **kw)
+    return str(err.value)
+
+
+def test_huge_grid_is_refused_before_it_is_built(tmp_path):
+    body = ("parameters:\n  gears.module: {linspace: [8, 12], num: 100000}\n"
+            "  gears.face_width: {linspace: [60, 140], num: 100000}\n")
+    text = _error(tmp_path, body, allow_large=True)
+    assert "10,000,000,000 points" in text and f"{MAX_POINTS_YES:,}" in text
+
+
+def test_huge_lhs_is_refused_before_sampling(tmp_path):
+    body = ("design: lhs\nsamples: 1000000000\nseed: 1\n"
+            "parameters:\n  gears.module: {linspace: [8, 12]}\n")
+    text = _error(tmp_path, body, allow_large=True)
+    assert "samples" in text and "1,000,000,000 points" in text
+
+
+@pytest.mark.parametrize("checks, fragment", [
+    ("[{metric: no_such_metric, max: 2}]", "unknown metric 'no_such_metric'"),
+    ("[{metric: dynamic_factor}]", "needs 'min' and/or 'max'"),
+])
+def test_checks_need_a_known_metric_and_a_limit(tmp_path, checks, fragment):
+    text = _error(tmp_path, f"parameters:\n  gears.module: [10]\nchecks: {checks}\n")
+    assert "checks.0" in text and fragment in text
+
+
+def test_check_on_a_metric_the_study_drops_is_refused(tmp_path):
+    text = _error(tmp_path, "parameters:\n  gears.module: [10]\nmetrics: [force_max_N]\n"
+                  "checks: [{metric: dynamic_factor, max: 2}]\n")
+    assert "not among the study's metrics" in text
+
+
+def test_base_must_be_a_case_file_and_is_not_quoted(tmp_path):
+    secret = tmp_path / "secret.yaml"
+    secret.write_text("top secret line\n")
+    study = tmp_path / "s.yaml"
+    study.write_text(f"base: {secret}\nparameters:\n  gears.module: [10]\n")
+    with pytest.raises(CaseError) as err:
+        load_study(study)
+    assert "top secret" not in str(err.value) and "base" in str(err.value)
+    study.write_text("base: /etc/passwd\nparameters:\n  gears.module: [10]\n")
+    with pytest.raises(CaseError, match="expected a case file ending in"):
+        load_study(study)
+
+
+def test_unit_powers_in_a_study_are_bounded(tmp_path):
+    text = _error(tmp_path, "parameters:\n  gears.module: ['10 mm**9**9**9', '11 mm']\n")
+    assert "parameters" in text
+
+
+def test_metrics_without_the_trend_metrics_write_trends(tmp_path):
+    path = write_study(tmp_path, "parameters:\n  gears.module: [10]\n"
+                       "metrics: [force_max_N]\n")
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(tmp_path / "out"), "-j", "1", "-q"])
+    assert r.exit_code == 0, r.stderr
+    assert (tmp_path / "out" / "trends.md").is_file()
+
+
+@pytest.mark.parametrize("kind", ["binary", "folder"])
+def test_unreadable_summary_on_resume_is_exit_1(tmp_path, kind):
+    path = write_study(tmp_path, "parameters:\n  gears.module: [10]\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    if kind == "binary":
+        (out / "summary.csv").write_bytes(b"\xff\xfe\x00 not text")
+    else:
+        (out / "summary.csv").mkdir()
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(out), "-j", "1", "-q"])
+    assert r.exit_code == 1
+    assert "summary.csv" in r.stderr and "internal error" not in r.stderr
+
+
+@pytest.mark.parametrize("address", ["bogus", "tcp://host", "tcp://h:0", "http://h:80"])
+def test_bad_scheduler_is_a_usage_error(tmp_path, address):
+    path = write_study(tmp_path, "parameters:\n  gears.module: [10]\n")
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(tmp_path / "o"),
+                            "--scheduler", address])
+    assert r.exit_code == 2
+    assert "--scheduler" in r.stderr
+
+
+def test_scheduler_that_never_speaks_dask_times_out():
+    from gearcli.pipeline.sweep_run import probe_scheduler
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    accepted = []
+    threading.Thread(target=lambda: accepted.append(server.accept()), daemon=True).start()
+    port = server.getsockname()[1]
+    try:
+        with pytest.raises(OutputError, match="no Dask handshake"):
+            probe_scheduler(f"tcp://127.0.0.1:{port}", 0.3)
+    finally:
+        server.close()
+
+
+def test_refused_connection_is_exit_1():
+    from gearcli.pipeline.sweep_run import probe_scheduler
+
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()  # nothing listens there now
+    with pytest.raises(OutputError, match="cannot connect"):
+        probe_scheduler(f"tcp://127.0.0.1:{port}", 1.0)
+
+
+WORKER = """
+import os, sys, time
+from gearcli.pipeline import sweep_run
+sweep_run.PARENT_POLL_S = 0.05
+parent = os.getpid()
+pid = os.fork()
+if pid == 0:
+    sweep_run.watch_parent(parent)
+    time.sleep(120)
+    os._exit(0)
+print(pid, flush=True)
+time.sleep(120)
+"""
+
+
+def test_workers_end_when_the_sweep_is_killed():
+    """kill -9 of the sweep: its worker processes notice and end (no orphans)."""
+    proc = subprocess.Popen([sys.executable, "-c", WORKER], stdout=subprocess.PIPE, text=True,
+                            cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)})
+    child = int(proc.stdout.readline())
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    for _ in range(400):  # the orphan is re-parented; once it exits it is gone or a zombie
+        if not _running(child):
+            break
+        time.sleep(0.05)
+    else:
+        os.kill(child, signal.SIGKILL)
+        pytest.fail("the worker outlived the sweep")
+
+
+def _running(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] not in ("Z", "X")
+    except FileNotFoundError:
+        return False
+    except OSError:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return False
+        return True
