@@ -5,13 +5,17 @@ tooth law's pair stiffness k(x)) and the one linearisation (model.mesh) that `si
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from gearcli.case.schema import Case
 from gearcli.model.mesh import MeshMode, mesh_mode, static_normal_force_N, tooth_mesh_mode
-from gearcli.model.pair_stiffness import PairStiffness, pair_stiffness
 from gearcli.model.stiffness import derived_pair_stiffness
 from gearcli.pipeline.geometry import GeometryResult
+
+if TYPE_CHECKING:
+    from gearcli.model.pair_stiffness import PairStiffness
 
 #: Roll positions on the path at which the tooth law's mesh mode integrates k(x).
 _PATH_POINTS = 401
@@ -45,6 +49,10 @@ def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
     """The tooth law's pair stiffness k(x) [N/mm] and dk/dx on pinion roll positions ``x_mm``
     from A (model.pair_stiffness): each gear's material (or the case's), the narrower face
     width, the bores given or model.tooth_stiffness.default_bore_diameter."""
+    # imported here: the tooth-compliance model loads scipy.interpolate (~0.4 s), which a case
+    # with the IMPACT law does not need
+    from gearcli.model.pair_stiffness import pair_stiffness
+
     g, gears = geo.geometry, case.gears
     m1 = gears.pinion.material or case.material
     m2 = gears.gear.material or case.material
