@@ -12,6 +12,8 @@ import hashlib
 import os
 from pathlib import Path
 
+from gearcli import usercache
+
 
 def configure() -> None:
     if "NUMBA_CACHE_DIR" in os.environ:
@@ -21,11 +23,6 @@ def configure() -> None:
     for src in sorted(core.glob("*.py")):
         digest.update(src.name.encode())
         digest.update(src.read_bytes())
-    base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
-    folder = base / "gearcli" / "numba" / digest.hexdigest()[:16]
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError:
-        return  # no writable user cache: numba's default locators decide
-    if os.access(folder, os.W_OK):
+    folder = usercache.folder("numba", digest.hexdigest()[:16])
+    if folder is not None:  # else no writable user cache: numba's default locators decide
         os.environ["NUMBA_CACHE_DIR"] = str(folder)

@@ -9,7 +9,15 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, Strict, field_validator, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    Strict,
+    field_validator,
+    model_serializer,
+    model_validator,
+)
 
 from gearcli import units
 from gearcli.case.types import (
@@ -101,6 +109,10 @@ class Gear(Section):
         units.LENGTH, 0.0, "reduction of the reference tooth thickness (backlash)", ge=0
     )
     tip_rounding: Length = qfield(units.LENGTH, 0.0, "tip rounding radius (0: sharp)", ge=0)
+    bore_diameter: Length | None = qfield(
+        units.LENGTH, None, "bore (rim inner) diameter for the tooth law's gear-body compliance "
+        "(Sainsot et al. 2004); default: a solid rim 1.2 tooth depths below the root circle",
+        gt=0)
     face_width: Length | None = qfield(
         units.LENGTH, None, "face width; default gears.face_width", gt=0
     )
@@ -123,10 +135,21 @@ class Gears(Section):
 
 
 # --- §4 contact, §5 friction ---------------------------------------------------------------------
-class Contact(Section):
-    """Adams IMPACT contact law per tooth pair and flank (docs/theory.md §4)."""
+#: Keys of `contact` that only the IMPACT law reads, and the one only the tooth law reads.
+IMPACT_KEYS = ("stiffness", "exponent", "max_damping", "penetration_depth")
+TOOTH_KEYS = ("damping_ratio",)
 
-    law: Literal["impact"] = Field("impact", description="contact law (Adams IMPACT)")
+
+class Contact(Section):
+    """Contact law per tooth pair and flank: 'tooth' (pair stiffness from the tooth geometry,
+    mesh damping; docs/theory.md §4b, §4c) or Adams 'impact' (§4)."""
+
+    law: Literal["tooth", "impact"] = Field(
+        "tooth", description="'tooth' (default: potential-energy tooth compliance, Hertz and "
+        "gear body, with mesh damping) or 'impact' (Adams IMPACT, the seed article's law)")
+    damping_ratio: Coefficient = Field(
+        0.07, ge=0, le=1, description="tooth law: damping ratio zeta of the mesh mode (0.07; "
+        "measured gear meshes 0.03-0.1, Kahraman & Singh 1990, Ozguven & Houser 1988)")
     exponent: Coefficient = Field(1.5, ge=1.0, le=3.0, description="force exponent e (1.5)")
     stiffness: float | Literal["derived"] = Field(
         1e5,
@@ -138,6 +161,25 @@ class Contact(Section):
     engagement: Literal["extended", "rigid"] = Field(
         "extended", description="'extended' (tooth-geometry gap table, default) or 'rigid'"
     )
+
+    @model_serializer(mode="wrap")
+    def _only_the_keys_of_the_law(self, handler):
+        """The resolved case (manifests, sweeps) lists only what the chosen law reads, so it
+        loads again (see _keys_of_the_law)."""
+        data = handler(self)
+        for key in IMPACT_KEYS if self.law == "tooth" else TOOTH_KEYS:
+            data.pop(key, None)
+        return data
+
+    @model_validator(mode="after")
+    def _keys_of_the_law(self):
+        """A key the chosen law does not read is an error, not silently ignored."""
+        other = "impact" if self.law == "tooth" else "tooth"
+        for key in IMPACT_KEYS if self.law == "tooth" else TOOTH_KEYS:
+            if key in self.model_fields_set:
+                raise FieldError((key,), f"applies to law '{other}' only; this case uses law "
+                                 f"'{self.law}' (set contact.law: {other} to use it)")
+        return self
 
     @model_validator(mode="before")
     @classmethod

@@ -2,21 +2,56 @@
 
 The command modules (``gearcli.cli.geometry``, ...) import :data:`app` from here and register
 their commands on it; :mod:`gearcli.cli` imports them all. Only typer is imported here, so
-`gearcli --help` stays fast.
+`gearcli --help` stays fast. Help and usage errors are click's plain text: typer's rich
+formatting imports rich and markdown-it (~0.15 s, half of `gearcli --help`).
 """
 
 from __future__ import annotations
 
 import typer
+from typer.core import TyperCommand, TyperGroup
 
 from gearcli import __version__
 
-app = typer.Typer(
+
+class _HelpFlagDefault:
+    """The help flag with the default an absent flag has, False.
+
+    typer (0.29) gives its help option no default and coerces the resulting None through a
+    pydantic TypeAdapter built on the spot: importing pydantic's machinery for it took ~0.25 s
+    of every command, most of `gearcli schema`.
+    """
+
+    def get_help_option(self, ctx):
+        option = super().get_help_option(ctx)
+        if option is not None and option.default is None:
+            option.default = False
+        return option
+
+
+class _Command(_HelpFlagDefault, TyperCommand):
+    pass
+
+
+class _Group(_HelpFlagDefault, TyperGroup):
+    pass
+
+
+class _App(typer.Typer):
+    """Registers every command with :class:`_Command`."""
+
+    def command(self, *args, cls=None, **kwargs):
+        return super().command(*args, cls=cls or _Command, **kwargs)
+
+
+app = _App(
+    cls=_Group,
     name="gearcli",
     help="Dynamics of spur gear pairs from a YAML case file: geometry, simulation, checks.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    rich_markup_mode=None,
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 

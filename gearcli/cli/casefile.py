@@ -14,11 +14,9 @@ from gearcli.cli.common import handle_errors
 @handle_errors
 def schema() -> None:
     """Print the case file's JSON Schema (for editor completion and validation)."""
-    import json
+    from gearcli.case.schema_text import schema_text
 
-    from gearcli.case.schema import Case
-
-    typer.echo(json.dumps(Case.model_json_schema(), indent=2))
+    typer.echo(schema_text())
 
 
 @app.command()

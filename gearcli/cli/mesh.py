@@ -65,36 +65,41 @@ def mesh(
             typer.echo(f"wrote {path}")
 
 
+def _table(title: str, rows: list[tuple[str, float]]):
+    from rich.table import Table
+
+    t = Table(title=title, title_justify="left")
+    t.add_column("quantity")
+    t.add_column("value")
+    for label, value in rows:
+        t.add_row(label, format_value(value))
+    return t
+
+
 def _print(doc: dict) -> None:
     from rich.console import Console
-    from rich.table import Table
 
     console = Console()
     console.print(f"[bold]{doc['case']}[/bold]: loaded contact at "
                   f"{format_value(doc['force_N'])} N, {doc['contact_law']}")
-    t = Table(title="Static transmission error", title_justify="left")
-    for col in ("quantity", "value"):
-        t.add_column(col)
-    ste = doc["ste"]
-    t.add_row("mean [µm]", format_value(ste["mean_um"]))
-    t.add_row("peak-to-peak [µm]", format_value(ste["peak_to_peak_um"]))
-    t.add_row("peak-to-peak (arcsec at the pinion)", format_value(ste["peak_to_peak_arcsec"]))
-    for k, v in ste["harmonics_um"].items():
-        t.add_row(f"{k} amplitude [µm]", format_value(v))
-    t.add_row("unloaded TE peak-to-peak [µm]", format_value(ste["unloaded_te_peak_to_peak_um"]))
-    console.print(t)
-    s = Table(title="Mesh stiffness [N/mm]", title_justify="left")
-    for col in ("quantity", "value"):
-        s.add_column(col)
-    st = doc["stiffness"]
-    s.add_row("mean over the cycle", format_value(st["mesh_mean_N_mm"]))
-    s.add_row("single-pair zone (mean)", format_value(st["single_pair_zone_N_mm"]))
-    s.add_row("double-pair zone (mean)", format_value(st["double_pair_zone_N_mm"]))
-    s.add_row("ISO 6336-1 c′b (single pair)",
-              format_value(st["iso6336_single_pair_c_prime_b_N_mm"]))
-    s.add_row("ISO 6336-1 c_γα b (mean)", format_value(st["iso6336_mean_c_gamma_alpha_b_N_mm"]))
-    console.print(s)
+    ste, st = doc["ste"], doc["stiffness"]
+    console.print(_table("Static transmission error", [
+        ("mean [µm]", ste["mean_um"]),
+        ("peak-to-peak [µm]", ste["peak_to_peak_um"]),
+        ("peak-to-peak (arcsec at the pinion)", ste["peak_to_peak_arcsec"]),
+        *((f"{k} amplitude [µm]", v) for k, v in ste["harmonics_um"].items()),
+        ("unloaded TE peak-to-peak [µm]", ste["unloaded_te_peak_to_peak_um"]),
+    ]))
+    console.print(_table("Mesh stiffness [N/mm]", [
+        ("mean over the cycle", st["mesh_mean_N_mm"]),
+        ("single-pair zone (mean)", st["single_pair_zone_N_mm"]),
+        ("double-pair zone (mean)", st["double_pair_zone_N_mm"]),
+        ("ISO 6336-1 c′b (single pair)", st["iso6336_single_pair_c_prime_b_N_mm"]),
+        ("ISO 6336-1 c_γα b (mean)", st["iso6336_mean_c_gamma_alpha_b_N_mm"]),
+    ]))
     if "harris" in doc:
+        from rich.table import Table
+
         h = Table(title="Harris map", title_justify="left")
         h.add_column("force [N]")
         h.add_column("STE peak-to-peak [µm]")

@@ -20,7 +20,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-#: Default of an optional 3-D model array: absent (size 0).
+#: Defaults of optional model arrays: absent (size 0).
+EMPTY_2D = np.zeros((0, 0))
 EMPTY_3D = np.zeros((0, 0, 0))
 
 
@@ -41,6 +42,9 @@ class Model(NamedTuple):
     #: Tooth law (layout.LAW_TOOTH): pair stiffness k [N/mm] and its slope dk/dx [N/mm^2] per
     #: flank family on the gap tables' grid of pinion roll positions, (N_FAMILIES, 2, n)
     pair_stiffness: np.ndarray = EMPTY_3D
+    #: Tooth law: stiffness factor of every tooth, (N_GEARS, >= max(z1, z2)) [-]; a pair's
+    #: stiffness is k(x) f_pinion[i1] f_gear[i2] (faults: cracks, spalls, missing teeth)
+    tooth_stiffness_factor: np.ndarray = EMPTY_2D
 
 
 class Work(NamedTuple):

@@ -9,6 +9,8 @@ tables. These bounds let the right-hand side skip work that cannot change a resu
 
 import math
 
+import numpy as np
+
 from gearcli.core.gaptable import table_floor
 from gearcli.core.layout import (
     FAMILY_PARAMS,
@@ -110,10 +112,10 @@ def _zero_interval(prm, tables, k, h):
 
 
 @jit_noalloc
-def derive_tables(prm, tables, tooth_offsets, derived, family):
+def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family):
     """The table- and offset-dependent constants: ``derived`` entries error_bound,
-    tooth_offsets_used, grid_step and reciprocals; ``family`` columns overlap, end_gap and
-    the zero runs."""
+    tooth_offsets_used, tooth_factors_used, teeth_tracked, grid_step and reciprocals;
+    ``family`` columns overlap, end_gap and the zero runs."""
     h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
     bound = -math.inf
     for f in range(N_FAMILIES):
@@ -135,6 +137,8 @@ def derive_tables(prm, tables, tooth_offsets, derived, family):
             if tooth_offsets[row, i] != 0.0:
                 used = 1.0
     derived[D.tooth_offsets_used] = used
+    derived[D.tooth_factors_used] = 1.0 if tooth_factors.size > 0 else 0.0
+    derived[D.teeth_tracked] = max(used, derived[D.tooth_factors_used])
     derived[D.inv_exponent_plus_1] = 1.0 / (prm[P.exponent] + 1.0)
     derived[D.grid_step] = h
     derived[D.inv_grid_step] = 1.0 / h
@@ -145,11 +149,14 @@ def derive_tables(prm, tables, tooth_offsets, derived, family):
     derived[D.inv_J2] = 1.0 / prm[P.J2]
 
 
-def derive(prm, tables, tooth_offsets, derived, family) -> None:
+def derive(prm, tables, tooth_offsets, derived, family, tooth_factors=None) -> None:
     """Fill ``derived`` (layout.D) and ``family`` (layout.F) for a run: the parameters each
-    flank family reads (layout.FAMILY_PARAMS) and :func:`derive_tables`."""
+    flank family reads (layout.FAMILY_PARAMS) and :func:`derive_tables` (``tooth_factors``:
+    the Model's tooth_stiffness_factor, absent by default)."""
+    if tooth_factors is None:
+        tooth_factors = np.zeros((0, 0))
     for f, name in enumerate(FLANK_FAMILIES):
         for column, source in FAMILY_PARAMS[name]:
             family[f, F._fields.index(column)] = 0.0 if source is None \
                 else prm[P._fields.index(source)]
-    derive_tables(prm, tables, tooth_offsets, derived, family)
+    derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family)

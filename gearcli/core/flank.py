@@ -119,8 +119,14 @@ def flank(f, kin, app, model, slot_force, scratch, full):
       ``model.pair_stiffness[f]`` (cubic Hermite on the gap tables' grid) and the mesh damping
       c_m (``prm[P.mesh_damping]``) acts on the mesh deflection rate v = sigma delta' + the
       centres' approach rate, not on the gap-closure rate, shared by the pairs in contact in
-      proportion to their stiffness: F_j = max(0, k_j p_j + c_m v k_j / sum_i k_i). A first
-      pass finds the pairs in contact (``scratch``), a second computes their forces.
+      proportion to their elastic forces F_el,j = k_j p_j:
+      F_j = max(0, F_el,j (1 + c_m v / max(sum_i F_el,i, F_ref))), F_ref =
+      ``prm[P.damping_force_ref]`` (the static force). Loaded (sum F_el >= F_ref) the pairs
+      share c_m v, in proportion to their stiffness where their deflections are equal; at
+      light contact the damping is c_m v F_el,j / F_ref, Hunt & Crossley's form lambda p p'
+      (J. Appl. Mech. 42, 1975), so a pair's force rises from zero at first touch
+      (docs/theory.md §4c). A first pass finds the pairs in contact (``scratch``), a second
+      computes their forces.
       Potential V_j = k_j p_j^2 / 2 with k_j depending on x1_j: the generalized forces are
       -dV/ds, Q_s1 = -(F_j dp/ds1 + p_j^2/2 dk/dx sigma), Q_s2 = -F_j dp/ds2 (dx1/ds1 = sigma),
       so the elastic mesh conserves energy with a position-dependent stiffness; the damping
@@ -170,7 +176,7 @@ def flank(f, kin, app, model, slot_force, scratch, full):
     inv_e1 = derived[D.inv_exponent_plus_1]
     tooth_law = prm[P.contact_law] == LAW_TOOTH
     n_touch = 0  # tooth law: pairs in contact kept in the scratch
-    k_sum = 0.0  # tooth law: their stiffness sum [N/mm]
+    fel_sum = 0.0  # tooth law: their elastic force sum [N]
     use_friction = mu_s != 0.0 or mu_d != 0.0
     r = sigma * kin.s1 - fam[f, F.phase0]
     nf = np.floor(r * derived[D.inv_p_b])  # a float: math.floor's int costs two conversions
@@ -196,17 +202,19 @@ def flank(f, kin, app, model, slot_force, scratch, full):
     pen_max = 0.0
     # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (rhs.py docstring)
     use_offsets = derived[D.tooth_offsets_used] != 0.0
+    use_factors = derived[D.tooth_factors_used] != 0.0
+    track = derived[D.teeth_tracked] != 0.0
     zlo1 = fam[f, F.zero_lo1]
     zhi1 = fam[f, F.zero_hi1]
     zlo2 = fam[f, F.zero_lo2]
     zhi2 = fam[f, F.zero_hi2]
     i1 = 0
     i2 = 0
-    if use_offsets:
+    if track:
         i1 = (int(fam[f, F.tooth_k1]) + isig * n) % z1
         i2 = (int(fam[f, F.tooth_k2]) + isig * n) % z2
     for j in range(slot_force.shape[1]):
-        if j > 0 and use_offsets:
+        if j > 0 and track:
             i1 -= isig
             i2 -= isig
             if i1 < 0:
@@ -247,6 +255,11 @@ def flank(f, kin, app, model, slot_force, scratch, full):
         pdot = dp1 * v1 + dp2 * v2 + lat_rate
         if tooth_law:
             _, kj, dkj = hermite(model.pair_stiffness, f, x_lo, x_hi, h_grid, inv_h, x1)
+            if use_factors:  # this pair's teeth: the factor is constant along its path
+                fac = model.tooth_stiffness_factor[PINION, i1] \
+                    * model.tooth_stiffness_factor[GEAR, i2]
+                kj *= fac
+                dkj *= fac
             scratch[SC.slot, n_touch] = j
             scratch[SC.x1, n_touch] = x1
             scratch[SC.pen, n_touch] = pen
@@ -256,7 +269,7 @@ def flank(f, kin, app, model, slot_force, scratch, full):
             scratch[SC.k, n_touch] = kj
             scratch[SC.dk, n_touch] = dkj
             n_touch += 1
-            k_sum += kj
+            fel_sum += kj * pen
             continue
         force, fel = impact_force(pen, pdot, k, ex, c_max, d_max)
         pot += fel * pen * inv_e1  # k p^(e+1)/(e+1), contact.impact_potential
@@ -276,14 +289,15 @@ def flank(f, kin, app, model, slot_force, scratch, full):
             m2f -= fm2
             ff_sum += fr
             fpow += fp
-    if n_touch > 0:  # tooth law, second pass: damping shared by stiffness (docstring)
-        damp_per_k = prm[P.mesh_damping] * (sigma * kin.deltadot + lat_rate) / k_sum  # [mm]
+    if n_touch > 0:  # tooth law, second pass: damping shared by elastic force (docstring)
+        # damping force per unit elastic force [-]
+        damp = prm[P.mesh_damping] * (sigma * kin.deltadot + lat_rate) \
+            / max(fel_sum, prm[P.damping_force_ref])
         for m in range(n_touch):
             pen = scratch[SC.pen, m]
             pdot = scratch[SC.pdot, m]
-            kj = scratch[SC.k, m]
-            fel = kj * pen
-            force = max(0.0, fel + kj * damp_per_k)
+            fel = scratch[SC.k, m] * pen
+            force = max(0.0, fel + fel * damp)
             pot += 0.5 * fel * pen
             pdamp += (force - fel) * pdot
             # the position-dependent stiffness's generalized force, dV/dx1 dx1/ds1

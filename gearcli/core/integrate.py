@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from gearcli.core.bundles import EMPTY_3D, Model, Out
+from gearcli.core.bundles import EMPTY_2D, EMPTY_3D, Model, Out
 from gearcli.core.derive import derive
 from gearcli.core.layout import (
     COAST_FLANKS,
@@ -168,7 +168,12 @@ def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
                          "tables' grid)")
     derived = np.zeros(N_DERIVED)
     family = np.zeros((N_FAMILIES, N_FAMILY))
-    derive(prm, tables, offsets, derived, family)
+    factors = optional.get("tooth_stiffness_factor", EMPTY_2D)
+    if factors.size and (factors.shape[0] != N_GEARS or factors.shape[1] < z_max
+                         or law != LAW_TOOTH):
+        raise ValueError(f"tooth_stiffness_factor needs the tooth law and shape ({N_GEARS}, "
+                         f">= {z_max}), got {factors.shape}")
+    derive(prm, tables, offsets, derived, family, factors)
     return Model(prm=prm.copy(), derived=derived, family=family, tables=tables,
                  tooth_offsets=offsets, drive_pp=_pp(drive_pp, "drive_pp"),
                  angle_pp=_pp(drive_angle_pp, "drive_angle_pp"),

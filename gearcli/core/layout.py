@@ -74,6 +74,7 @@ _PARAM_SPEC = (
     # contact law: LAW_IMPACT (Adams IMPACT, docs/theory.md §4) or LAW_TOOTH (§4b, §4c)
     ("contact_law", "-", 0.0),
     ("mesh_damping", "N*s/mm", 0.0),  # tooth law: c_m on the mesh deflection rate (§4c)
+    ("damping_force_ref", "N", 1.0),  # tooth law: below this elastic force damping ~ force
     ("k_contact", "N/mm^e", None),
     ("exponent", "-", None),
     ("c_max", "N*s/mm", 0.0),
@@ -138,7 +139,7 @@ N_PARAMS = len(PARAM_NAMES)
 
 # Contact laws (docs/theory.md §4, §4b).
 LAW_IMPACT = 0  # F = max(0, k p^e + STEP(p, 0, 0, d_max, c_max) pdot), one k per pair
-LAW_TOOTH = 1  # F = max(0, k(x) p + c_m v k(x)/sum k), k(x) tabulated (bundles.Model)
+LAW_TOOTH = 1  # F = max(0, k(x) p (1 + c_m v / max(sum k p, F_ref))), k(x) tabulated
 
 # Drive modes (docs/theory.md §6).
 DRIVE_SPEED = 0  # prescribed omega1(t) (Adams MOTION); only the gear is integrated
@@ -261,6 +262,8 @@ TABLE_SLOPE = TABLE_ROWS.index("slope")
 DERIVED_NAMES = (
     "error_bound",  # largest overlap runout + tooth offsets add on either flank family [mm]
     "tooth_offsets_used",  # 1 when any per-tooth flank offset is non-zero, else 0
+    "tooth_factors_used",  # 1 when per-tooth stiffness factors are given (tooth law), else 0
+    "teeth_tracked",  # 1 when either needs the tooth index of every slot, else 0
     "inv_exponent_plus_1",  # 1/(e + 1) [-]
     "grid_step",  # gap-table spacing (x_hi - x_lo)/(n - 1) [mm]
     "inv_grid_step",  # [1/mm]

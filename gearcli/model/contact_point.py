@@ -31,7 +31,7 @@ from gearcli.model.gap import tooth_angles  # the pair's tooth positions (one so
 from gearcli.model.geometry import PairGeometry
 from gearcli.model.rating import involute_load_line, load_line
 
-__all__ = ["ContactPoints", "contact_points", "pair_frame", "tooth_angles"]
+__all__ = ["ContactPoints", "contact_points", "pair_frame", "tip_contact", "tooth_angles"]
 
 
 @dataclass(frozen=True)
@@ -62,11 +62,17 @@ def pair_frame(geo: PairGeometry):
     return np.zeros(2), np.array([geo.a_w_mm, 0.0]), t1, n
 
 
-def _rounding_contact(geo: PairGeometry, x, corner: str):
-    """Tip rounding of ``corner`` ('gear' before A, 'pinion' after E) on the mate's involute.
+def tip_contact(geo: PairGeometry, x, corner: str):
+    """Tip rounding (radius ρ_a ≥ 0; 0: the sharp corner itself) of ``corner`` ('gear' before
+    A, 'pinion' after E) on the mate's involute at pinion roll positions ``x`` [mm].
+
+    The rounding centre Q touches the mate's involute where the mate's involute normal through
+    Q, the tangent from Q to the mate's base circle at T', meets it: ρ_mate = |T'Q| − ρ_a,
+    P = Q − ρ_a (Q − T')/|T'Q| (the envelope of a circle; the distance model.gap tabulates).
 
     Returns ρ_mate [mm], the contact point relative to the corner gear's centre [mm], the unit
-    force on the corner tooth, its centreline angle β [rad] and the mate's flank radius at P.
+    force on the corner tooth, its centreline angle β [rad] and the mate's flank radius at P
+    [mm] (NaN where Q lies inside the mate's base circle).
     """
     o1, o2, _, _ = pair_frame(geo)
     b1, b2 = tooth_angles(geo, x)
@@ -79,9 +85,10 @@ def _rounding_contact(geo: PairGeometry, x, corner: str):
     rel = q - mate_c
     big_r = np.hypot(rel[..., 0], rel[..., 1])
     # drive-side tangent point T' lies clockwise of Q by arccos(r_b/R) (as T1 from P on the LoA)
-    phi_t = np.arctan2(rel[..., 1], rel[..., 0]) - np.arccos(mate.r_b_mm / big_r)
+    with np.errstate(invalid="ignore"):
+        phi_t = np.arctan2(rel[..., 1], rel[..., 0]) - np.arccos(mate.r_b_mm / big_r)
+        length = np.sqrt(big_r**2 - mate.r_b_mm**2)
     tangent = mate_c + mate.r_b_mm * np.stack([np.cos(phi_t), np.sin(phi_t)], axis=-1)
-    length = np.sqrt(big_r**2 - mate.r_b_mm**2)
     unit = (q - tangent) / length[..., None]  # the mate's flank normal, away from its base
     point = q - tip.rounding_radius_mm * unit
     rho_mate = length - tip.rounding_radius_mm
@@ -114,7 +121,7 @@ def contact_points(geo: PairGeometry, x_mm) -> ContactPoints:
         sel = (region == side) & ~clamped
         if not sel.any():
             continue
-        rho_m, point, force_dir, beta, r_m = _rounding_contact(geo, x[sel], corner)
+        rho_m, point, force_dir, beta, r_m = tip_contact(geo, x[sel], corner)
         y_c, a_c = load_line(point, force_dir, beta)
         if corner == "gear":
             rho1[sel], rho2[sel] = rho_m, rounding

@@ -205,11 +205,29 @@ def modification_gaps(geo: PairGeometry, mods: Modifications, x):
 
 # --- the tables -------------------------------------------------------------------------------
 def _extent(gap_fn, geo: PairGeometry, start: float, direction: float, cap_mm: float) -> float:
-    """Farthest roll position from ``start`` in ``direction`` where the tip gap stays ≤ cap."""
+    """Farthest roll position from ``start`` in ``direction`` where the tip gap stays ≤ cap.
+
+    A walk in steps of p_b/2000, never more than one base pitch outside the path. The walk's
+    positions (accumulated step by step, as the walk adds them) have their gaps evaluated as
+    one array to find where it stops; its last steps are then walked point by point, so the
+    result is the walk's to the bit even where an array evaluation rounds differently from a
+    scalar one (~300 scalar evaluations took 0.1 s).
+    """
     step = geo.p_b_mm / 2000.0
-    x = start
-    limit = start + direction * geo.p_b_mm  # never more than one base pitch outside the path
-    while abs(x - start) < abs(limit - start):
+    reach = abs(start + direction * geo.p_b_mm - start)
+    n = int(reach / step) + 3
+    xs = np.add.accumulate(np.concatenate(([start], np.full(n, direction * step))))
+    last = int(np.argmax(~(np.abs(xs - start) < reach)))  # first position past the reach
+    gaps = np.asarray(gap_fn(geo, xs[1:last + 1]), float)  # gaps[k]: the step from xs[k]
+    over = np.nonzero(~np.isfinite(gaps) | (gaps > cap_mm))[0]
+    stop = int(over[0]) if over.size else last
+    return _walk(gap_fn, geo, float(xs[max(stop - 2, 0)]), start, direction, step, reach, cap_mm)
+
+
+def _walk(gap_fn, geo: PairGeometry, x: float, start: float, direction: float, step: float,
+          reach: float, cap_mm: float) -> float:
+    """Step from ``x`` while within ``reach`` of ``start`` and the next gap is finite, ≤ cap."""
+    while abs(x - start) < reach:
         g = float(gap_fn(geo, x + direction * step))
         if not math.isfinite(g) or g > cap_mm:
             break

@@ -55,6 +55,19 @@ def impact_law(k: float, exponent: float) -> ForceLaw:
     return law
 
 
+def tooth_law(stiffness: np.ndarray, x_lo: float, x_hi: float) -> ForceLaw:
+    """The tooth law's elastic force F = k(x1) p, dF/dp = k(x1) (docs/theory.md §4b), with k
+    the cubic Hermite interpolant of ``stiffness`` (shape (2, n): k [N/mm], dk/dx [N/mm²] on
+    the gap tables' grid x_lo … x_hi [mm]), the kernel's interpolant."""
+    table = np.ascontiguousarray(np.asarray(stiffness, float)[None])
+
+    def law(p, x1):
+        k, _ = _gaps(table, 0, x_lo, x_hi, x1)
+        return k * p, k
+
+    return law
+
+
 @dataclass(frozen=True)
 class LoadedMesh:
     """Quasi-static loaded contact over whole mesh cycles (arrays over roll positions u)."""

@@ -56,7 +56,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.linalg
-import scipy.optimize
 
 from gearcli.model.structure import Structure, line_of_action
 
@@ -483,10 +482,12 @@ def linear_modes(system: LinearSystem) -> ModalResult:
     pair: dict[int, int] = {}  # undamped mode -> index of its complex root
     cplx = [j for j in live if lam[j].imag > 1e-12 * lam_scale]
     if cplx and elastic:
+        from scipy.optimize import linear_sum_assignment  # ~0.3 s to import: only here
+
         # ties (degenerate modes) broken by the closeness of |λ| to ω
         cost = np.array([[-mac(j, i) + 1e-3 * abs(math.log(abs(lam[j]) / math.sqrt(w2[i])))
                           for i in elastic] for j in cplx])
-        for r, c in zip(*scipy.optimize.linear_sum_assignment(cost), strict=True):
+        for r, c in zip(*linear_sum_assignment(cost), strict=True):
             pair[elastic[c]] = cplx[r]
     reals: dict[int, list[int]] = {i: [] for i in elastic if i not in pair}  # root indices
     open_modes = list(reals) + [i for i in range(n) if rigid[i]]

@@ -39,9 +39,9 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import brentq
 
 from gearcli.model.involute import half_thickness_angle, inv, inv_inverse, roll_angle_at_radius
+from gearcli.model.roots import brent_root
 from gearcli.model.toothform import ToothForm
 
 __all__ = [
@@ -166,7 +166,7 @@ def _fillet_end_parameter(gear: ToothForm) -> float:
     if crossings.size == 0:  # marginal undercut: the crossing coincides with the tangency
         return theta_t
     k = int(crossings[-1])
-    return brentq(lambda t: _undercut_gap(gear, t), thetas[k], thetas[k + 1], xtol=1e-15)
+    return brent_root(lambda t: _undercut_gap(gear, t), thetas[k], thetas[k + 1], xtol=1e-15)
 
 
 def fillet_points(gear: ToothForm, n: int = 40) -> tuple[np.ndarray, np.ndarray]:

@@ -44,13 +44,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.interpolate import CubicSpline
-from scipy.optimize import brentq
 
 from gearcli.model import profile
 from gearcli.model.geometry import GearGeometry, PairGeometry
+from gearcli.model.roots import brent_root
+
+if TYPE_CHECKING:
+    from scipy.interpolate import CubicSpline
 
 __all__ = [
     "effective_modulus", "hertz_line_contact_stress", "zone_factor", "elasticity_factor",
@@ -169,6 +172,8 @@ class RootSection:
 
 def _fillet_xy(gear: GearGeometry) -> tuple[CubicSpline, CubicSpline]:
     """Splines x(t), y(t), t ∈ [0, 1], of the counter-clockwise fillet (root → form point)."""
+    from scipy.interpolate import CubicSpline  # ~0.4 s to import: only for the root section
+
     radius, psi = profile.fillet_points(gear, _FILLET_SAMPLES)
     t = np.linspace(0.0, 1.0, radius.size)
     return CubicSpline(t, -radius * np.sin(psi)), CubicSpline(t, radius * np.cos(psi))
@@ -202,7 +207,7 @@ def root_section(gear: GearGeometry, tangent_angle_rad: float = TANGENT_ANGLE_RA
             "Method B section is undefined for this tooth"
         )
     k = int(idx[0])
-    t = brentq(excess, grid[k], grid[k + 1], xtol=1e-14)
+    t = brent_root(excess, grid[k], grid[k + 1], xtol=1e-14)
     x, y = float(sx(t)), float(sy(t))
     x1, y1, x2, y2 = float(sx(t, 1)), float(sy(t, 1)), float(sx(t, 2)), float(sy(t, 2))
     rho = (x1 * x1 + y1 * y1) ** 1.5 / abs(x1 * y2 - y1 * x2)

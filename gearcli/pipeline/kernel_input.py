@@ -22,7 +22,7 @@ from gearcli.model.geometry import mesh_frequencies
 from gearcli.model.mesh import MeshMode
 from gearcli.model.structure import Structure
 from gearcli.pipeline.geometry import GeometryResult
-from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness
+from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness, tooth_stiffness
 from gearcli.pipeline.structure import build_structure
 
 #: Output sampling: the analysed band reaches 10 mesh harmonics (issue 3); 2.56 samples per
@@ -119,12 +119,38 @@ def _structure_params(st: Structure) -> dict[str, float]:
     return out
 
 
+def _contact_params(case: Case, geo: GeometryResult, mesh: MeshMode) -> dict[str, float]:
+    """Kernel parameters of the contact law (docs/theory.md §4, §4b, §4c)."""
+    ct = case.contact
+    if ct.law == "tooth":  # k_contact: the mean pair stiffness, for reports; the table rules
+        # reference force of the damping share: the static force, or without load the force
+        # of a 1 um mesh deflection (docs/theory.md §4c)
+        f_ref = mesh.static_force_N if mesh.static_force_N > 0.0 \
+            else 1e-3 * mesh.mesh_stiffness_N_mm
+        return {"contact_law": layout.LAW_TOOTH, "mesh_damping": mesh.mesh_damping_Ns_mm,
+                "damping_force_ref": f_ref,
+                "k_contact": mesh.pair_stiffness_N_mm, "exponent": 1.0, "c_max": 0.0}
+    return {"contact_law": layout.LAW_IMPACT, "k_contact": contact_stiffness(case, geo),
+            "exponent": ct.exponent, "c_max": ct.max_damping, "d_max": ct.penetration_depth}
+
+
+def _contact_arrays(case: Case, geo: GeometryResult, tables: GapTables) -> dict:
+    """The tooth law's pair stiffness table on the gap tables' grid (core.bundles.Model
+    ``pair_stiffness``): k and dk/dx per flank family; the coast family of symmetric teeth
+    has the drive family's values at its own roll position (model.pair_stiffness)."""
+    if case.contact.law != "tooth":
+        return {}
+    ps = tooth_stiffness(case, geo, tables.x_mm)
+    family = np.stack([ps.k_N_mm, ps.dk_dx_N_mm2])
+    return {"pair_stiffness": np.stack([family] * layout.N_FAMILIES)}
+
+
 def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     """Assemble the kernel's inputs from a validated case and its checked geometry."""
     g = geo.geometry
     rb1, rb2 = g.pinion.r_b_mm, g.gear.r_b_mm
     J1, J2 = geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2
-    ct, fr, dr = case.contact, case.friction, case.drive
+    fr, dr = case.friction, case.drive
     mode = {"speed": layout.DRIVE_SPEED, "shaft": layout.DRIVE_SHAFT,
             "torque": layout.DRIVE_TORQUE}[dr.type]
     mesh = case_mesh(case, geo)
@@ -152,8 +178,7 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
         p_b=g.p_b_mm, T1A=g.A_mm, T1T2=g.T1T2_mm,
         x_lo=tables.x_lo, x_hi=tables.x_hi, **slot_layout(g, tables), backlash_n=g.j_n_mm,
         ecc1=ecc1, ecc2=ecc2, **runout_phases(phi1, phi2, g.alpha_w_rad),
-        k_contact=contact_stiffness(case, geo), exponent=ct.exponent, c_max=ct.max_damping,
-        d_max=ct.penetration_depth,
+        **_contact_params(case, geo, mesh),
         mu_s=fr.static_coefficient if fr.enabled else 0.0,
         mu_d=fr.dynamic_coefficient if fr.enabled else 0.0,
         v_s=fr.stiction_velocity, v_d=fr.transition_velocity,
@@ -176,7 +201,7 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     return KernelInput(
         params=params,
         tables=tables,
-        arrays={"tooth_offsets": offsets},
+        arrays={"tooth_offsets": offsets, **_contact_arrays(case, geo, tables)},
         drive_pp=drive_fn.pp.to_arrays(),
         drive_angle_pp=angle,
         load_pp=case.load.torque.pp.to_arrays(),

@@ -16,11 +16,16 @@ import numpy as np
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import CaseError
 from gearcli.model.gap import slot_layout
-from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh
+from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh, tooth_law
 from gearcli.model.stiffness import IsoStiffness
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import case_gap_tables
-from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness, iso_stiffness
+from gearcli.pipeline.mesh_input import (
+    case_mesh,
+    contact_stiffness,
+    iso_stiffness,
+    tooth_stiffness,
+)
 
 ARCSEC_PER_RAD = 180.0 / math.pi * 3600.0
 
@@ -55,7 +60,13 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
             ValueError(f"--load must be > 0 N, got {load_N}")
     tables, _ = case_gap_tables(case, geo, mesh)
     slots = int(slot_layout(g, tables)["n_slots"])
-    law = impact_law(contact_stiffness(case, geo), case.contact.exponent)
+    if case.contact.law == "tooth":
+        ps = tooth_stiffness(case, geo, tables.x_mm)
+        law = tooth_law(np.stack([ps.k_N_mm, ps.dk_dx_N_mm2]), tables.x_lo, tables.x_hi)
+        law_name = "tooth compliance k(x) p"
+    else:
+        law = impact_law(contact_stiffness(case, geo), case.contact.exponent)
+        law_name = f"IMPACT elastic part k p^{case.contact.exponent:g}"
     args = (tables.tables, tables.x_lo, tables.x_hi, g.p_b_mm, slots, law)
     try:
         result = loaded_mesh(*args, force, cycles=cycles, points_per_cycle=points_per_cycle)
@@ -74,7 +85,6 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         notes.append("runout and pitch deviations are not included (they vary over whole "
                      "revolutions; simulate includes them)")
     iso = iso_stiffness(case, geo, force)
-    law_name = f"IMPACT elastic part k p^{case.contact.exponent:g}"
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))
 
 

@@ -1,13 +1,24 @@
-"""The case's mesh at its operating load: static force, contact stiffness and the one
-linearisation (model.mesh.mesh_mode) that both `simulate` (tolerances, output rate,
-validity limit) and `modal` (the linear model) use."""
+"""The case's mesh at its operating load: static force, contact stiffness (IMPACT k or the
+tooth law's pair stiffness k(x)) and the one linearisation (model.mesh) that `simulate`
+(tolerances, output rate, validity limit, mesh damping), `modal` (the linear model) and
+`mesh` use."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+import numpy as np
+
 from gearcli.case.schema import Case
-from gearcli.model.mesh import MeshMode, mesh_mode, static_normal_force_N
+from gearcli.model.mesh import MeshMode, mesh_mode, static_normal_force_N, tooth_mesh_mode
 from gearcli.model.stiffness import derived_pair_stiffness
 from gearcli.pipeline.geometry import GeometryResult
+
+if TYPE_CHECKING:
+    from gearcli.model.pair_stiffness import PairStiffness
+
+#: Roll positions on the path at which the tooth law's mesh mode integrates k(x).
+_PATH_POINTS = 401
 
 
 def static_force_N(case: Case, geo: GeometryResult) -> float:
@@ -34,10 +45,41 @@ def contact_stiffness(case: Case, geo: GeometryResult) -> float:
     return iso_stiffness(case, geo).mesh_stiffness_N_mm / geo.geometry.eps_alpha
 
 
+def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
+    """The tooth law's pair stiffness k(x) [N/mm] and dk/dx on pinion roll positions ``x_mm``
+    from A (model.pair_stiffness): each gear's material (or the case's), the narrower face
+    width, the bores given or model.tooth_stiffness.default_bore_diameter."""
+    # imported here: the tooth-compliance model loads scipy.interpolate (~0.4 s), which a case
+    # with the IMPACT law does not need
+    from gearcli.model.pair_stiffness import pair_stiffness
+
+    g, gears = geo.geometry, case.gears
+    m1 = gears.pinion.material or case.material
+    m2 = gears.gear.material or case.material
+    try:
+        return pair_stiffness(g, np.asarray(x_mm, float),
+                              face_width_mm=min(g.pinion.face_width_mm, g.gear.face_width_mm),
+                              E1_MPa=m1.youngs_modulus, nu1=m1.poisson_ratio,
+                              E2_MPa=m2.youngs_modulus, nu2=m2.poisson_ratio,
+                              bore_diameter1_mm=gears.pinion.bore_diameter,
+                              bore_diameter2_mm=gears.gear.bore_diameter)
+    except ValueError as exc:  # a bore that does not fit inside the root circle
+        from gearcli.errors import CaseError
+
+        raise CaseError(f"gears: tooth stiffness: {exc}") from None
+
+
 def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
-    """The mesh linearised at the static load (docs/theory.md §4, §6): with a prescribed pinion
-    speed only the gear vibrates, else both gears are free."""
+    """The mesh linearised at the static load (docs/theory.md §4, §4b, §6): with a prescribed
+    pinion speed only the gear vibrates, else both gears are free."""
     g, ct = geo.geometry, case.contact
+    if ct.law == "tooth":
+        x = np.linspace(0.0, g.g_alpha_mm, _PATH_POINTS)
+        k = tooth_stiffness(case, geo, x).k_N_mm
+        return tooth_mesh_mode(static_force_N(case, geo), x, k, g.g_alpha_mm, g.p_b_mm,
+                               ct.damping_ratio, g.pinion.r_b_mm, g.gear.r_b_mm,
+                               geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,
+                               pinion_free=case.drive.type != "speed")
     return mesh_mode(static_force_N(case, geo), g.eps_alpha, contact_stiffness(case, geo),
                      ct.exponent, ct.max_damping, ct.penetration_depth, g.pinion.r_b_mm,
                      g.gear.r_b_mm, geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,

@@ -48,11 +48,12 @@ def test_resume_after_sigkill(tmp_path):
            "sweep", str(study), "-o", str(out), "--jobs", "1", "-q"]
     proc = subprocess.Popen(cmd, start_new_session=True)
     summary = out / SUMMARY
-    # Wait for 3 finished points. Not a timing check: the bound only stops a broken sweep
-    # from hanging the suite (generous: the child may compile the kernel on a busy machine).
-    deadline = time.monotonic() + 900
-    while time.monotonic() < deadline and proc.poll() is None:
-        if summary.exists() and len(summary.read_text().splitlines()) >= 4:
+    # Wait for 3 finished points. Not a timing check: the bound (45 000 polls 20 ms apart, at
+    # least 15 min) only stops a broken sweep from hanging the suite; the child may compile
+    # the kernel on a busy machine.
+    for _ in range(45_000):
+        if proc.poll() is not None or (summary.exists()
+                                       and len(summary.read_text().splitlines()) >= 4):
             break
         time.sleep(0.02)
     os.killpg(proc.pid, signal.SIGKILL)

@@ -6,12 +6,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from gearcli.case.load import load_case
 from gearcli.core.layout import P
 from gearcli.model.ltca import impact_law, loaded_mesh
+from gearcli.pipeline.geometry import run_geometry
 from gearcli.pipeline.mesh import mesh_document, run_mesh
 from gearcli.pipeline.simulate import run_simulation
-from tests.conftest import SEED
+from tests.conftest import ROOT, SEED
 from tests.physics.test_kernel import G_ALPHA, P_B
+
+ISO_PAIR = ROOT / "cases" / "iso_pair.yaml"
 
 
 def test_linear_law_on_the_classic_path_closed_form():
@@ -35,17 +39,26 @@ def test_linear_law_on_the_classic_path_closed_form():
     assert lm.ste_harmonics_mm(1)[0] == pytest.approx(first, rel=1e-2)
 
 
-def test_dynamic_run_at_low_speed_reproduces_the_static_transmission_error():
-    """Seed case without friction (the quasi-static model has none) at 3 deg/s: the kernel's
+@pytest.mark.parametrize("case, torque_Nmm", [(SEED, 4.5e5), (ISO_PAIR, 3e5)],
+                         ids=["impact-seed", "tooth-iso-pair"])
+def test_dynamic_run_at_low_speed_reproduces_the_static_transmission_error(case, torque_Nmm):
+    """The case without friction (the quasi-static model has none) at 3 deg/s: the kernel's
     DTE against the LTCA's STE at the same pinion roll, over the steady part. Tolerance 1 % of
-    the STE peak-to-peak (issue 14); measured 0.32 % (the residual scales with speed: the
-    contact damping lags the deflection, 0.12 % at 1 deg/s)."""
+    the STE peak-to-peak (issue 14). Measured: 0.32 % for the seed's IMPACT law (the residual
+    scales with speed: the contact damping lags the deflection, 0.12 % at 1 deg/s); 0.82 % for
+    the tooth law on iso_pair (16 nm of a 2.0 um peak-to-peak, at a pair entry; ±8 nm
+    elsewhere; 0.57 % at 0.3 deg/s with rtol = atol = 1e-8: not a speed or tolerance effect,
+    source not isolated)."""
     speed = 3.0  # [deg/s]
-    end = 2.0 + 1.2 * P_B / (79.87 * np.radians(speed))  # ramp + a mesh cycle and a bit [s]
-    ov = [f"drive.speed=STEP(time, 0, 0, 0.5, {speed})", "load.torque=STEP(time, 0, 0, 0.5, "
-          "4.5e5)", f"run.end_time={end}", "run.output_rate=500", "friction.enabled=false"]
-    ltca = run_mesh(SEED, ov, cycles=1, points_per_cycle=1000).loaded
-    sim = run_simulation(SEED, ov)
+    loaded = load_case(case)
+    g = run_geometry(loaded).geometry
+    cycle_s = g.p_b_mm / (g.pinion.r_b_mm * np.radians(speed))
+    end = 2.0 + 1.2 * cycle_s  # ramp + a mesh cycle and a bit [s]
+    ov = [f"drive.speed=STEP(time, 0, 0, 0.5, {speed})",
+          f"load.torque=STEP(time, 0, 0, 0.5, {torque_Nmm})", f"run.end_time={end}",
+          "run.output_rate=500", "friction.enabled=false"]
+    ltca = run_mesh(case, ov, cycles=1, points_per_cycle=1000).loaded
+    sim = run_simulation(case, ov)
     prm, k = sim.kernel_input.params, sim.kernel
     steady = k.column("t_s") > 2.0
     u = np.mod(k.column("theta1_rad") * prm[P.r_b1] - prm[P.s1_0], prm[P.p_b])

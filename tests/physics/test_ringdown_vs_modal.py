@@ -38,7 +38,7 @@ gears:
   face_width: 100
   pinion: {{teeth: 17}}
   gear: {{teeth: 25}}
-contact: {{stiffness: {k}, exponent: 1, max_damping: 0}}
+contact: {{law: impact, stiffness: {k}, exponent: 1, max_damping: 0}}
 friction: {{enabled: false}}
 drive:
   type: torque

@@ -27,8 +27,11 @@ from tests.physics.test_kernel import (
     G_ALPHA,
     MESH_PERIOD,
     OMEGA1,
+    P_B,
+    R_B1,
     R_B2,
     T_LOAD,
+    Z1,
     Z2,
     extended_tables,
     n_slots,
@@ -90,16 +93,18 @@ def test_energy_balance_of_a_loaded_mesh_with_a_position_dependent_stiffness():
     assert residual < 1e-2 * 0.5 * p**2 * 0.4 * K0 * cycles, residual
 
 
-def _steady_run(tables, x_lo, x_hi, stiffness, mesh_damping, omega=0.2 * OMEGA1, t_end=0.6):
+def _steady_run(tables, x_lo, x_hi, stiffness, mesh_damping, omega=0.2 * OMEGA1, t_end=0.6,
+                **extra):
+    arrays = {k: extra.pop(k) for k in list(extra) if k == "tooth_stiffness_factor"}
     speed, load = PP.step(0.0, 0.0, 0.1, omega), PP.step(0.0, 0.0, 0.1, T_LOAD)
     prm = layout.make_params(**BASE, x_lo=x_lo, x_hi=x_hi, n_slots=n_slots(x_lo, x_hi),
                              drive_mode=layout.DRIVE_SPEED, t_end=t_end, coast_flanks=0.0,
                              contact_law=layout.LAW_TOOTH, mesh_damping=mesh_damping,
-                             rtol=1e-9, atol_delta=1e-10, atol_deltadot=1e-6)
+                             rtol=1e-9, atol_delta=1e-10, atol_deltadot=1e-6, **extra)
     t_out = np.linspace(0.0, t_end, 6001)
     res = simulate(prm, tables, t_out=t_out, drive_pp=pp_arrays(speed), load_pp=pp_arrays(load),
                    drive_angle_pp=pp_arrays(speed.antiderivative()),
-                   pair_stiffness=stiffness)
+                   pair_stiffness=stiffness, **arrays)
     assert res.ok, res.message
     return res
 
@@ -124,21 +129,57 @@ def test_constant_stiffness_statics_one_and_two_pairs():
 
 
 def test_mesh_damping_is_shared_not_per_pair():
-    """F_total = sum_j k_j p_j + c_m delta' whenever no pair is clamped: with rigid tables and a
-    constant k every pair's penetration is delta, so F_total = n k delta + c_m delta' at every
-    sample (docs/theory.md §4c), whatever the number n of pairs in contact."""
+    """With rigid tables and a constant k every pair's penetration is delta and its elastic
+    force k delta: loaded (sum k p >= F_ref) the total normal force is n k delta + c_m delta'
+    at every sample whatever the number n of pairs in contact; below F_ref the damping is
+    c_m delta' n k delta / F_ref (Hunt & Crossley's form, docs/theory.md §4c)."""
     tables, x_lo, x_hi = np.zeros((4, 2, 2)), 0.0, G_ALPHA
     stiffness = np.full((layout.N_FAMILIES, 2, 2), K0)
     stiffness[:, 1] = 0.0
-    c_m = 3000.0  # [N s/mm]
-    res = _steady_run(tables, x_lo, x_hi, stiffness, c_m, omega=OMEGA1, t_end=0.3)
+    c_m, f_ref = 3000.0, 3000.0  # [N s/mm], [N]
+    res = _steady_run(tables, x_lo, x_hi, stiffness, c_m, omega=OMEGA1, t_end=0.3,
+                      damping_force_ref=f_ref)
     n = res.column("pairs_in_contact")
     delta, rate = res.column("delta_mm"), res.column("deltadot_mm_s")
+    elastic = n * K0 * delta
     loaded = (n > 0) & (delta > 0) & (res.slot_force >= 0).all(axis=1)
-    expected = n * K0 * delta + c_m * rate
+    expected = elastic + c_m * rate * elastic / np.maximum(elastic, f_ref)
     f = res.column("force_total_N")
-    assert loaded.sum() > 1000 and np.abs(rate[loaded]).max() > 1.0  # damping is at work
+    heavy = loaded & (elastic >= f_ref)
+    assert heavy.sum() > 1000 and np.abs(rate[heavy]).max() > 1.0  # damping is at work
     assert np.allclose(f[loaded], expected[loaded], rtol=1e-9, atol=1e-6 * T_LOAD / R_B2)
+
+
+def test_tooth_stiffness_factors_scale_the_pairs_of_their_tooth():
+    """Per-tooth stiffness factors (the hook for faults): all ones give the run without them
+    bit for bit; a factor 1/2 on one pinion tooth doubles the single-pair deflection F/k while
+    that tooth carries the load alone, once per pinion revolution (rigid tables, constant k)."""
+    tables, x_lo, x_hi = np.zeros((4, 2, 2)), 0.0, G_ALPHA
+    stiffness = np.full((layout.N_FAMILIES, 2, 2), K0)
+    stiffness[:, 1] = 0.0
+    c_m = 2.0 * 0.1 * np.sqrt(1.56 * K0 * BASE["J2"] / R_B2**2)
+    run = 1.0  # [s]: settled from 0.3 s, then more than one pinion revolution (0.6 s)
+    plain = _steady_run(tables, x_lo, x_hi, stiffness, c_m, t_end=run)
+    ones = _steady_run(tables, x_lo, x_hi, stiffness, c_m, t_end=run,
+                       tooth_stiffness_factor=np.ones((layout.N_GEARS, Z2)))
+    np.testing.assert_array_equal(plain.series, ones.series)
+    factors = np.ones((layout.N_GEARS, Z2))
+    factors[layout.PINION, 3] = 0.5
+    weak = _steady_run(tables, x_lo, x_hi, stiffness, c_m, t_end=run,
+                       tooth_stiffness_factor=factors)
+    steady = weak.column("t_s") > 0.3
+    delta = weak.column("delta_mm")[steady]
+    single = weak.column("pairs_in_contact")[steady] == 1
+    # the tooth in the single-pair zone g_a - p_b <= x1 <= p_b: slot j = 0 there (x_lo = 0,
+    # phase 0, tooth offset index 0: slot j holds pinion tooth (n - j) mod z1, core/rhs.py)
+    s1 = weak.column("theta1_rad")[steady] * R_B1
+    n = np.floor(s1 / P_B).astype(int)
+    weak_tooth = single & (np.mod(n, Z1) == 3)
+    f_static = T_LOAD / R_B2
+    # median: each zone change is a step in the mesh stiffness that rings (rigid tables)
+    assert weak_tooth.sum() > 20
+    assert np.median(delta[weak_tooth]) == pytest.approx(2.0 * f_static / K0, rel=0.01)
+    assert np.median(delta[single & ~weak_tooth]) == pytest.approx(f_static / K0, rel=0.01)
 
 
 def test_tooth_law_needs_its_table_on_the_gap_grid():

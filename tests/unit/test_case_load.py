@@ -22,6 +22,7 @@ material:
   youngs_modulus: "207 GPa"
   poisson_ratio: 0.29
 contact:
+  law: impact
   stiffness: "3.1622776601683795e9 N/m^1.5"  # 1e5 * 1000^1.5
   exponent: 1.5
   max_damping: "1e5 N*s/m"

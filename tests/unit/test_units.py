@@ -1,6 +1,7 @@
 """Unit parsing at the edge: default units, explicit unit strings, wrong dimensions."""
 
 import math
+import random
 
 import pytest
 
@@ -71,3 +72,32 @@ def test_internal_round_trip():
     for dim in ALL_DIMS:
         v = parse_quantity("1.2345 " + dim.default, dim)
         assert parse_quantity(units.format_internal(v, dim), dim) == v
+
+
+# Number literals of every form the fast path takes (pint reads integers as int, the rest with
+# float; signs are pint's unary operators), as the default and as the internal unit.
+LITERALS = ["5", "0", "-0", "+7", "-0.0", "1e5", "1E-3", ".5", "5.", "-2.5e+3", "3000",
+            "123456789012345678901234567890", "0.1", "7.85e-6", "2.07e5", "1e-300", "450000"]
+
+
+@pytest.mark.parametrize("dim", ALL_DIMS + [units.contact_stiffness_dim(1.5)],
+                         ids=lambda d: d.name)
+def test_own_unit_path_is_bit_identical_to_pint(dim):
+    ureg = units.registry()
+    rng = random.Random(16)
+    numbers = LITERALS + [repr(rng.uniform(-1e4, 1e4)) for _ in range(50)] + \
+        [repr(10.0 ** rng.uniform(-12, 12)) for _ in range(50)]
+    for unit in {dim.default, dim.internal}:
+        for number in numbers:
+            for text in (f"{number} {unit}", f"{number}{unit}"):
+                fast = units.own_unit_quantity(text, dim)
+                slow = float(ureg.Quantity(text).to(dim.internal).magnitude)
+                assert fast is not None, text
+                assert math.copysign(1.0, fast) == math.copysign(1.0, slow), text
+                assert fast == slow, text
+
+
+@pytest.mark.parametrize("text", ["450 N*m", "5 N * mm", "07 N*mm", "1_000 N*mm", "2*3 N*mm",
+                                  "inf N*mm", "1/2 N*mm", "N*mm"])
+def test_own_unit_path_leaves_the_rest_to_pint(text):
+    assert units.own_unit_quantity(text, units.TORQUE) is None
