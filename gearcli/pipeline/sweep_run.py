@@ -116,25 +116,25 @@ PARENT_POLL_S = 0.5
 
 def watch_parent(pid: int) -> None:
     """End this process soon after process ``pid`` ends, even by kill -9 (which runs no
-    cleanup in the sweep): a daemon thread polls it. Idempotent per process."""
+    cleanup in the sweep): a daemon thread polls it. Idempotent per process; nothing to do
+    in the process ``pid`` itself."""
     import threading
 
-    if getattr(watch_parent, "watching", None) == pid:
+    if pid == os.getpid() or getattr(watch_parent, "watching", None) == pid:
         return
     watch_parent.watching = pid
+    direct = os.getppid() == pid  # then re-parenting tells at once, whatever the pid reuse
 
     def watch() -> None:
         while True:
             time.sleep(PARENT_POLL_S)
-            if not _alive(pid):
+            if (direct and os.getppid() != pid) or not _alive(pid):
                 os._exit(1)
 
     threading.Thread(target=watch, name="gearcli-parent-watch", daemon=True).start()
 
 
 def _alive(pid: int) -> bool:
-    if os.getppid() == 1 and pid != 1:  # re-parented to init: the parent is gone
-        return False
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -264,10 +264,9 @@ def _dask(payloads: list[dict], jobs: int, scheduler: str) -> Iterator[dict]:
         except (TimeoutError, OSError) as exc:
             raise OutputError(f"--scheduler {scheduler}: no worker joined within "
                               f"{3 * timeout:g} s ({exc.__class__.__name__})") from None
-        pid = os.getpid() if cluster is not None else None  # local workers end with the sweep
-        client.run(_warm_up, pid)
-        if pid is not None:
-            client.run(watch_parent, pid, nanny=True)
+        # local workers end with the sweep (a LocalCluster's nannies run in this process:
+        # they are not watched, they end with it)
+        client.run(_warm_up, os.getpid() if cluster is not None else None)
         futures = [client.submit(run_point, p, pure=False) for p in payloads]
         for fut in as_completed(futures):
             yield fut.result()

@@ -177,3 +177,12 @@ def _running(pid: int) -> bool:
         except ProcessLookupError:
             return False
         return True
+
+
+def test_watching_the_own_process_does_nothing():
+    """A LocalCluster's nannies run in the sweep's process: watching "the sweep" from there
+    must not end the sweep (it did when the sweep itself was an orphan, e.g. run with &)."""
+    from gearcli.pipeline.sweep_run import watch_parent
+
+    watch_parent(os.getpid())
+    assert not any(t.name == "gearcli-parent-watch" for t in threading.enumerate())
