@@ -252,6 +252,41 @@ def memory(args) -> None:
             "< 1 GB", kb < 1024 * 1024)
 
 
+def formats(args) -> None:
+    """Writing the time series of a 60 s seed run: numpy.savetxt (before issue 16), the
+    compiled %.10g writer, Parquet (``--format parquet``). In process, best of 3."""
+    from gearcli.io.tables import columns_to_csv
+    from gearcli.pipeline.outputs import write_timeseries
+    from gearcli.pipeline.simulate import run_simulation
+
+    print("time series of a 60 s seed run: CSV and Parquet")
+    res = run_simulation(SEED, ["run.end_time=60"])
+    rows = res.kernel.series.shape[0]
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+
+        def savetxt() -> Path:
+            path = folder / "savetxt.csv"
+            path.write_text(columns_to_csv(res.columns()))
+            return path
+
+        results = {}
+        for name, write in (
+                ("numpy.savetxt CSV", savetxt),
+                ("compiled CSV (default)", lambda: write_timeseries(res, folder, "csv")),
+                ("Parquet (zstd)", lambda: write_timeseries(res, folder, "parquet"))):
+            times = []
+            for _ in range(3):
+                t0 = time.perf_counter()
+                path = write()
+                times.append(time.perf_counter() - t0)
+            results[name] = (min(times), path.stat().st_size)
+    base_t, base_size = results["numpy.savetxt CSV"]
+    for name, (t, size) in results.items():
+        row(f"write {rows} rows: {name}", f"{t:.2f} s ({t / base_t:.2f}x), "
+            f"{size / 1e6:.1f} MB ({size / base_size:.2f}x)")
+
+
 def post_processing(args) -> None:
     from gearcli.pipeline.analysis_io import write_analysis
     from gearcli.pipeline.analyze import analyze
@@ -298,6 +333,7 @@ def main() -> None:
         end_to_end(args)
         read_only(args)
         memory(args)
+        formats(args)
         post_processing(args)
     print("\n| what | measured | target | |\n|---|---|---|---|")
     for what, measured, target, verdict in ROWS:
