@@ -185,12 +185,49 @@ def end_to_end(args) -> None:
             "<= 3 s", statistics.median(t) <= 3.0)
         if args.cold:
             env = {**os.environ, "NUMBA_CACHE_DIR": str(Path(tmp) / "numba-empty")}
-            seconds, kb = timed_rss(cmd, env)
+            seconds, kb = timed_tree_rss(cmd, env)
             base = STARTUP.get("import numba") or statistics.median(
                 wall([sys.executable, "-c", "import numba"], 5))
             row("end to end, first run, empty numba cache",
                 f"{seconds:.1f} s = {seconds / base:.0f}x import numba, peak RSS "
-                f"{kb / 1024:.0f} MB", "<= 60x", seconds / base <= 60)
+                f"{kb / 1024:.0f} MB (with the compile helper)", "<= 60x", seconds / base <= 60)
+
+
+def _tree_rss_kb(root: int) -> int:
+    """Resident set size [kB] of a process and all its descendants now (Linux /proc)."""
+    children: dict[int, list[int]] = {}
+    rss: dict[int, int] = {}
+    for status in Path("/proc").glob("[0-9]*/status"):
+        try:
+            fields = dict(line.split(":", 1) for line in status.read_text().splitlines()
+                          if ":" in line)
+        except OSError:
+            continue
+        pid = int(status.parent.name)
+        children.setdefault(int(fields["PPid"]), []).append(pid)
+        rss[pid] = int(fields.get("VmRSS", "0 kB").split()[0])
+    total, todo = 0, [root]
+    while todo:
+        pid = todo.pop()
+        total += rss.get(pid, 0)
+        todo += children.get(pid, [])
+    return total
+
+
+def timed_tree_rss(cmd: list[str], env: dict | None = None) -> tuple[float, int]:
+    """Wall time [s] and peak RSS [kB] summed over the process and its helpers (sampled
+    every 0.1 s: the first run compiles in two processes on >= 2 cores)."""
+    if not Path("/proc/self/status").exists():
+        return timed_rss(cmd, env)
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    peak = 0
+    while proc.poll() is None:
+        peak = max(peak, _tree_rss_kb(proc.pid))
+        time.sleep(0.1)
+    if proc.returncode:
+        raise subprocess.CalledProcessError(proc.returncode, cmd)
+    return time.perf_counter() - t0, peak
 
 
 def timed_rss(cmd: list[str], env: dict | None = None) -> tuple[float, int]:
