@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
 import gearcli.numba_cache as numba_cache
@@ -538,7 +537,9 @@ def _start_loop_compiler(args):
     _helper_started = True
     if kernel_cached() is not False:
         return None
-    signature = tuple(numba.typeof(a) for a in args)
+    from numba import typeof  # here: numba is imported by gearcli.core.jit, after the cache
+
+    signature = tuple(typeof(a) for a in args)
     proc = numba_cache.start_helper("gearcli.core.timeloop", "compile_loop_helper", signature)
     if proc is None:
         return None
