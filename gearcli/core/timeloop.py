@@ -20,7 +20,6 @@ import math
 
 import numpy as np
 
-import gearcli.numba_cache as numba_cache
 from gearcli.core.bundles import Work
 from gearcli.core.dopri5 import (
     MIN_FACTOR,
@@ -172,67 +171,13 @@ def _starting_step(t, model, work, mode, theta_offset, first, count, rtol, span)
     return h if math.isfinite(h) and h > 0.0 else 1e-6
 
 
-#: The work block's data starts on this boundary [bytes] (numba's own arrays: 32).
-_BLOCK_ALIGN = 128
-
-
-def _aligned_zeros(n: int) -> np.ndarray:
-    """np.zeros(n) whose data starts on a _BLOCK_ALIGN-byte boundary."""
-    raw = np.zeros(n + _BLOCK_ALIGN // 8)
-    skip = (-raw.ctypes.data % _BLOCK_ALIGN) // 8
-    return raw[skip:skip + n]
-
-
-def work_arrays(model, n_state: int) -> Work:
-    """The time loop's work arrays (bundles.Work): state vectors and the rows of K in one
-    block, each starting on its own 128-byte boundary (allocated one by one, or K packed with
-    72-byte rows, the same code ran 1.3-1.5 times slower depending on the build: cache-line
-    and aliasing effects, measured on the seed case), absolute tolerances, flank scratch."""
-    prm = model.prm
-    n_slots = int(prm[P.n_slots])
-    atol = np.zeros(N_STATE)
-    atol[S.s1] = prm[P.atol_delta]
-    atol[S.v1] = prm[P.atol_deltadot]
-    atol[S.delta] = prm[P.atol_delta]
-    atol[S.deltadot] = prm[P.atol_deltadot]
-    for pos, rate in ((S.x1, S.vx1), (S.y1, S.vy1), (S.x2, S.vx2), (S.y2, S.vy2)):
-        atol[pos] = prm[P.atol_delta]  # centre displacements and rates: like the DTE
-        atol[rate] = prm[P.atol_deltadot]
-    atol[S.tw_m] = prm[P.atol_delta] / prm[P.r_b1]  # twists [rad]: the same at the base radius
-    atol[S.tw_m_dot] = prm[P.atol_deltadot] / prm[P.r_b1]
-    atol[S.tw_l] = prm[P.atol_delta] / prm[P.r_b2]
-    atol[S.tw_l_dot] = prm[P.atol_deltadot] / prm[P.r_b2]
-    vec = 16 * ((max(N_STATE, N_AUX, n_slots) + 15) // 16)
-    if vec in (n_slots, n_state):  # keep the 2-D views strided: one compiled signature
-        vec += 16
-    n_vectors = 5 + N_FAMILIES  # y, dy, ys, y_new, aux, one slot-force row per flank family
-    work = _aligned_zeros((n_vectors + N_STAGES + 1) * vec)
-    return Work(
-        y=work[0:n_state],
-        dy=work[vec:vec + n_state],
-        ys=work[2 * vec:2 * vec + n_state],
-        y_new=work[3 * vec:3 * vec + n_state],
-        aux=work[4 * vec:4 * vec + N_AUX],
-        slot_force=work[5 * vec:n_vectors * vec].reshape((N_FAMILIES, vec))[:, :n_slots],
-        K=work[n_vectors * vec:].reshape((N_STAGES + 1, vec))[:, :n_state],  # K[0] = f(t, y)
-        atol=atol,
-        scratch=np.zeros((N_SCRATCH, n_slots)),
-    )
-
-
+@jit
 def run(model, out, layout_key, i_first):
     """Integrate from ``prm[P.t_start]`` to ``prm[P.t_end]``; see the module docstring.
 
     One call integrates one chunk of a run: the caller (:mod:`gearcli.core.integrate`) owns the
     outputs and the ``resume`` state and calls again for the next chunk, so the results do not
     depend on how often a progress display looks in.
-
-    Plain Python around the compiled loop :func:`_march`: it sets up the chunk's start and
-    work arrays (microseconds per chunk). Compiled, this function was compiled once more with
-    everything it calls linked in and optimised again: ~10 % of the first run's compilation
-    (issue 16). f(t_start, y) is evaluated here, before :func:`_march` is compiled, so that
-    numba compiles :func:`_evaluate` on its own (6 s, against 20 s when it first met it
-    inside the loop: measured in session 3).
 
     Parameters
     ----------
@@ -247,8 +192,7 @@ def run(model, out, layout_key, i_first):
         ``energy_initial_mJ``; otherwise the state, the prescribed-angle offset [rad] and the
         next step size [s] where the last chunk ended; written on return for the next chunk).
     layout_key : int
-        layout.LAYOUT_KEY as seen by the caller (stale-cache guard, checked by the compiled
-        code: :func:`compiled_layout_key`).
+        layout.LAYOUT_KEY as seen by the caller (stale-cache guard).
     i_first : int
         First output row of this chunk.
 
@@ -258,28 +202,59 @@ def run(model, out, layout_key, i_first):
     i_out : int
         Next output row (rows ``i_first .. i_out - 1`` were written).
     """
-    if compiled_layout_key() != layout_key:
+    if layout_key != LAYOUT_KEY:
         return STATUS_STALE_CACHE, i_first
     prm = model.prm
     resume = out.resume
+    n_slots = int(prm[P.n_slots])
     mode = int(prm[P.drive_mode])
-    t = float(prm[P.t_start])
-    fresh = bool(resume[R.started] == 0.0)
+    t = prm[P.t_start]
+    fresh = resume[R.started] == 0.0
     if fresh:
-        theta_offset = float(prm[P.theta1_init])
+        theta_offset = prm[P.theta1_init]
         if mode != DRIVE_TORQUE:
             angle_pp = model.angle_pp
             theta_offset -= pp_eval(angle_pp[0], angle_pp[1], angle_pp[2], t)
     else:
-        theta_offset = float(resume[R.theta_offset])
+        theta_offset = resume[R.theta_offset]
 
     # optional degrees of freedom (layout.STATE_NAMES): all of them or none are integrated
     extra = prm[P.lateral] != 0.0 or prm[P.motor_J] > 0.0 or prm[P.load_J] > 0.0
     n_state = N_STATE if extra else N_STATE_BASE
-    w = work_arrays(model, n_state)
+    atol = np.zeros(N_STATE)
+    atol[S.s1] = prm[P.atol_delta]
+    atol[S.v1] = prm[P.atol_deltadot]
+    atol[S.delta] = prm[P.atol_delta]
+    atol[S.deltadot] = prm[P.atol_deltadot]
+    for pos, rate in ((S.x1, S.vx1), (S.y1, S.vy1), (S.x2, S.vx2), (S.y2, S.vy2)):
+        atol[pos] = prm[P.atol_delta]  # centre displacements and rates: like the DTE
+        atol[rate] = prm[P.atol_deltadot]
+    atol[S.tw_m] = prm[P.atol_delta] / prm[P.r_b1]  # twists [rad]: the same at the base radius
+    atol[S.tw_m_dot] = prm[P.atol_deltadot] / prm[P.r_b1]
+    atol[S.tw_l] = prm[P.atol_delta] / prm[P.r_b2]
+    atol[S.tw_l_dot] = prm[P.atol_deltadot] / prm[P.r_b2]
+
+    # Work vectors and the rows of K in one block, each starting on its own 128-byte boundary.
+    # Allocated one by one (or K packed with 72-byte rows) the same code ran 1.3-1.5 times
+    # slower depending on the build (measured on the seed case; cache-line/aliasing effects).
+    vec = 16 * ((max(N_STATE, N_AUX, n_slots) + 15) // 16)
+    n_vectors = 5 + N_FAMILIES  # y, dy, ys, y_new, aux, one slot-force row per flank family
+    work = np.zeros((n_vectors + N_STAGES + 1) * vec)
+    w = Work(
+        y=work[0:n_state],
+        dy=work[vec:vec + n_state],
+        ys=work[2 * vec:2 * vec + n_state],
+        y_new=work[3 * vec:3 * vec + n_state],
+        aux=work[4 * vec:4 * vec + N_AUX],
+        slot_force=work[5 * vec:n_vectors * vec].reshape((N_FAMILIES, vec))[:, :n_slots],
+        K=work[n_vectors * vec:].reshape((N_STAGES + 1, vec))[:, :n_state],  # K[0] = f(t, y)
+        atol=atol,
+        scratch=np.zeros((N_SCRATCH, n_slots)),
+    )
     y = w.y
     if not fresh:
-        y[:] = resume[RESUME_Y:RESUME_Y + n_state]
+        for i in range(n_state):
+            y[i] = resume[RESUME_Y + i]
     else:
         y[S.s1] = prm[P.r_b1] * prm[P.theta1_init]
         y[S.v1] = prm[P.r_b1] * prm[P.omega1_init]
@@ -292,21 +267,11 @@ def run(model, out, layout_key, i_first):
         y[S.y2] = prm[P.y2_init]
         y[S.tw_m] = prm[P.tw_m_init]
         y[S.tw_l] = prm[P.tw_l_init]
-    args = (model, w, out, i_first, theta_offset, fresh, n_state)
-    helper = _start_loop_compiler(args)
-    try:
-        _evaluate(t, y, w.dy, w.aux, w.slot_force, w.scratch, model, mode, theta_offset)
-        status, i_out = _march(*args)
-    finally:
-        _finish_loop_compiler(helper)
-    return int(status), int(i_out)
 
-
-@jit
-def compiled_layout_key():
-    """layout.LAYOUT_KEY as the compiled code sees it: differs from the Python value only
-    when the cache holds code compiled against another layout."""
-    return LAYOUT_KEY
+    # f(t, y) here, not in _march: numba then compiles _evaluate in this simpler context
+    # (6 s instead of 20 s of the first run's compilation, measured)
+    _evaluate(t, y, w.dy, w.aux, w.slot_force, w.scratch, model, mode, theta_offset)
+    return _march(model, w, out, i_first, theta_offset, fresh, n_state)
 
 
 @jit_noalloc_inline
@@ -494,67 +459,3 @@ def _march(model, w, out, i_first, theta_offset, fresh, n_state):
     for i in range(n_state):
         resume[RESUME_Y + i] = y[i]
     return status, i_out
-
-
-def kernel_cached() -> bool | None:
-    """Whether numba's cache holds the compiled time loop (:func:`_march`) for these sources
-    and this machine; False means the next run compiles it. None when that cannot be told
-    (no cache, or numba's cache internals differ from 0.59-0.68's).
-
-    Reads the cache index only (no code is loaded): an entry for this machine's code
-    generator and this bytecode. The loop has one signature (every array float64, every
-    bundle the same fields, the 2-D work views always strided: :func:`work_arrays`), so any
-    such entry is the one a run loads.
-    """
-    try:
-        cache = _march._cache
-        codegen = _march.targetctx.codegen()
-        _, magic, code = cache._index_key((), codegen)
-        return any(key[1] == magic and key[2] == code
-                   for key in cache._cache_file._load_index())
-    except Exception:  # numba internals: no answer rather than a wrong one
-        return None
-
-
-# --- the first run on two or more cores: the loop compiled in a second process ----------------
-# numba compiles one function at a time. Of the first run's compilation, ~30 % is the
-# right-hand side on its own (_evaluate) and ~60 % the loop (_march), whose first half (numba's
-# inlining of the step attempt) does not need _evaluate yet. So while this process compiles
-# _evaluate, a helper process compiles _march; the helper takes _evaluate from the cache when
-# its typing needs it, and this process takes _march from the cache when the helper is done.
-# Nothing changes in the compiled code: each function is compiled once, by one of the two.
-# GEARCLI_PARALLEL_COMPILE=0 turns it off; with one core, or a cache numba cannot report,
-# everything is compiled here as before (gearcli.numba_cache has the mechanics).
-_helper_started = False
-
-
-def _start_loop_compiler(args):
-    """Start the helper (once per process) when the loop is not cached and two cores are
-    there; returns a handle for :func:`_finish_loop_compiler` or None."""
-    global _helper_started
-    if _helper_started or not numba_cache.parallel_compile_wanted():
-        return None
-    _helper_started = True
-    if kernel_cached() is not False:
-        return None
-    from numba import typeof  # here: numba is imported by gearcli.core.jit, after the cache
-
-    signature = tuple(typeof(a) for a in args)
-    proc = numba_cache.start_helper("gearcli.core.timeloop", "compile_loop_helper", signature)
-    if proc is None:
-        return None
-    return proc, numba_cache.wait_in_cache_lookup(_march, lambda: proc.poll() is None)
-
-
-def _finish_loop_compiler(helper) -> None:
-    if helper is not None:
-        proc, restore = helper
-        restore()
-        numba_cache.stop_helper(proc)
-
-
-def compile_loop_helper(signature) -> None:
-    """The helper's work: compile _march for ``signature`` into the cache, taking _evaluate
-    from the cache once the parent process has written it."""
-    numba_cache.wait_in_cache_lookup(_evaluate, numba_cache.parent_alive)
-    _march.compile(signature)
