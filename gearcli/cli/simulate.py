@@ -25,27 +25,39 @@ def simulate(
     force: bool = typer.Option(False, "--force", help="Replace an earlier results folder."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress, no summary table."),
     as_json: bool = typer.Option(False, "--json", help="Print summary.json to stdout."),
+    fmt: str = typer.Option(
+        "csv", "--format",
+        help="Time series as 'csv' (10 significant digits) or 'parquet' (full precision, "
+             "compressed: long runs; needs -o DIR)."),
 ) -> None:
-    """Integrate the 2-DOF tooth-contact model; write timeseries.csv, summary.json,
-    manifest.json (atomically; never over earlier results without --force)."""
+    """Integrate the 2-DOF tooth-contact model; write timeseries.csv (or .parquet),
+    summary.json, manifest.json (atomically; never over earlier results without --force)."""
     import json
 
+    from gearcli.errors import OutputError
     from gearcli.io.outdir import check_target
-    from gearcli.pipeline.outputs import summary_document, write_simulation
+    from gearcli.pipeline.outputs import (
+        TIMESERIES_FORMATS,
+        summary_document,
+        timeseries_csv,
+        write_simulation,
+    )
     from gearcli.pipeline.simulate import run_simulation
 
     to_stdout = out == "-"
+    if fmt not in TIMESERIES_FORMATS:
+        raise OutputError(f"--format {fmt}: expected one of {', '.join(TIMESERIES_FORMATS)}")
+    if to_stdout and fmt != "csv":
+        raise OutputError("--format parquet writes a file: give a results folder with -o DIR")
     if not to_stdout:
         check_target(out, force)  # fail before a long run, not after
     with status_reporter(enabled=not quiet and not to_stdout and not as_json) as status:
         result = run_simulation(case, set_, status=status,
                                     progress=status.progress if status else None)
     if to_stdout:
-        from gearcli.io.tables import columns_to_csv
-
-        typer.echo(columns_to_csv(result.columns()), nl=False)
+        typer.echo(timeseries_csv(result), nl=False)
     else:
-        write_simulation(result, out, force, set_)
+        write_simulation(result, out, force, set_, fmt)
     doc = summary_document(result)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))

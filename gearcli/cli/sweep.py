@@ -48,20 +48,26 @@ def sweep(
                                   help="Dask: 'local' (embedded LocalCluster) or tcp://host:port."),
     keep_timeseries: bool = typer.Option(False, "--keep-timeseries",
                                          help="Also write each point's results folder."),
+    fmt: str = typer.Option("csv", "--format",
+                            help="Kept time series as 'csv' or 'parquet' (full precision, "
+                                 "compressed)."),
     force: bool = typer.Option(False, "--force", help="Start over (discard summary.csv)."),
     yes: bool = typer.Option(False, "--yes", "-y", help="Run studies of more than 1000 points."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar, no summary line."),
 ) -> None:
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
     failed points are recorded, never abort the study."""
+    from gearcli.errors import OutputError
     from gearcli.pipeline.sweep_run import run_study
     from gearcli.pipeline.sweep_study import load_study
     from gearcli.pipeline.sweep_trends import write_trends
 
+    if fmt not in ("csv", "parquet"):
+        raise OutputError(f"--format {fmt}: expected csv or parquet")
     spec = load_study(study, allow_large=yes)
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         outcome = run_study(spec, out, jobs or None, scheduler, keep_timeseries, force,
-                            progress)
+                            progress, timeseries_format=fmt)
     write_trends(out, spec, outcome.rows)
     if not quiet:
         typer.echo(f"{outcome.total} points: {outcome.ran} run, {outcome.skipped} already done, "

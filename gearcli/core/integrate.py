@@ -81,6 +81,25 @@ class KernelResult(NamedTuple):
         return self.slot_extrema[SLOT_EXTREMA_NAMES.index(name)]
 
 
+def kernel_cached() -> bool | None:
+    """Whether numba's cache holds the compiled time loop (:func:`run`) for these sources and
+    this machine; False means the next run compiles it. None when that cannot be told (no
+    cache, or numba's cache internals differ from 0.59-0.68's).
+
+    Reads the cache index only (no code is loaded): an entry for this machine's code
+    generator and this bytecode. The loop has one signature (every array float64, every
+    bundle the same fields), so any such entry is the one a run loads.
+    """
+    try:
+        cache = run._cache
+        codegen = run.targetctx.codegen()
+        _, magic, code = cache._index_key((), codegen)
+        return any(key[1] == magic and key[2] == code
+                   for key in cache._cache_file._load_index())
+    except Exception:  # numba internals: no answer rather than a wrong one
+        return None
+
+
 def _f64(a, ndim: int, what: str) -> np.ndarray:
     """C-contiguous, writable float64 copy-if-needed (one compiled signature for all calls)."""
     out = np.require(np.asarray(a, dtype=np.float64), np.float64, ["C", "W"])

@@ -11,6 +11,8 @@ import numpy as np
 from gearcli.errors import ResultsError
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
+#: The time series may also be Parquet (`gearcli simulate --format parquet`).
+TIMESERIES = ("timeseries.csv", "timeseries.parquet")
 
 
 @dataclass(frozen=True)
@@ -31,7 +33,8 @@ def read_run(folder: str | Path) -> StoredRun:
         raise ResultsError(f"{p}: not found; expected a results folder from gearcli simulate")
     if not p.is_dir():
         raise ResultsError(f"{p}: not a folder; expected a results folder from gearcli simulate")
-    missing = [f for f in FILES if not (p / f).is_file()]
+    series = next((p / f for f in TIMESERIES if (p / f).is_file()), p / TIMESERIES[0])
+    missing = [f for f in FILES[:2] + (series.name,) if not (p / f).is_file()]
     if missing:
         raise ResultsError(f"{p}: missing {', '.join(missing)}; expected a folder written by "
                            "gearcli simulate")
@@ -47,10 +50,13 @@ def read_run(folder: str | Path) -> StoredRun:
         raise ResultsError(f"{p / 'summary.json'}: incomplete summary; expected a finished "
                            "gearcli simulate run")
     check_summary(p / "summary.json", summary)
-    columns = read_columns(p / "timeseries.csv", "t_s", summary["rows"])
+    if series.suffix == ".parquet":
+        columns = read_parquet_columns(series, "t_s", summary["rows"])
+    else:
+        columns = read_columns(series, "t_s", summary["rows"])
     missing = [c for c in REQUIRED_COLUMNS if c not in columns]
     if missing:
-        raise ResultsError(f"{p / 'timeseries.csv'}: no {', '.join(missing)} column"
+        raise ResultsError(f"{series}: no {', '.join(missing)} column"
                            f"{'s' if len(missing) > 1 else ''}; expected a table written by "
                            "gearcli simulate (was it edited?)")
     return StoredRun(p, manifest, summary, columns)
@@ -118,6 +124,23 @@ def check_summary(path: Path, summary: dict) -> None:
         raise bad("warnings", "a list")
     if not isinstance(summary.get("solver", {}), dict):
         raise bad("solver", "a mapping")
+
+
+def read_parquet_columns(path: Path, key: str, rows: int) -> dict[str, np.ndarray]:
+    """The float64 columns of a Parquet time series, checked like :func:`read_columns`."""
+    from gearcli.io.tables import parquet_to_columns
+
+    try:
+        columns = parquet_to_columns(path)
+    except Exception as exc:  # pyarrow's errors: ArrowInvalid, OSError, ...
+        raise ResultsError(f"{path}: unreadable Parquet ({exc}); expected a table written by "
+                           "gearcli") from None
+    if key not in columns:
+        raise ResultsError(f"{path}: no {key} column; expected a table written by gearcli")
+    if any(c.shape != (rows,) or not np.all(np.isfinite(c)) for c in columns.values()):
+        raise ResultsError(f"{path}: not {rows} finite rows per column, as summary.json says; "
+                           "the file is truncated or was edited")
+    return columns
 
 
 def read_json(path: Path, remedy: str = "expected gearcli output"):

@@ -1,8 +1,9 @@
-"""Column tables to CSV (header with units in the names)."""
+"""Column tables to CSV (header with units in the names) and to Parquet."""
 
 from __future__ import annotations
 
 import io
+from pathlib import Path
 
 import numpy as np
 
@@ -15,3 +16,21 @@ def columns_to_csv(columns: dict[str, np.ndarray]) -> str:
     buf.write(",".join(names) + "\n")
     np.savetxt(buf, data, delimiter=",", fmt="%.10g")
     return buf.getvalue()
+
+
+def columns_to_parquet(columns: dict[str, np.ndarray], path: str | Path) -> None:
+    """Equal-length float64 columns as one Parquet table at ``path`` (pyarrow, imported here:
+    only this format needs it). Full float64 precision; zstd-compressed columns."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    table = pa.table({n: np.asarray(c, dtype=float) for n, c in columns.items()})
+    pq.write_table(table, path, compression="zstd")
+
+
+def parquet_to_columns(path: str | Path) -> dict[str, np.ndarray]:
+    """The float64 columns of a Parquet table written by :func:`columns_to_parquet`."""
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(path)
+    return {n: table.column(n).to_numpy().astype(float, copy=False) for n in table.column_names}

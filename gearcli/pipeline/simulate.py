@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import gc
 import math
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -102,17 +103,41 @@ def cyclic_gc_paused():
             gc.enable()
 
 
+#: What the first run's compilation takes (bench/RESULTS.md, issue 16; 2-core machine) [s].
+COMPILE_TIME_S = 40
+
+
+def stderr_notice(text: str) -> None:
+    print(f"gearcli: {text}", file=sys.stderr, flush=True)
+
+
+def announce_compilation(notice=stderr_notice) -> bool:
+    """Tell ``notice`` (one line, default stderr: terminals and pipelines alike) when this run
+    will compile the solver; True when it will (or cannot tell)."""
+    from gearcli.core.integrate import kernel_cached
+
+    if kernel_cached() is not False:
+        return False
+    if notice is not None:
+        notice(f"compiling the solver once, ~{COMPILE_TIME_S} s (later runs load it from the "
+               "cache)")
+    return True
+
+
 def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None = None,
-                   status=None, progress=None) -> SimulationResult:
+                   status=None, progress=None, notice=stderr_notice) -> SimulationResult:
     """Load the case, check its geometry, run the kernel; failed runs raise SolverError.
 
     ``status`` is an optional callable(str) told what is happening (compiling, integrating);
     ``progress`` an optional callable(t, t_start, t_end) [s] called as the integration
-    advances (gearcli.core.integrate.simulate).
+    advances (gearcli.core.integrate.simulate); ``notice`` an optional callable(str) told once,
+    before anything is compiled, that this run compiles the solver (default: a line on
+    stderr).
     """
     from gearcli.core.integrate import simulate
 
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
+    compiling = announce_compilation(notice)
     case = loaded.case
     refuse_unsupported(loaded)
     geo = run_geometry(loaded)
@@ -133,7 +158,8 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     params = ki.params.copy()
     params[P.extrema_t_start] = window.t0_s
     if status:
-        status("integrating (the first run compiles the solver, ~25 s)")
+        status(f"compiling the solver (once, ~{COMPILE_TIME_S} s)" if compiling
+               else "integrating")
     t0 = time.perf_counter()
     with cyclic_gc_paused():
         kr = simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,

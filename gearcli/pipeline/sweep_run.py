@@ -68,7 +68,7 @@ def run_point(payload: dict) -> dict:
         if keep:
             from gearcli.pipeline.outputs import write_simulation
 
-            write_simulation(res, keep, True)
+            write_simulation(res, keep, True, fmt=payload.get("format", "csv"))
     except GearcliError as exc:
         row.update(status="failed", error=str(exc).splitlines()[0])
     except Exception as exc:  # a bug in one point must not end the study
@@ -343,8 +343,11 @@ Progress = Callable[[int, int, int], None]  # (done, failed, total)
 
 def run_study(study: Study, folder: str | Path, jobs: int | None = None,
               scheduler: str | None = None, keep_timeseries: bool = False,
-              force: bool = False, progress: Progress | None = None) -> SweepOutcome:
-    """Run the points of ``study`` that have no row yet; returns all rows, sorted by point."""
+              force: bool = False, progress: Progress | None = None,
+              timeseries_format: str = "csv") -> SweepOutcome:
+    """Run the points of ``study`` that have no row yet; returns all rows, sorted by point.
+    With ``keep_timeseries`` each point's results folder is written too, its time series as
+    ``timeseries_format`` (pipeline.outputs.TIMESERIES_FORMATS)."""
     t_start = time.perf_counter()
     if str(folder).strip() == "":
         raise OutputError("-o '': empty path; expected the name of an output folder")
@@ -374,7 +377,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     _write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
                   + "".join(_line(columns, done[i]) for i in sorted(done)))
     payloads = [{"index": p.index, "case_hash": p.case_hash, "case_json": p.case_json,
-                 "name": study.name,
+                 "name": study.name, "format": timeseries_format,
                  "keep_dir": str(out / "points" / f"{p.index:05d}") if keep_timeseries else None}
                 for p in todo]
     n_failed = sum(1 for r in done.values() if r["status"] == "failed")

@@ -77,3 +77,27 @@ def test_simulate_json(tmp_path):
     assert result.exit_code == 0
     doc = json.loads(result.stdout)
     assert doc["scalars"]["gear_mesh_frequency_Hz"] > 141
+
+
+def test_simulate_parquet_reads_back_like_csv(tmp_path):
+    csv_run, pq_run = tmp_path / "csv", tmp_path / "pq"
+    for out, fmt in ((csv_run, "csv"), (pq_run, "parquet")):
+        result = runner.invoke(app, ["simulate", str(SEED), "-o", str(out), *SHORT, "-q",
+                                     "--format", fmt])
+        assert result.exit_code == 0, result.output
+    assert {p.name for p in pq_run.iterdir()} == {"timeseries.parquet", "summary.json",
+                                                  "manifest.json"}
+    from gearcli.io.results import read_run
+
+    a, b = read_run(csv_run), read_run(pq_run)
+    assert list(a.columns) == list(b.columns)
+    for name, col in a.columns.items():  # CSV: 10 significant digits of the same numbers
+        assert [float(f"{v:.10g}") for v in b.columns[name]] == col.tolist(), name
+    result = runner.invoke(app, ["analyze", str(pq_run)])
+    assert result.exit_code in (0, 4), result.output  # analysed (checks may fail on 0.6 s)
+
+
+def test_simulate_parquet_needs_a_folder():
+    result = runner.invoke(app, ["simulate", str(SEED), "-o", "-", *SHORT, "--format",
+                                 "parquet"])
+    assert result.exit_code == 1 and "-o DIR" in result.stderr
