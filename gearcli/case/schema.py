@@ -402,7 +402,9 @@ class Run(Section):
     )
     output_rate: Frequency | None = qfield(units.FREQUENCY, None, "output sample rate", gt=0)
     rtol: Coefficient = Field(1e-6, gt=0, lt=1e-2, description="relative tolerance (1e-6)")
-    atol: Length = qfield(units.LENGTH, 1e-6, "absolute tolerance on deflections", gt=0)
+    atol: Length | None = qfield(
+        units.LENGTH, None, "absolute tolerance on deflections; default: 1e-5 of the static "
+        "deflection, at most 1e-6 mm (docs/theory.md §6.7)", gt=0)
     max_step: Time | None = qfield(units.TIME, None, "largest solver step", gt=0)
 
     @model_validator(mode="after")
