@@ -76,6 +76,13 @@ class OutputError(GearcliError):
     """An output location is unusable (exists without --force, not writable, ...)."""
 
 
+class InvalidResultError(GearcliError):
+    """A run finished outside the model's range of validity (docs/theory.md §10.2): its
+    numbers are not results. Exit code 4, like a failed check."""
+
+    exit_code = ExitCode.CHECK_FAILED
+
+
 class ResultsError(GearcliError):
     """A results folder is missing, foreign, truncated or inconsistent."""
 

@@ -45,7 +45,7 @@ def run(
     folder that replaces DIR only when all of them are complete (earlier results survive
     until then)."""
     from gearcli.cli.analyze import print_checks
-    from gearcli.errors import CheckFailed, OutputError
+    from gearcli.errors import CheckFailed, InvalidResultError, OutputError
     from gearcli.io.outdir import atomic_dir, check_target
     from gearcli.pipeline.analysis_io import write_analysis
     from gearcli.pipeline.analyze import analyze as run_analysis
@@ -59,6 +59,11 @@ def run(
     with status_reporter(enabled=not quiet) as status:
         result = run_simulation(case, set_, status=status,
                                 progress=status.progress if status else None)
+        if result.status != "ok":  # keep the run for diagnosis; nothing to analyse
+            with atomic_dir(out, force) as tmp:
+                write_simulation_files(result, tmp, set_)
+            raise InvalidResultError(f"{case}: {result.invalid_reason}; the results in {out} "
+                                     "are marked invalid, no analysis or report was made")
         if status:
             status("analysing and writing the report")
         with atomic_dir(out, force) as tmp:

@@ -66,6 +66,11 @@ def simulate(
     for w in result.warnings:
         if not quiet:
             typer.echo(f"warning: {w}", err=True)
+    if result.status != "ok":
+        from gearcli.errors import InvalidResultError
+
+        where = "" if to_stdout else f"; the results in {out} are marked invalid"
+        raise InvalidResultError(f"{case}: {result.invalid_reason}{where}")
 
 
 def _print_summary(doc: dict, out: str) -> None:
@@ -79,7 +84,8 @@ def _print_summary(doc: dict, out: str) -> None:
         ("mean normal force", s["force_mean_N"], "N"),
         ("max / min normal force", f"{s['force_max_N']:.1f} / {s['force_min_N']:.1f}", "N"),
         ("static force T_load / r_b2", s["force_static_N"], "N"),
-        ("dynamic factor", s["dynamic_factor"], ""),
+        ("dynamic factor", s["dynamic_factor"] if doc["status"] == "ok"
+         else "not valid (see the error below)", ""),
         ("DTE mean / peak-to-peak",
          f"{s['dte_mean_mm']:.5f} / {s['dte_peak_to_peak_mm']:.5f}", "mm"),
         ("mesh stiffness (linearised)", s["mesh_stiffness_N_mm"], "N/mm"),

@@ -70,9 +70,10 @@ def sweep(
                             progress, timeseries_format=fmt)
     write_trends(out, spec, outcome.rows)
     if not quiet:
+        invalid = sum(1 for r in outcome.rows if r.get("status") == "invalid")
         typer.echo(f"{outcome.total} points: {outcome.ran} run, {outcome.skipped} already done, "
-                   f"{outcome.failed} failed ({outcome.wall_time_s:.1f} s); results in {out}/"
-                   " (summary.csv, trends.md)")
+                   f"{outcome.failed} failed, {invalid} outside the model's validity "
+                   f"({outcome.wall_time_s:.1f} s); results in {out}/ (summary.csv, trends.md)")
 
 
 def _sweep_columns():

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.errors import ResultsError
+from gearcli.errors import InvalidResultError, ResultsError
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -46,6 +46,11 @@ def read_run(folder: str | Path) -> StoredRun:
         raise ResultsError(f"{p / 'manifest.json'}: no resolved_case mapping; expected a "
                            "manifest written by gearcli simulate")
     summary = read_json(p / "summary.json")
+    if isinstance(summary, dict) and summary.get("status") == "invalid":
+        raise InvalidResultError(
+            f"{p}: the run is outside the model's validity "
+            f"({summary.get('invalid_reason', 'no reason given')}); its numbers are not results "
+            "(docs/theory.md §10.2)")
     if not isinstance(summary, dict) or summary.get("status") != "ok" or "rows" not in summary:
         raise ResultsError(f"{p / 'summary.json'}: incomplete summary; expected a finished "
                            "gearcli simulate run")

@@ -22,7 +22,8 @@ def summary_document(res: SimulationResult) -> dict:
     k = res.kernel
     return {
         "case": res.name,
-        "status": "ok",
+        "status": res.status,
+        **({"invalid_reason": res.invalid_reason} if res.status != "ok" else {}),
         "solver": {
             "message": k.message,
             **k.counters,

@@ -39,6 +39,9 @@ class SimulationResult:
     modes: object = None  # model.modal.ModalResult of the same model, linearised
     summary: dict = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    #: "ok", or "invalid" when the run left the model's range (pipeline/validity.py)
+    status: str = "ok"
+    invalid_reason: str = ""
 
     @property
     def name(self) -> str:
@@ -176,7 +179,25 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     result = SimulationResult(loaded, geo, ki, kr, wall, window, modes)
     result.summary = summarize(result)
     result.warnings = collect_warnings(result)
+    result.status, result.invalid_reason = validity_of(result)
     return result
+
+
+def validity_of(res: SimulationResult):
+    """The run's :class:`gearcli.pipeline.validity.Validity` (docs/theory.md §10.2)."""
+    from gearcli.core.layout import DRIVE_SPEED, P
+    from gearcli.pipeline.validity import check_validity
+
+    k = res.kernel
+    w = k.column("t_s") >= res.window.t0_s
+    free_pinion = res.kernel_input.params[P.drive_mode] != DRIVE_SPEED
+    return check_validity(
+        penetration_max_mm=k.extremum("penetration_max_mm"),
+        static_deflection_mm=res.kernel_input.mesh.static_deflection_mm,
+        module_mm=res.geometry.geometry.module_mm,
+        gear_speed_rad_s=k.column("omega2_rad_s")[w],
+        pinion_speed_rad_s=k.column("omega1_rad_s")[w] if free_pinion else None,
+        energy_relative_residual=res.summary["energy_balance"]["relative_residual"])
 
 
 def output_rows(case, f_z: float | None) -> tuple[float, str]:
@@ -352,11 +373,6 @@ def collect_warnings(res: SimulationResult) -> list[str]:
             out.append(f"output aliasing: {rate:g} Hz sampling resolves only {n_ok} of the "
                        f"{harmonics} analysed mesh harmonics (default rate resolves "
                        f"{HARMONICS_RESOLVED})")
-    pen = res.kernel.extremum("penetration_max_mm")
-    if pen > max(10.0 * ki.mesh.static_deflection_mm, 0.02 * res.geometry.geometry.module_mm):
-        out.append(f"penetration up to {pen:.3f} mm (static deflection "
-                   f"{ki.mesh.static_deflection_mm:.4f} mm): far beyond elastic tooth "
-                   "deflection; the rigid-tooth contact model is outside its validity here")
     if res.window.reason.startswith("the second half"):
         out.append("no steady state: the run ends before the ramps have settled")
     elif res.window.reason.startswith("the whole run"):

@@ -62,9 +62,11 @@ def run_point(payload: dict) -> dict:
         else:
             loaded = _case_from_json(payload["case_json"], payload["name"])
         res = run_simulation(loaded)
-        row.update(point_metrics(res))
-        row.update(status="ok", error="", warnings="; ".join(res.warnings),
-                   solver_time_s=res.wall_time_s)
+        if res.status == "ok":
+            row.update(point_metrics(res))
+        # an invalid run's numbers are not results: its metric cells stay empty
+        row.update(status=res.status, error=res.invalid_reason,
+                   warnings="; ".join(res.warnings), solver_time_s=res.wall_time_s)
         if keep:
             from gearcli.pipeline.outputs import write_simulation
 
@@ -174,7 +176,7 @@ def read_summary(path: Path, columns: list[str]) -> dict[str, dict]:
     for rec in csv.DictReader(io.StringIO("".join(lines))):
         if None in rec or any(v is None for v in rec.values()):
             continue  # wrong field count
-        if rec["status"] in ("ok", "failed") and rec["case_hash"]:
+        if rec["status"] in ("ok", "invalid", "failed") and rec["case_hash"]:
             rows[rec["case_hash"]] = rec
     return rows
 
