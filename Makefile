@@ -46,11 +46,14 @@ clean:
 
 # --- parametric studies (gearcli sweep); one target per study so `make -j studies` works ---
 STUDY_OUT ?= out/studies
-.PHONY: studies study-table5 study-speed
-studies: study-table5 study-speed
+.PHONY: studies study-table5 study-speed study-speed-curve
+studies: study-table5 study-speed study-speed-curve
 
 study-table5: $(STAMP)
 	$(BIN)/gearcli sweep cases/studies/table5.yaml -o $(STUDY_OUT)/table5
 
 study-speed: $(STAMP)
 	$(BIN)/gearcli sweep cases/studies/speed.yaml -o $(STUDY_OUT)/speed
+
+study-speed-curve: $(STAMP)
+	$(BIN)/gearcli sweep cases/studies/speed_curve.yaml -o $(STUDY_OUT)/speed_curve --force

@@ -65,6 +65,9 @@ def sweep(
     if fmt not in ("csv", "parquet"):
         raise OutputError(f"--format {fmt}: expected csv or parquet")
     spec = load_study(study, allow_large=yes)
+    if spec.design == "speed_curve":
+        _speed_curve(spec, out, jobs or None, scheduler, force, quiet)
+        return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         outcome = run_study(spec, out, jobs or None, scheduler, keep_timeseries, force,
                             progress, timeseries_format=fmt)
@@ -74,6 +77,23 @@ def sweep(
         typer.echo(f"{outcome.total} points: {outcome.ran} run, {outcome.skipped} already done, "
                    f"{outcome.failed} failed, {invalid} outside the model's validity "
                    f"({outcome.wall_time_s:.1f} s); results in {out}/ (summary.csv, trends.md)")
+
+
+def _speed_curve(spec, out: Path, jobs, scheduler, force: bool, quiet: bool) -> None:
+    from gearcli.io.outdir import check_target
+    from gearcli.pipeline.speed_curve import run_speed_curve, write_speed_curve
+
+    check_target(out, force)  # before the runs, not after
+    if not quiet:
+        typer.echo(f"speed curve: {len(spec.points)} speeds, run up and down (2 runs)", err=True)
+    curve = run_speed_curve(spec, jobs, scheduler)
+    write_speed_curve(curve, out, force)
+    if not quiet:
+        invalid = sum(r["status"] != "ok" for r in curve.rows)
+        typer.echo(f"{len(curve.rows)} points, {invalid} outside the model's validity; results "
+                   f"in {out}/ (summary.csv, speed_curve.png)")
+    for e in curve.errors:
+        typer.echo(f"warning: a direction failed: {e}", err=True)
 
 
 def _sweep_columns():

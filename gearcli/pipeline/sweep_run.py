@@ -60,7 +60,7 @@ def run_point(payload: dict) -> dict:
             case_file.write_text(payload["case_json"] + "\n")
             loaded = load_case(case_file)
         else:
-            loaded = _case_from_json(payload["case_json"], payload["name"])
+            loaded = case_from_json(payload["case_json"], payload["name"])
         res = run_simulation(loaded)
         if res.status == "ok":
             row.update(point_metrics(res))
@@ -79,7 +79,7 @@ def run_point(payload: dict) -> dict:
     return row
 
 
-def _case_from_json(text: str, name: str):
+def case_from_json(text: str, name: str):
     """Validate a resolved case given as JSON (json is ~20x faster than PyYAML for this)."""
     import json
 
@@ -87,6 +87,17 @@ def _case_from_json(text: str, name: str):
     from gearcli.case.yamlsrc import Source
 
     return validate_source(Source(name, json.loads(text), text.splitlines()), name)
+
+
+def execute(fn, payloads: list[dict], jobs: int | None, scheduler: str | None) -> Iterator[dict]:
+    """``fn(payload)`` for every payload, serially, in ``jobs`` local processes, or on Dask
+    (``scheduler``: "local" or an address); results in completion order."""
+    jobs = jobs or os.cpu_count() or 1
+    if scheduler:
+        return _dask(payloads, min(jobs, len(payloads)), scheduler, fn)
+    if jobs == 1 or len(payloads) <= 1:
+        return _serial(payloads, 1, None, fn)
+    return _processes(payloads, min(jobs, len(payloads)), None, fn)
 
 
 def _warm_up(parent_pid: int | None = None) -> None:
@@ -210,20 +221,20 @@ def _write_atomic(path: Path, text: str) -> None:
 
 
 # --- executors ---------------------------------------------------------------------------------
-def _serial(payloads: list[dict], jobs: int, scheduler) -> Iterator[dict]:
+def _serial(payloads: list[dict], jobs: int, scheduler, fn=run_point) -> Iterator[dict]:
     _warm_up()
     for p in payloads:
-        yield run_point(p)
+        yield fn(p)
 
 
-def _processes(payloads: list[dict], jobs: int, scheduler) -> Iterator[dict]:
+def _processes(payloads: list[dict], jobs: int, scheduler, fn=run_point) -> Iterator[dict]:
     import multiprocessing as mp
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else None
     pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_warm_up,
                                initargs=(os.getpid(),))
-    futures = [pool.submit(run_point, p) for p in payloads]
+    futures = [pool.submit(fn, p) for p in payloads]
     try:
         for fut in as_completed(futures):
             yield fut.result()
@@ -245,7 +256,7 @@ def _terminate(procs: list) -> None:
             proc.join(5.0)
 
 
-def _dask(payloads: list[dict], jobs: int, scheduler: str) -> Iterator[dict]:
+def _dask(payloads: list[dict], jobs: int, scheduler: str, fn=run_point) -> Iterator[dict]:
     try:
         from distributed import Client, LocalCluster, as_completed
     except ImportError:
@@ -269,7 +280,7 @@ def _dask(payloads: list[dict], jobs: int, scheduler: str) -> Iterator[dict]:
         # local workers end with the sweep (a LocalCluster's nannies run in this process:
         # they are not watched, they end with it)
         client.run(_warm_up, os.getpid() if cluster is not None else None)
-        futures = [client.submit(run_point, p, pure=False) for p in payloads]
+        futures = [client.submit(fn, p, pure=False) for p in payloads]
         for fut in as_completed(futures):
             yield fut.result()
     finally:

@@ -6,7 +6,7 @@ A study file (YAML)::
     base: ../seed.yaml            # path relative to the study file, or an inline case mapping
     set:                          # overrides applied to every point (key.path: value)
       run.end_time: 3 s
-    design: one_at_a_time         # grid (default) | zip | lhs | one_at_a_time
+    design: one_at_a_time         # grid (default) | zip | lhs | one_at_a_time | speed_curve
     parameters:                   # key path -> explicit list, or a range
       gears.module: [8, 10, 12]
       gears.face_width: {linspace: ["60 mm", "140 mm"], num: 5}
@@ -21,6 +21,10 @@ A study file (YAML)::
 Values with units are passed to the case as strings ("9.5 mm"); ranges keep the unit of their
 first end. ``mesh_frequency`` is not a case key: it sets the final value of the drive-speed ramp
 (``drive.speed``) so that the gear-mesh frequency f_z = z1 n1 takes the given value.
+
+``design: speed_curve`` takes the one parameter ``mesh_frequency`` (2 to 40 values) and runs the
+speeds up and then down, each speed starting from the previous one's state
+(gearcli/pipeline/speed_curve.py).
 
 Every point is resolved (overrides applied, validated) before anything runs, so an unknown key,
 an empty list or a wrong unit is one located error, and the case hash (sha256 of the resolved
@@ -58,6 +62,9 @@ MAX_POINTS_YES = 100_000
 CASE_SUFFIXES = (".yaml", ".yml", ".json")
 #: A virtual parameter: the gear-mesh frequency f_z [Hz], set through ``drive.speed``.
 MESH_FREQUENCY = "mesh_frequency"
+#: Most speeds per direction of a speed curve (its staircase is one time-function expression,
+#: at most 2000 characters: gearcli/pipeline/speed_curve.py).
+MAX_SPEEDS = 40
 _RAMP = re.compile(r"^\s*(STEP5?|RAMP)\s*\(\s*time\s*,([^,]+),([^,]+),([^,]+),([^,()]+)\)\s*$",
                    re.IGNORECASE)
 _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
@@ -98,7 +105,7 @@ class StudyFile(_Strict):
     description: str | None = None
     base: str | dict[str, Any]
     set: dict[str, Any] = Field(default_factory=dict)
-    design: Literal["grid", "zip", "lhs", "one_at_a_time"] = "grid"
+    design: Literal["grid", "zip", "lhs", "one_at_a_time", "speed_curve"] = "grid"
     samples: int | None = Field(None, ge=1)
     seed: int | None = None
     parameters: dict[str, list[Any] | Range] = Field(min_length=1)
@@ -217,7 +224,7 @@ def design_size(spec: StudyFile, params: list[Parameter]) -> int:
     """Number of points of the design, computed without building it."""
     if spec.design == "grid":
         return math.prod(len(p.values) for p in params)
-    if spec.design == "zip":
+    if spec.design in ("zip", "speed_curve"):
         return len(params[0].values)
     if spec.design == "one_at_a_time":
         return 1 + sum(len(p.values) for p in params)
@@ -364,6 +371,13 @@ def _check_design(src: Source, spec: StudyFile, params: list[Parameter]) -> None
     for key, r in ranges.items():
         if r.num is None and r.values is None:
             raise src.error(("parameters", key), f"a range in a {spec.design} needs 'num'")
+    if spec.design == "speed_curve":
+        if [p.key for p in params] != [MESH_FREQUENCY]:
+            raise src.error(("parameters",), "a speed_curve takes exactly one parameter, "
+                            f"{MESH_FREQUENCY} (the speeds to run up and down)")
+        if not 2 <= len(params[0].values) <= MAX_SPEEDS:
+            raise src.error(("parameters", MESH_FREQUENCY), f"got {len(params[0].values)} "
+                            f"speeds; a speed_curve takes 2 to {MAX_SPEEDS}")
     if spec.design == "zip":
         sizes = {p.key: len(p.values) for p in params}
         if len(set(sizes.values())) > 1:
@@ -377,7 +391,7 @@ def _design(spec: StudyFile, params: list[Parameter]) -> list[list[tuple[Paramet
     if spec.design == "grid":
         return [list(zip(params, idx, strict=True))
                 for idx in itertools.product(*(range(len(p.values)) for p in params))]
-    if spec.design == "zip":
+    if spec.design in ("zip", "speed_curve"):
         return [[(p, i) for p in params] for i in range(len(params[0].values))]
     if spec.design == "one_at_a_time":
         out: list = [[]]  # the base point
