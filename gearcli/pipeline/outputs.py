@@ -16,6 +16,8 @@ from gearcli.pipeline.simulate import SimulationResult
 #: Formats of the time series: CSV (10 significant digits, the default; any tool reads it)
 #: and Parquet (full float64 precision, compressed: for long runs and sweeps).
 TIMESERIES_FORMATS = ("csv", "parquet")
+#: The dense-output samples around the force maximum and at the end of the run.
+ZOOM_FILE = "zoom.csv"
 
 
 def summary_document(res: SimulationResult) -> dict:
@@ -76,6 +78,10 @@ def write_simulation_files(res: SimulationResult, folder: Path,
     """The time series, summary.json and manifest.json into an existing (temporary) folder."""
     case_json = json.loads(res.loaded.case.model_dump_json())
     write_timeseries(res, folder, fmt)
+    if res.zoom:  # the dense output for the figures' zooms (pipeline/simulate.dense_zoom)
+        from gearcli.io.tables import columns_to_csv
+
+        (folder / ZOOM_FILE).write_text(columns_to_csv(res.zoom))
     (folder / "summary.json").write_text(json.dumps(summary_document(res), indent=2) + "\n")
     doc = manifest(res.loaded.source, case_json, overrides)
     (folder / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")

@@ -42,6 +42,9 @@ class SimulationResult:
     #: "ok", or "invalid" when the run left the model's range (pipeline/validity.py)
     status: str = "ok"
     invalid_reason: str = ""
+    #: the solver's dense output on a fine grid around the force maximum and over the last
+    #: mesh cycles (:func:`dense_zoom`); empty when not made
+    zoom: dict = field(default_factory=dict)
 
     @property
     def name(self) -> str:
@@ -128,14 +131,16 @@ def announce_compilation(notice=stderr_notice) -> bool:
 
 
 def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None = None,
-                   status=None, progress=None, notice=stderr_notice) -> SimulationResult:
+                   status=None, progress=None, notice=stderr_notice,
+                   zoom: bool = True) -> SimulationResult:
     """Load the case, check its geometry, run the kernel; failed runs raise SolverError.
 
     ``status`` is an optional callable(str) told what is happening (compiling, integrating);
     ``progress`` an optional callable(t, t_start, t_end) [s] called as the integration
     advances (gearcli.core.integrate.simulate); ``notice`` an optional callable(str) told once,
     before anything is compiled, that this run compiles the solver (default: a line on
-    stderr).
+    stderr). ``zoom``: also evaluate the dense output for the figures' zooms (:func:`dense_zoom`,
+    one more solve of the same run).
     """
     from gearcli.core.integrate import simulate
 
@@ -180,7 +185,55 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     result.summary = summarize(result)
     result.warnings = collect_warnings(result)
     result.status, result.invalid_reason = validity_of(result)
+    if zoom and ki.gear_mesh_frequency_Hz:
+        with cyclic_gc_paused():
+            result.zoom = dense_zoom(result, params)
     return result
+
+
+#: Dense output samples per mesh period in the zoom table (issue 15: >= 100, so that no
+#: transient inside a mesh cycle is drawn as a one-sample line).
+ZOOM_POINTS_PER_PERIOD = 128
+#: Mesh periods on each side of the force maximum, and at the end of the run.
+ZOOM_PERIODS_AROUND_MAX = 2.0
+ZOOM_PERIODS_AT_END = 4.0
+#: Columns of the zoom table (besides the drive slots' forces).
+ZOOM_COLUMNS = ("t_s", "force_total_N", "force_coast_N", "pairs_in_contact", "delta_mm",
+                "omega1_rad_s", "omega2_rad_s", "load_torque_Nmm")
+
+
+def dense_zoom(res: SimulationResult, params) -> dict[str, np.ndarray]:
+    """The solver's dense output at ZOOM_POINTS_PER_PERIOD points per mesh period over
+    ±2 mesh periods around the force maximum and over the last 4 mesh periods of the run.
+
+    The run is integrated once more with the same parameters, tables, chunks and end time and
+    only these output times; the steps do not depend on the output times (output comes from
+    the continuous extension between steps, docs/theory.md §6.7), so this is the same
+    trajectory, sampled finer. Columns as in timeseries.csv (:data:`ZOOM_COLUMNS` and the drive
+    slot forces).
+    """
+    from gearcli.core.integrate import simulate
+
+    ki, k = res.kernel_input, res.kernel
+    period = 1.0 / ki.gear_mesh_frequency_Hz
+    t_end = res.loaded.case.run.end_time
+    t_max = k.extremum("force_total_max_t_s")
+    spans = [(t_end - ZOOM_PERIODS_AT_END * period, t_end)]
+    if math.isfinite(t_max):
+        spans.insert(0, (t_max - ZOOM_PERIODS_AROUND_MAX * period,
+                         t_max + ZOOM_PERIODS_AROUND_MAX * period))
+    times = np.unique(np.concatenate([
+        np.linspace(max(a, 0.0), min(b, t_end),
+                    int(round((min(b, t_end) - max(a, 0.0)) / period * ZOOM_POINTS_PER_PERIOD))
+                    + 1) for a, b in spans]))
+    kr = simulate(params, ki.tables.tables, t_out=times, drive_pp=ki.drive_pp, load_pp=ki.load_pp,
+                  drive_angle_pp=ki.drive_angle_pp, **ki.arrays)
+    if not kr.ok:
+        return {}
+    out = {name: kr.column(name) for name in ZOOM_COLUMNS}
+    for j in range(kr.slot_force.shape[1]):
+        out[f"force_slot{j}_N"] = kr.slot_force[:, j]
+    return out
 
 
 def validity_of(res: SimulationResult):

@@ -130,7 +130,7 @@ def run_direction(payload: dict) -> dict:
     stairs = Staircase(tuple(payload["f_z_Hz"]), payload["expression"],
                        tuple(map(tuple, payload["windows_s"])), payload["end_time_s"])
     try:
-        res = run_simulation(case_from_json(payload["case_json"], payload["name"]))
+        res = run_simulation(case_from_json(payload["case_json"], payload["name"]), zoom=False)
     except GearcliError as exc:
         return {"rows": [], "f_n_Hz": math.nan, "error": str(exc).splitlines()[0]}
     f_n = res.summary["mesh_natural_frequency_Hz"]

@@ -61,7 +61,7 @@ def run_point(payload: dict) -> dict:
             loaded = load_case(case_file)
         else:
             loaded = case_from_json(payload["case_json"], payload["name"])
-        res = run_simulation(loaded)
+        res = run_simulation(loaded, zoom=bool(keep))
         if res.status == "ok":
             row.update(point_metrics(res))
         # an invalid run's numbers are not results: its metric cells stay empty

@@ -61,6 +61,13 @@ def _title_zoom(ax: Axes, n_samples: int, zoom_s, f_z_Hz: float | None) -> None:
     _note_coarse(ax, n_samples, cycles)
 
 
+def _per_period(t, f_z_Hz: float | None) -> str:
+    """Samples per mesh period of an evenly sampled stretch ``t`` [s], as text."""
+    if not f_z_Hz or len(t) < 2:
+        return "?"
+    return f"{1.0 / (f_z_Hz * (t[1] - t[0])):.0f}"
+
+
 def _note_coarse(ax: Axes, n_samples: int, cycles: float) -> None:
     """Say so on the plot when the output is too coarse to show a mesh cycle."""
     if cycles > 0 and n_samples / cycles < 8:
@@ -104,9 +111,11 @@ def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_
 
 
 def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, window_s=None,
-               zoom_s=None, f_z_Hz: float | None = None) -> Figure:
+               zoom_s=None, f_z_Hz: float | None = None, zoom_data=None) -> Figure:
     """Normal mesh force [N] with the static force T_load/r_b2 (scalar or per sample) and the
-    true maximum from the solver steps, over the run and zoomed (``zoom_s``) around it."""
+    true maximum from the solver steps, over the run and zoomed (``zoom_s``) around it.
+    ``zoom_data`` = (t [s], force [N], static [N] or None): the solver's dense output for the
+    zoom (else the zoom shows the output samples)."""
     t, f = np.asarray(t_s, float), np.asarray(force_N, float)
     stat = np.broadcast_to(np.asarray(static_N, float), t.shape)
     fig, (ax, zx) = _figure(2)
@@ -122,10 +131,21 @@ def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, win
            ylim=(min(0.0, float(f.min(initial=0.0)) / 1e3), 1.3 * top or 1.0))
     ax.legend(loc="upper left", fontsize=8, ncol=2, framealpha=0.95)
     if zoom_s is not None:
-        z = _in(t, zoom_s)
-        ms = (t[z] - zoom_s[0]) * 1e3
-        zx.plot(ms, f[z] / 1e3, color=FORCE, lw=0.9, marker=".", ms=4, label="output samples")
-        zx.plot(ms, stat[z] / 1e3, color=STATIC, lw=1.2, ls="--", label="static force")
+        if zoom_data is not None:
+            zt, zf, zs = (np.asarray(a, float) if a is not None else None for a in zoom_data)
+            ms = (zt - zoom_s[0]) * 1e3
+            zx.plot(ms, zf / 1e3, color=FORCE, lw=1.0,
+                    label=f"solver dense output ({_per_period(zt, f_z_Hz)} points per mesh "
+                          "period)")
+            zs = zs if zs is not None else np.interp(zt, t, stat)
+            zx.plot(ms, zs / 1e3, color=STATIC, lw=1.2, ls="--", label="static force")
+            z = np.ones(zt.size, bool)
+        else:
+            z = _in(t, zoom_s)
+            ms = (t[z] - zoom_s[0]) * 1e3
+            zx.plot(ms, f[z] / 1e3, color=FORCE, lw=0.9, marker=".", ms=4,
+                    label="output samples")
+            zx.plot(ms, stat[z] / 1e3, color=STATIC, lw=1.2, ls="--", label="static force")
         if has_max and zoom_s[0] <= force_max_t_s <= zoom_s[1]:
             zx.plot((force_max_t_s - zoom_s[0]) * 1e3, force_max_N / 1e3, "*", color=PEAK,
                     ms=12, mec="white", mew=0.6, label="true maximum (solver steps)")
@@ -187,9 +207,11 @@ def plot_mesh_cycles(t_s, force_N, slot_forces: dict[str, np.ndarray], pairs, zo
     return fig
 
 
-def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = None) -> Figure:
+def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = None,
+             zoom_data=None) -> Figure:
     """Dynamic transmission error δ [µm] over the run (mean of the steady window marked) and
-    zoomed on a few mesh cycles ``zoom_s``."""
+    zoomed on a few mesh cycles ``zoom_s``; ``zoom_data`` = (t [s], δ [mm], unused): the
+    solver's dense output for the zoom (else the output samples)."""
     t, d = np.asarray(t_s, float), np.asarray(dte_mm, float) * 1e3
     fig, (ax, zx) = _figure(2)
     _shade_window(ax, window_s)
@@ -202,13 +224,21 @@ def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = Non
     ax.set(xlabel="time [s]", ylabel="DTE δ [µm]", xlim=(t[0], t[-1]))
     ax.legend(loc="lower right", fontsize=8)
     if zoom_s is not None:
-        z = _in(t, zoom_s)
-        ms = (t[z] - zoom_s[0]) * 1e3
-        zx.plot(ms, d[z], color=PINION, lw=1.0, marker=".", ms=3)
+        if zoom_data is not None:
+            zt, zd = np.asarray(zoom_data[0], float), np.asarray(zoom_data[1], float) * 1e3
+            zx.plot((zt - zoom_s[0]) * 1e3, zd, color=PINION, lw=1.0,
+                    label=f"solver dense output ({_per_period(zt, f_z_Hz)} points per mesh "
+                          "period)")
+            zx.legend(loc="upper left", fontsize=8)
+            n_zoom = zt.size
+        else:
+            z = _in(t, zoom_s)
+            zx.plot((t[z] - zoom_s[0]) * 1e3, d[z], color=PINION, lw=1.0, marker=".", ms=3)
+            n_zoom = int(z.sum())
         zx.axhline(mean, color=KIN, ls="--", lw=1.0)
         _zoom_axis(zx, zoom_s[0])
         zx.set_ylabel("DTE δ [µm]")
-        _title_zoom(zx, int(z.sum()), zoom_s, f_z_Hz)
+        _title_zoom(zx, n_zoom, zoom_s, f_z_Hz)
     else:
         zx.set_visible(False)
     fig.suptitle(f"DTE settles at a mean of {mean:.1f} µm (mesh deflection) and swings "

@@ -26,6 +26,9 @@ class ReportData:
     geometry: PairGeometry | None  #: None when the stored case's geometry cannot be rebuilt
     geometry_error: str = ""
     stress: dict | None = None  #: stress.json of gearcli stress, when it was run
+    #: zoom.csv: the solver's dense output around the force maximum and at the end of the run
+    #: (pipeline/simulate.dense_zoom); empty for folders written without it
+    zoom: dict = None  # type: ignore[assignment]
 
     @property
     def folder(self) -> Path:
@@ -103,7 +106,10 @@ def load_report_data(folder: str | Path) -> ReportData:
     stress = None
     if (run.folder / "stress.json").is_file():
         stress = read_json(run.folder / "stress.json", "run gearcli stress again")
-    return ReportData(run, analysis, spectrum, geometry, error, stress)
+    zoom = {}
+    if (run.folder / "zoom.csv").is_file():
+        zoom = read_columns(run.folder / "zoom.csv", "t_s")
+    return ReportData(run, analysis, spectrum, geometry, error, stress, zoom)
 
 
 #: Non-numeric entries of analysis.json's metrics, by kind; every other entry is a number or null.

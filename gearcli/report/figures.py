@@ -45,6 +45,13 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
     window = data.window_s
     start = _cycle_start(t, c["pairs_in_contact"], window, period)
     mesh_zoom = (start, start + ZOOM_CYCLES * period)
+    # the solver's dense output (>= 100 points per mesh period) for the zooms, where stored
+    zc = data.zoom or {}
+    zt = zc.get("t_s")
+    if zt is not None:
+        last = zt[-1]
+        mesh_zoom = (last - ZOOM_CYCLES * period, last)
+    dense = zc if zt is not None else c
     teeth = (int(data.case["gears"]["pinion"]["teeth"]), int(data.case["gears"]["gear"]["teeth"]))
     s, m = data.scalars, data.metrics
     f_max = m.get("force_max_N", s.get("force_max_N"))
@@ -53,7 +60,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
     force_zoom = None if t_max is None else (t_max - 1.5 * period, t_max + 1.5 * period)
     r_b2 = data.geometry.gear.r_b_mm if data.geometry else None
     static = c["load_torque_Nmm"] / r_b2 if r_b2 else m.get("force_static_N", s["force_static_N"])
-    slots = {f"slot {k[len('force_slot'):-2]}": v for k, v in c.items()
+    slots = {f"slot {k[len('force_slot'):-2]}": v for k, v in dense.items()
              if k.startswith("force_slot") and k.endswith("_N")}
     jobs = [
         ("speeds", "Pinion and gear speed over the run (shaded: the steady window analysed) and "
@@ -63,15 +70,16 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
         ("force", "Total normal mesh force with the static force T_load/r_b2; the marker is the "
          "true maximum taken from the solver's own steps (the output samples may miss it).",
          lambda: plots.plot_force(t, c["force_total_N"], static, f_max, t_max, window,
-                                  force_zoom, f_z)),
+                                  force_zoom, f_z, zoom_data=_zoom_of(zc, force_zoom, r_b2))),
         ("mesh_cycles", f"{ZOOM_CYCLES} mesh cycles in the steady window: the force carried in "
          "each pair slot (a slot is one base pitch of the line of action; a tooth pair moves "
          "through the slots as the gears turn), their sum, and the number of pairs in contact.",
-         lambda: plots.plot_mesh_cycles(t, c["force_total_N"], slots, c["pairs_in_contact"],
-                                        mesh_zoom, f_z)),
+         lambda: plots.plot_mesh_cycles(dense["t_s"], dense["force_total_N"], slots,
+                                        dense["pairs_in_contact"], mesh_zoom, f_z)),
         ("dte", "Dynamic transmission error δ = r_b1·θ1 − r_b2·θ2 (deflection of the mesh "
          f"along the line of action) over the run and over {ZOOM_CYCLES} mesh cycles.",
-         lambda: plots.plot_dte(t, c["delta_mm"], window, mesh_zoom, f_z)),
+         lambda: plots.plot_dte(t, c["delta_mm"], window, mesh_zoom, f_z,
+                                zoom_data=_zoom_of(zc, mesh_zoom, None, "delta_mm"))),
         ("spectra", "Hann-windowed amplitude spectra of the steady window (spectrum.csv): mesh "
          "harmonics k·f_z (dashed, measured amplitude circled) and shaft sidebands (dotted). "
          "Triangles on the top edge mark where harmonics above the Nyquist frequency f_s/2 "
@@ -85,6 +93,19 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                      "mesh cycle) and the relief along the path of contact.",
                      lambda: _modifications(data, period)))
     return [_save(name, caption, draw(), out_dir) for name, caption, draw in jobs]
+
+
+def _zoom_of(zoom: dict, span, r_b2, column: str = "force_total_N"):
+    """(t, values, static force or None) of the dense zoom table over ``span``, or None when
+    the table does not cover it (the plots then zoom into the output samples)."""
+    t = zoom.get("t_s")
+    if t is None or span is None or t.size == 0:
+        return None
+    inside = (t >= span[0] - 1e-12) & (t <= span[1] + 1e-12)
+    if inside.sum() < 2 or t[inside][0] > span[0] + 1e-9 or t[inside][-1] < span[1] - 1e-9:
+        return None
+    static = zoom["load_torque_Nmm"][inside] / r_b2 if r_b2 else None
+    return t[inside], zoom[column][inside], static
 
 
 def _save(name: str, caption: str, fig, out_dir: Path) -> FigureFile:

@@ -18,7 +18,8 @@ def test_simulate_writes_results(tmp_path):
     out = tmp_path / "run"
     result = runner.invoke(app, ["simulate", str(SEED), "-o", str(out), *SHORT, "--quiet"])
     assert result.exit_code == 0, result.output
-    assert {p.name for p in out.iterdir()} == {"timeseries.csv", "summary.json", "manifest.json"}
+    assert {p.name for p in out.iterdir()} == {"timeseries.csv", "summary.json", "manifest.json",
+                                               "zoom.csv"}
     header = (out / "timeseries.csv").read_text().splitlines()[0].split(",")
     for col in ("t_s", "theta1_rad", "omega1_rad_s", "theta2_rad", "omega2_rad_s", "delta_mm",
                 "force_total_N", "force_slot0_N", "pairs_in_contact", "friction_force_N",
@@ -85,7 +86,7 @@ def test_simulate_parquet_reads_back_like_csv(tmp_path):
         result = runner.invoke(app, ["simulate", str(SEED), "-o", str(out), *SHORT, "-q",
                                      "--format", fmt])
         assert result.exit_code == 0, result.output
-    assert {p.name for p in pq_run.iterdir()} == {"timeseries.parquet", "summary.json",
+    assert {p.name for p in pq_run.iterdir()} == {"timeseries.parquet", "summary.json", "zoom.csv",
                                                   "manifest.json"}
     from gearcli.io.results import read_run
 
