@@ -60,7 +60,9 @@ def atomic_dir(target: str | Path, force: bool):
     parent = p.parent if str(p.parent) else Path(".")
     try:
         parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.", suffix=".tmp", dir=parent))
+        remove_stale(parent, p.name)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.{os.getpid()}.", suffix=".tmp",
+                                    dir=parent))
         os.chmod(tmp, 0o777 & ~umask())
     except OSError as exc:
         raise OutputError(f"{p}: cannot create the results folder ({exc.strerror})") from None
@@ -71,6 +73,42 @@ def atomic_dir(target: str | Path, force: bool):
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
+
+
+def remove_stale(parent: Path, name: str) -> list[Path]:
+    """Remove the temporary folders ``.NAME.PID.*.tmp`` (and ``*.tmp.old``) that a killed
+    gearcli left beside ``parent/NAME`` (kill -9 cannot be cleaned up at the time): those whose
+    process ``PID`` is gone. Folders of a running process, or not named so, are left alone.
+    Returns the removed paths."""
+    removed = []
+    for q in parent.glob(f".{glob_escape(name)}.*.tmp*"):
+        rest = q.name[len(name) + 2:]
+        pid_text = rest.split(".", 1)[0]
+        if not (q.is_dir() and pid_text.isdigit() and (q.name.endswith(".tmp")
+                                                       or q.name.endswith(".tmp.old"))):
+            continue
+        if _alive(int(pid_text)):
+            continue
+        shutil.rmtree(q, ignore_errors=True)
+        removed.append(q)
+    return removed
+
+
+def glob_escape(text: str) -> str:
+    """``text`` with glob's special characters taken literally."""
+    import glob
+
+    return glob.escape(text)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True
 
 
 def _install(tmp: Path, p: Path) -> None:
