@@ -39,7 +39,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/run.py
 
 lint: $(STAMP)
-	$(BIN)/ruff check gearcli tests bench
+	$(BIN)/ruff check gearcli tests bench examples
 
 clean:
 	rm -rf $(VENV) out build *.egg-info .pytest_cache .ruff_cache

@@ -8,13 +8,22 @@ Layers (imports point downward only)::
 Internal units are declared once in :mod:`gearcli.units` (mm, N, s, tonne, rad).
 """
 
-import os as _os
-
-# gearcli's linear algebra works on matrices of at most 16 x 16 (modal analysis): BLAS worker
-# threads cannot help there, and on a 2-core machine their spin-waiting after each call took
-# CPU from the compiled solver running next (bench/RESULTS.md). Set before numpy is imported;
-# a value the user set wins.
-for _name in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS"):
-    _os.environ.setdefault(_name, "1")
-
 __version__ = "0.1.0"
+
+#: The public API (gearcli/api.py), imported on first use so that ``import gearcli`` stays
+#: light (no numpy, numba, pandas) and changes nothing in the calling process.
+_API = ("load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
+        "stress", "sweep", "Simulation", "Summary", "SCHEMA_VERSION")
+__all__ = ["__version__", *_API]
+
+
+def __getattr__(name: str):
+    if name in _API:
+        from gearcli import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'gearcli' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

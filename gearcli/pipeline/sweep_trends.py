@@ -164,14 +164,14 @@ def _slug(text: str) -> str:
 
 
 def _plots(out: Path, study: Study, df) -> list[Path]:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    # Figure objects, not pyplot: no backend is chosen for (or windows opened in) the caller's
+    # process, e.g. a notebook calling gearcli.sweep
+    from matplotlib.figure import Figure
 
     paths = []
     for p in study.parameters:
-        fig, axes = plt.subplots(2, 2, figsize=(10, 7), constrained_layout=True)
+        fig = Figure(figsize=(10, 7), layout="constrained")
+        axes = fig.subplots(2, 2)
         for ax, m in zip(axes.flat, TREND_METRICS, strict=True):
             x, y = parameter_levels(df, study, p.column, m)
             ax.plot(x, y, "o-", ms=3)
@@ -181,21 +181,21 @@ def _plots(out: Path, study: Study, df) -> list[Path]:
         fig.suptitle(f"{study.name}: effect of {p.column}")
         path = out / f"trend_{_slug(p.column)}.png"
         fig.savefig(path, dpi=100)
-        plt.close(fig)
         paths.append(path)
     speed = next((p for p in study.parameters if p.key == MESH_FREQUENCY), None)
     if speed is not None:
-        paths.append(_speed_plot(out, study, df, speed, plt))
+        paths.append(_speed_plot(out, study, df, speed, Figure))
     return paths
 
 
-def _speed_plot(out: Path, study: Study, df, speed, plt) -> Path:
+def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N803
     """Dynamic factor and DTE RMS against f_z, one curve per combination of the other
     parameters, with the mesh natural frequency f_n and f_n/2, f_n/3 marked."""
     ok = df[df["status"] == "ok"]
     others = [p.column for p in study.parameters if p is not speed]
     groups = ok.groupby(others, dropna=False) if others else [((), ok)]
-    fig, axes = plt.subplots(2, 1, figsize=(9, 7), sharex=True, constrained_layout=True)
+    fig = Figure(figsize=(9, 7), layout="constrained")
+    axes = fig.subplots(2, 1, sharex=True)
     f_ns = []
     for key, g in groups:
         g = g.sort_values(speed.column)
@@ -221,5 +221,4 @@ def _speed_plot(out: Path, study: Study, df, speed, plt) -> Path:
     fig.suptitle(f"{study.name}: speed sweep")
     path = out / "speed_sweep.png"
     fig.savefig(path, dpi=100)
-    plt.close(fig)
     return path

@@ -55,6 +55,15 @@ def test_layer_imports_point_down(layer):
                 assert target in ALLOWED[layer], f"{f.relative_to(PKG)} imports {mod}"
 
 
+def test_only_the_cli_and_the_package_import_the_public_api():
+    """gearcli/api.py sits above pipeline, like the CLI: no layer below may import it."""
+    for layer in LAYERS:
+        if layer == "cli":
+            continue
+        for f in _files(layer):
+            assert "gearcli.api" not in _imports(f), f"{f.relative_to(PKG)} imports gearcli.api"
+
+
 def test_core_imports_only_numpy_numba_math():
     for f in _files("core"):
         for mod in _imports(f):

@@ -1,0 +1,105 @@
+"""The Python API (gearcli/api.py, issue 17): light and side-effect-free import, the same
+numbers as the command line's files, the command line's error messages, the examples run."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+from typer.testing import CliRunner
+
+import gearcli
+from gearcli.cli import app
+from gearcli.errors import CaseError
+from tests.conftest import ROOT, SEED
+
+runner = CliRunner()
+SHORT = {"run.end_time": "0.6 s", "drive.speed": "STEP(time, 0, 0, 0.2, 3000)",
+         "load.torque": "STEP(time, 0, 0, 0.2, 4.5e5)"}
+SHORT_SET = [a for k, v in SHORT.items() for a in ("--set", f"{k}={v}")]
+
+
+def test_import_is_light_and_changes_nothing():
+    code = """
+import os, sys, warnings
+env = dict(os.environ); filters = list(warnings.filters)
+import gearcli
+assert dict(os.environ) == env, set(os.environ) ^ set(env)
+assert warnings.filters == filters
+heavy = [m for m in ("numpy", "pandas", "numba", "matplotlib", "scipy", "pydantic")
+         if m in sys.modules]
+assert not heavy, heavy
+assert callable(gearcli.simulate) and "simulate" in dir(gearcli)
+print("ok")
+"""
+    env = {k: v for k, v in __import__("os").environ.items()
+           if not k.endswith("_NUM_THREADS")}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, env=env, cwd=ROOT)
+    assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
+
+
+def test_simulate_returns_the_numbers_of_the_cli_files(tmp_path):
+    sim = gearcli.simulate(SEED, set=SHORT)
+    res = runner.invoke(app, ["simulate", str(SEED), "-o", str(tmp_path / "run"), "-q",
+                              *SHORT_SET])
+    assert res.exit_code == 0, res.output
+    scalars = json.loads((tmp_path / "run" / "summary.json").read_text())["scalars"]
+    s = sim.summary
+    for name in ("dynamic_factor", "force_max_N", "dte_peak_to_peak_mm", "force_static_N",
+                 "mesh_natural_frequency_Hz", "contact_loss_fraction"):
+        assert getattr(s, name) == pytest.approx(scalars[name], rel=1e-12), name
+    assert s.status == "ok" and sim.warnings == sim.result.warnings
+    df = sim.series
+    assert df.index.name == "t_s" and "force_total_N" in df.columns
+    assert df["force_total_N"].max() <= s.force_max_N * (1 + 1e-12)
+    assert s.to_dict()["dynamic_factor"] == s.dynamic_factor
+    assert sim.plot("force").axes and sim.plot("dte").axes
+    saved = sim.save(tmp_path / "api_run")
+    assert (saved / "timeseries.csv").is_file()
+    with pytest.raises(gearcli.errors.OutputError, match="--force"):
+        sim.save(tmp_path / "api_run")
+
+
+def test_analyze_a_simulation_equals_analyze_of_the_cli_folder(tmp_path):
+    sim = gearcli.simulate(SEED, set=SHORT)
+    from_api = gearcli.analyze(sim)
+    sim.save(tmp_path / "run")
+    from_folder = gearcli.analyze(tmp_path / "run")
+    assert from_api.metrics.keys() == from_folder.metrics.keys()
+    for key, value in from_folder.metrics.items():
+        if isinstance(value, float):
+            assert from_api.metrics[key] == pytest.approx(value, rel=1e-9, nan_ok=True), key
+    spectra = gearcli.spectra_frame(from_api)
+    assert spectra.index.name == "frequency_Hz" and len(spectra.columns) >= 2
+
+
+def test_load_case_from_a_mapping_with_overrides_and_the_cli_error_messages(tmp_path):
+    import yaml
+
+    data = yaml.safe_load(SEED.read_text())
+    case = gearcli.load_case(data, set={"gears.face_width": "80 mm"})
+    assert case.case.gears.face_width == pytest.approx(80.0)
+    with pytest.raises(CaseError) as api_err:
+        gearcli.load_case(SEED, set={"gears.modul": 9})
+    res = runner.invoke(app, ["simulate", str(SEED), "-o", str(tmp_path / "x"), "--set",
+                              "gears.modul=9"])
+    assert res.exit_code == 1
+    assert str(api_err.value).splitlines()[0] in res.output
+    geo = gearcli.geometry(case)
+    assert geo.geometry.pinion.teeth == 17
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("script", ["seed_study.py", "module_loop.py",
+                                    "spectra_postprocessing.py"])
+def test_examples_run(tmp_path, script):
+    args = [str(tmp_path / "out")] if script != "spectra_postprocessing.py" else []
+    if script == "module_loop.py":
+        args = [str(tmp_path / "loop.png")]
+    out = subprocess.run([sys.executable, str(ROOT / "examples" / script), *args],
+                         capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert "Traceback" not in out.stderr
