@@ -29,7 +29,8 @@ __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "mod
 
 #: Version of the result documents (summary.json, analysis.json, stress.json, modal and mesh
 #: JSON) and of :class:`Summary`: raised when a key is renamed or removed.
-SCHEMA_VERSION = 1
+from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION  # noqa: E402
+
 
 def _overrides(set_: Mapping[str, Any] | None) -> list[str]:
     """``{"key.path": value}`` as the command line's ``--set key.path=value`` texts (values
@@ -178,6 +179,41 @@ class Summary:
 
     def to_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)
+
+
+def results_schema() -> dict:
+    """JSON Schema (draft 2020-12) of summary.json: its top-level keys and ``scalars`` from
+    :class:`Summary` (the modes, energy balance and solver counters as open objects)."""
+    from pydantic import TypeAdapter
+
+    from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+
+    scalars = TypeAdapter(Summary).json_schema()
+    for name in ("status", "invalid_reason", "energy_relative_residual"):
+        scalars["properties"].pop(name, None)
+    for f in dataclasses.fields(Summary):
+        if f.name in scalars["properties"]:
+            scalars["properties"][f.name]["description"] = f.metadata.get("label", "")
+    scalars["properties"]["energy_balance"] = {"type": "object"}
+    scalars["properties"]["modes"] = {"type": "array", "items": {"type": "object"}}
+    scalars["additionalProperties"] = True
+    return {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "title": "gearcli summary.json",
+        "type": "object",
+        "required": ["schema_version", "case", "status", "rows", "scalars"],
+        "properties": {
+            "schema_version": {"const": RESULTS_SCHEMA_VERSION},
+            "case": {"type": "string"},
+            "status": {"enum": ["ok", "invalid"]},
+            "invalid_reason": {"type": "string"},
+            "solver": {"type": "object"},
+            "rows": {"type": "integer", "minimum": 1},
+            "slots": {"type": "integer"},
+            "warnings": {"type": "array", "items": {"type": "string"}},
+            "scalars": scalars,
+        },
+    }
 
 
 class Simulation:

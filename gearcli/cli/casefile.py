@@ -12,8 +12,19 @@ from gearcli.cli.common import handle_errors
 
 @app.command()
 @handle_errors
-def schema() -> None:
-    """Print the case file's JSON Schema (for editor completion and validation)."""
+def schema(
+    results: bool = typer.Option(False, "--results",
+                                 help="The JSON Schema of summary.json instead of the case's."),
+) -> None:
+    """Print the case file's JSON Schema (for editor completion and validation), or with
+    --results that of the results' summary.json."""
+    if results:
+        import json
+
+        from gearcli.api import results_schema
+
+        typer.echo(json.dumps(results_schema(), indent=2))
+        return
     from gearcli.case.schema_text import schema_text
 
     typer.echo(schema_text())

@@ -7,6 +7,11 @@ import platform
 import sys
 from importlib import metadata
 
+#: Version of gearcli's JSON result documents (summary.json, analysis.json, stress.json and the
+#: JSON of modal and mesh): every document carries it as "schema_version"; raised when a key
+#: is renamed or removed (added keys keep it).
+RESULTS_SCHEMA_VERSION = 1
+
 
 def versions() -> dict[str, str]:
     out = {"python": platform.python_version(), "platform": platform.platform()}

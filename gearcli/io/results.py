@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.errors import InvalidResultError, ResultsError
+from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -103,6 +104,10 @@ def check_summary(path: Path, summary: dict) -> None:
         return ResultsError(f"{path}: {key} missing or not {kind}; expected a summary written "
                             "by gearcli simulate (was it edited?)")
 
+    version = summary.get("schema_version", RESULTS_SCHEMA_VERSION)  # absent: before versions
+    if version != RESULTS_SCHEMA_VERSION:
+        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
+                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli simulate)")
     rows = summary.get("rows")
     if not isinstance(rows, int) or isinstance(rows, bool) or rows < 1:
         raise bad("rows", "a positive integer")

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from gearcli.io.files import write_atomic
+from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 from gearcli.io.tables import columns_to_csv
 from gearcli.pipeline.analyze import SIGNALS, Analysis
 
@@ -27,6 +28,7 @@ def _clean(value):
 
 def analysis_document(res: Analysis) -> dict:
     return _clean({
+        "schema_version": RESULTS_SCHEMA_VERSION,
         "case": res.run.summary.get("case"),
         "passed": res.passed,
         "window_s": [res.window.t0_s, res.window.t1_s],

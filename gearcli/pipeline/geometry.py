@@ -22,6 +22,11 @@ class GeometryResult:
     pinion_speed_rad_s: float | None
     warnings: tuple[Finding, ...]
 
+    def to_dict(self) -> dict:
+        """What ``gearcli geometry --json`` prints (:func:`geometry_dict`; key names carry
+        their units)."""
+        return geometry_dict(self)
+
 
 # Which case key an error finding is about, by code (and gear, where it names one).
 _FINDING_KEYS = {

@@ -93,7 +93,10 @@ def mesh_document(res: MeshAnalysis) -> dict:
     lm, g = res.loaded, res.geometry.geometry
     to_arcsec = ARCSEC_PER_RAD / g.pinion.r_b_mm  # δ along the LoA -> pinion angle
     harm = lm.ste_harmonics_mm(3)
+    from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+
     doc = {
+        "schema_version": RESULTS_SCHEMA_VERSION,
         "case": res.name,
         "contact_law": res.law,
         "force_N": lm.force_N,

@@ -178,8 +178,11 @@ def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
 
 def modal_document(res: ModalAnalysis) -> dict:
     """JSON-ready report; names carry units."""
+    from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+
     m, st = res.mesh, res.system.structure
     return {
+        "schema_version": RESULTS_SCHEMA_VERSION,
         "case": res.name,
         "model": res.loaded.case.model,
         "drive": res.system.drive,

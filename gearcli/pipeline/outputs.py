@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.errors import OutputError
-from gearcli.io.manifest import manifest
+from gearcli.io.manifest import RESULTS_SCHEMA_VERSION, manifest
 from gearcli.io.outdir import atomic_dir
 from gearcli.pipeline.simulate import SimulationResult
 
@@ -23,6 +23,7 @@ ZOOM_FILE = "zoom.csv"
 def summary_document(res: SimulationResult) -> dict:
     k = res.kernel
     return {
+        "schema_version": RESULTS_SCHEMA_VERSION,
         "case": res.name,
         "status": res.status,
         **({"invalid_reason": res.invalid_reason} if res.status != "ok" else {}),

@@ -305,7 +305,10 @@ def stress_document(res: StressResult) -> dict:
     sel = res.in_window
     loaded = res.force_N > 0.0
     st = res.static
-    doc = {"case": res.name, "window_s": list(res.window_s), "window_reason": res.window_reason,
+    from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+
+    doc = {"schema_version": RESULTS_SCHEMA_VERSION,
+           "case": res.name, "window_s": list(res.window_s), "window_reason": res.window_reason,
            "units": {"stress": "MPa", "force": "N", "length": "mm"},
            "static": _static_doc(st)}
     for which, sig_f in (("pinion", res.sigma_F_pinion), ("gear", res.sigma_F_gear)):

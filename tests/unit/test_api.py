@@ -103,3 +103,23 @@ def test_examples_run(tmp_path, script):
                          capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert out.returncode == 0, out.stderr[-2000:]
     assert "Traceback" not in out.stderr
+
+
+def test_documents_carry_the_schema_version_and_the_results_schema_validates_one(tmp_path):
+    res = runner.invoke(app, ["simulate", str(SEED), "-o", str(tmp_path / "run"), "-q",
+                              *SHORT_SET])
+    assert res.exit_code == 0, res.output
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["schema_version"] == gearcli.SCHEMA_VERSION == 1
+    res = runner.invoke(app, ["analyze", str(tmp_path / "run"), "--json"])
+    assert json.loads(res.output)["schema_version"] == 1
+    res = runner.invoke(app, ["schema", "--results"])
+    assert res.exit_code == 0
+    schema = json.loads(res.output)
+    from pydantic import TypeAdapter  # noqa: F401  (pydantic is a dependency; jsonschema is not)
+
+    # the schema's required keys and every scalar it names are in a real summary.json
+    assert set(schema["required"]) <= set(summary)
+    for key in schema["properties"]["scalars"]["properties"]:
+        assert key in summary["scalars"], key
+    assert gearcli.geometry(SEED).to_dict()["pinion"]["z"] == 17
