@@ -27,7 +27,9 @@ warm:
 demo: $(STAMP)
 	@mkdir -p $(dir $(OUT))
 	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg --force
-	$(BIN)/gearcli run $(CASE) -o $(OUT) --force
+	@$(BIN)/gearcli run $(CASE) -o $(OUT) --force; rc=$$?; \
+	if [ $$rc -eq 4 ]; then echo "(exit 4: a check failed or the run is outside the model's \
+	validity; the verdicts are in $(OUT)/report.html)"; elif [ $$rc -ne 0 ]; then exit $$rc; fi
 
 test: lint
 	$(BIN)/python -m pytest -n $(JOBS) -q

@@ -422,7 +422,12 @@ class Checks(Section):
     harmonics: Annotated[int, Strict()] = Field(5, ge=1, le=50, description="GMF harmonics (5)")
     speed_ratio_error_percent: Coefficient = Field(0.1, gt=0, description="limit (0.1 %)")
     resonance_margin_percent: Coefficient = Field(10.0, ge=0, description="limit (10 %)")
-    dynamic_factor_max: Coefficient | None = Field(None, gt=0, description="optional limit")
+    dynamic_factor_max: Coefficient = Field(
+        2.0, gt=0, description="limit of the dynamic factor max F / F_static (2.0: gearcli's "
+        "default, not a standard's; set your design's value)")
+    contact_loss_fraction_max: Coefficient = Field(
+        0.0, ge=0, le=1, description="limit of the share of the steady window without "
+        "drive-flank contact (0: any tooth separation fails)")
     dte_peak_to_peak_max: Length | None = qfield(units.LENGTH, None, "optional DTE limit", gt=0)
     energy_balance_tolerance: Coefficient = Field(0.01, gt=0, description="relative (0.01)")
 

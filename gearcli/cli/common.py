@@ -219,6 +219,7 @@ def print_checks_table(checks: list[dict]) -> None:
     for col in ("check", "value", "limit", "result", "note"):
         c.add_column(col)
     for ck in checks:
-        c.add_row(ck["name"], format_value(ck["value"]), ck["limit"],
-                  "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]", ck["note"])
+        verdict = ("[yellow]not checked[/yellow]" if not ck.get("checked", True)
+                   else "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]")
+        c.add_row(ck["name"], format_value(ck["value"]), ck["limit"], verdict, ck["note"])
     Console().print(c)

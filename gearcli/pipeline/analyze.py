@@ -41,6 +41,9 @@ class Check:
     limit: str
     passed: bool
     note: str = ""
+    #: False when the check could not apply (the note says why); it then passes, and the
+    #: tables print "not checked" instead of "pass"
+    checked: bool = True
 
 
 @dataclass
@@ -206,12 +209,16 @@ def resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
         note += (f"; mode(s) {', '.join(str(n) for n, _ in no_peak)} have no resonant peak "
                  "(damping ratio >= 0.707) and are not checked")
     peaked = [r for r in rows if r["resonant_peak"]]
-    ok = not peaked or peaked[0]["margin_percent"] >= ck.resonance_margin_percent
-    if peaked and not ok and near["mode"] is not None:
+    if not peaked:
+        return Check("resonance_margin_percent", None, limit, True,
+                     "not checked: no mode has a resonant peak (every damping ratio >= 0.707: "
+                     "overdamped); " + note, checked=False)
+    ok = peaked[0]["margin_percent"] >= ck.resonance_margin_percent
+    if not ok and near["mode"] is not None:
         p = peaked[0]
         note += (f"; violated by {p['harmonic']} x f_z vs mode {p['mode']} "
                  f"({p['margin_percent']:.1f} %)")
-    return Check("resonance_margin_percent", near["margin_percent"], limit, ok, note)
+    return Check("resonance_margin_percent", peaked[0]["margin_percent"], limit, ok, note)
 
 
 def _checks(res: Analysis, case, s) -> list[Check]:
@@ -229,6 +236,11 @@ def _checks(res: Analysis, case, s) -> list[Check]:
                           f"{alias_frequency(f_z, rate):.2f} Hz" if f_z >= rate / 2.0 else
                           f"sampling at {rate:g} Hz resolves only {int(rate / 2 // f_z)} of "
                           f"{ck.harmonics} harmonics")
+    if ok:
+        above = int(rate / 2 // f_z) + 1
+        note = (f"the {ck.harmonics} analysed harmonics are below fs/2; harmonics from "
+                f"{above} x f_z up fold into the spectra if the signals carry them (their alias "
+                "positions are marked in the spectra figure)")
     out.append(Check("no_aliasing", top, f"{ck.harmonics} x f_z < fs/2 = {rate / 2:g} Hz", ok,
                      note))
     gmf = dict(res.lines["gear_speed"])["1fz"]
@@ -240,9 +252,17 @@ def _checks(res: Analysis, case, s) -> list[Check]:
                      f"line at f_z = {f_z:.3f} Hz +- 1 bin, > {LINE_PROMINENCE:g} x floor",
                      bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"))
     out.append(resonance_check(m, s, f_z, ck))
-    if ck.dynamic_factor_max is not None and m["dynamic_factor"] is not None:
+    if m["dynamic_factor"] is not None:
         out.append(Check("dynamic_factor", m["dynamic_factor"], f"<= {ck.dynamic_factor_max:g}",
-                         m["dynamic_factor"] <= ck.dynamic_factor_max))
+                         m["dynamic_factor"] <= ck.dynamic_factor_max,
+                         "max normal force / static force over the window"))
+    else:
+        out.append(Check("dynamic_factor", None, f"<= {ck.dynamic_factor_max:g}", True,
+                         "not checked: no load (static force 0)", checked=False))
+    loss = m["contact_loss_fraction"]
+    out.append(Check("contact_loss_fraction", loss, f"<= {ck.contact_loss_fraction_max:g}",
+                     loss <= ck.contact_loss_fraction_max,
+                     "share of the window without drive-flank contact (tooth separation)"))
     if ck.dte_peak_to_peak_max is not None:
         out.append(Check("dte_peak_to_peak_mm", m["dte_peak_to_peak_mm"],
                          f"<= {ck.dte_peak_to_peak_max:g} mm",

@@ -56,9 +56,14 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
 
     checks = data.analysis.get("checks", [])
     failed = [c.get("name", "?") for c in checks if not c.get("passed")]
-    verdict = (Paragraph(f"Analysis passed: all {len(checks)} checks pass.", "pass") if not failed
-               else Paragraph(f"Analysis FAILED: {len(failed)} of {len(checks)} checks fail "
-                              f"({', '.join(map(str, failed))}).", "fail"))
+    skipped = [c.get("name", "?") for c in checks if c.get("checked", True) is False]
+    done = len(checks) - len(skipped)
+    not_checked = (f" Not checked: {', '.join(map(str, skipped))} (see the notes)."
+                   if skipped else "")
+    verdict = (Paragraph(f"Analysis passed: the {done} applicable checks pass.{not_checked}",
+                         "pass") if not failed
+               else Paragraph(f"Analysis FAILED: {len(failed)} of {done} checks fail "
+                              f"({', '.join(map(str, failed))}).{not_checked}", "fail"))
     m = data.metrics
     headline = [f"{label}: {tb.fmt(m[key] * scale)} {unit}".rstrip()
                 for key, label, unit, scale in (

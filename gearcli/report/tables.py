@@ -297,9 +297,11 @@ def checks_table(data: ReportData) -> Table:
     rows, status = [], []
     for c in data.analysis.get("checks", []):
         ok = bool(c.get("passed"))
+        checked = c.get("checked", True) is not False
+        result = "not checked" if not checked else "pass" if ok else "FAIL"
         rows.append((str(c.get("name", "")), fmt(c.get("value")), str(c.get("limit", "")),
-                     "pass" if ok else "FAIL", str(c.get("note") or "")))
-        status.append("pass" if ok else "fail")
+                     result, str(c.get("note") or "")))
+        status.append("fail" if not ok else "pass" if checked else "")
     return Table("Checks", ("check", "value", "limit", "result", "note"), rows, status=status)
 
 

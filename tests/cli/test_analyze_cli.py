@@ -27,15 +27,25 @@ def _analyze(folder, *args):
     return runner.invoke(app, ["analyze", str(folder), "--json", *args])
 
 
-def test_seed_passes_every_check(seed_dir):
+def test_seed_fails_its_dynamic_factor_and_contact_loss_and_says_what_was_not_checked(seed_dir):
+    """The seed's Adams contact (overdamped, entry spikes) gives a dynamic factor of 4.03 and
+    5.6 % contact loss: with the default limits (2.0, 0) analyze says so (exit 4); its only
+    mode is overdamped, so the resonance margin is "not checked", not "pass" (issue 19)."""
     result = _analyze(seed_dir)
-    assert result.exit_code == 0, result.output
+    assert result.exit_code == 4, result.output
     doc = json.loads(result.stdout)
     m = doc["metrics"]
     assert abs(m["speed_ratio_error_percent"]) < 0.01
     assert doc["lines"]["gear_speed"]["1fz"]["measured_Hz"] == pytest.approx(141.667, abs=0.25)
     checks = {c["name"]: c for c in doc["checks"]}
     assert checks["no_aliasing"]["passed"] and checks["gmf_line_present"]["passed"]
+    assert {n for n, c in checks.items() if not c["passed"]} == {"dynamic_factor",
+                                                                 "contact_loss_fraction"}
+    assert checks["dynamic_factor"]["value"] == pytest.approx(4.03, abs=0.01)
+    res = checks["resonance_margin_percent"]
+    assert res["checked"] is False and res["value"] is None
+    assert res["note"].startswith("not checked: no mode has a resonant peak")
+    assert not doc["passed"]
     for name in ("spectrum.csv", "harmonics.csv", "analysis.json"):
         assert (seed_dir / name).is_file()
 
@@ -63,7 +73,7 @@ def test_seed_1000_steps_aliases(tmp_path):
 
 def test_window_option(seed_dir):
     result = _analyze(seed_dir, "--window", "2", "4")
-    assert result.exit_code == 0
+    assert result.exit_code == 4  # the seed's dynamic factor and contact loss (above)
     assert json.loads(result.stdout)["window_s"] == [2.0, 4.0]
 
 

@@ -33,8 +33,13 @@ def test_all_elastic_modes_are_checked_nearest_first():
 def test_mode_without_peak_is_not_checked():
     modes = [mode(1, 437.8, 1.5), mode(2, 1000.0, 0.05)]  # 1000 Hz: 41 % above 5 f_z
     check = resonance_check({}, {"modes": modes}, F_Z, CHECKS)
-    assert check.passed and check.value == pytest.approx(abs(3 * F_Z - 437.8) / 437.8 * 100)
+    # the value is the margin to the nearest mode WITH a peak: 5 f_z = 708.3 Hz vs 1000 Hz
+    assert check.passed and check.checked
+    assert check.value == pytest.approx(abs(5 * F_Z - 1000.0) / 1000.0 * 100)
     assert "mode(s) 1 have no resonant peak" in check.note
+    only = resonance_check({}, {"modes": modes[:1]}, F_Z, CHECKS)
+    assert only.passed and not only.checked and only.value is None
+    assert only.note.startswith("not checked: no mode has a resonant peak")
 
 
 def test_older_folders_use_the_mesh_mode_keys():
@@ -44,11 +49,12 @@ def test_older_folders_use_the_mesh_mode_keys():
     assert check.value == pytest.approx(abs(2 * F_Z - 281.19) / 281.19 * 100)
     assert "vs mesh mode 281.2 Hz" in check.note
     assert "resonance_margins" not in metrics
-    metrics["mesh_damping_ratio"] = 1.89  # the seed's overdamped mesh: no peak, passes
-    assert resonance_check(metrics, {}, F_Z, CHECKS).passed
     # a summary whose "modes" list is empty (no modal result stored) falls back the same way
     assert resonance_check(metrics, {"modes": []}, F_Z, CHECKS).value == pytest.approx(
         abs(2 * F_Z - 281.19) / 281.19 * 100)
+    metrics["mesh_damping_ratio"] = 1.89  # the seed's overdamped mesh: no peak, not checked
+    check = resonance_check(metrics, {}, F_Z, CHECKS)
+    assert check.passed and not check.checked and check.value is None
 
 
 def test_summary_from_modal_result_feeds_the_check():
