@@ -32,11 +32,15 @@ def manifest(source, resolved_case: dict, overrides: list[str] | None) -> dict:
     """The manifest of a results folder. ``source`` is the case's
     :class:`gearcli.case.yamlsrc.Source`: its hash is that of the bytes that were parsed (the
     file is not read again: it may be a pipe, or have changed or gone since)."""
+    import datetime
+
     return {
         "gearcli_manifest": 1,
+        "created_utc": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
         "versions": versions(),
         "case_file": str(source.file),
         "case_sha256": source.sha256 or None,
+        "case_text": "\n".join(source.lines) + "\n" if source.lines else None,
         "overrides": list(overrides or []),
         "command_line": sys.argv,
         "resolved_case": resolved_case,

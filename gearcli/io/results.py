@@ -82,7 +82,7 @@ REQUIRED_SCALARS = {
     "mesh_damping_ratio": _NUMBER,
 }
 #: Keys of each entry of scalars.modes (optional list).
-MODE_KEYS = {"mode": _NUMBER, "natural_frequency_Hz": _OPTIONAL, "damping_ratio": _NUMBER}
+MODE_KEYS = {"mode": _NUMBER, "natural_frequency_Hz": _OPTIONAL, "damping_ratio": _OPTIONAL}
 
 
 def _is(value, kind: str) -> bool:

@@ -16,6 +16,14 @@ class Paragraph:
 
 
 @dataclass(frozen=True)
+class Preformatted:
+    """Text shown as written (the case file), with a caption."""
+
+    caption: str
+    text: str
+
+
+@dataclass(frozen=True)
 class Bullets:
     items: tuple[str, ...]
     kind: str = ""  #: "warn" for warnings
@@ -45,6 +53,18 @@ class Document:
     title: str
     description: str
     sections: list[Section]
+
+
+def _case_text(data: ReportData) -> list:
+    """The case file as the user wrote it (manifest.json's case_text; folders written before
+    it was recorded have none), with the command line's overrides."""
+    text = data.run.manifest.get("case_text")
+    if not isinstance(text, str) or not text.strip():
+        return []
+    overrides = data.run.manifest.get("overrides") or []
+    caption = (f"The case file as written ({data.run.manifest.get('case_file', '')})"
+               + (f", run with --set {'; '.join(map(str, overrides))}" if overrides else ""))
+    return [Preformatted(caption, text)]
 
 
 def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
@@ -88,7 +108,7 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
         Section("Summary", "summary", summary),
         Section("Case", "case", geometry_note + tables(
             tb.gears_table(data), tb.geometry_table(data), tb.contact_table(data),
-            tb.drive_table(data), tb.modifications_table(data))),
+            tb.drive_table(data), tb.modifications_table(data)) + _case_text(data)),
         Section("Results", "results", tables(tb.results_table(data), tb.lines_table(data),
                                              tb.modes_table(data))),
         Section("Checks", "checks", tables(tb.checks_table(data))),

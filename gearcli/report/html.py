@@ -12,6 +12,7 @@ from gearcli.report.document import (
     NumberedFigure,
     NumberedTable,
     Paragraph,
+    Preformatted,
     Section,
 )
 
@@ -87,6 +88,9 @@ def _section(section: Section) -> str:
             out.append(_table(block))
         elif isinstance(block, NumberedFigure):
             out.append(_figure(block))
+        elif isinstance(block, Preformatted):
+            out.append(f"<details><summary>{escape(block.caption)}</summary>"
+                       f"<pre>{escape(block.text)}</pre></details>")
     out.append("</section>")
     return "\n".join(out)
 

@@ -12,6 +12,7 @@ from gearcli.report.document import (
     NumberedFigure,
     NumberedTable,
     Paragraph,
+    Preformatted,
 )
 
 _SPECIAL = re.compile(r"([\\`*_\[\]<>|#])")
@@ -46,6 +47,10 @@ def _block(block, base: Path) -> list[str]:
         return [f"- {mark}{md_escape(item)}" for item in block.items]
     if isinstance(block, NumberedTable):
         return _table(block)
+    if isinstance(block, Preformatted):
+        fence = "`" * max(3, 1 + max((len(m) for m in re.findall(r"`+", block.text)), default=0))
+        return [f"*{md_escape(block.caption)}*", "", f"{fence}yaml", block.text.rstrip("\n"),
+                fence]
     if isinstance(block, NumberedFigure):
         f = block.figure
         rel = Path(os.path.relpath(f.png, base)).as_posix()

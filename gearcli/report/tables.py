@@ -171,8 +171,21 @@ def drive_table(data: ReportData) -> Table:
     ]
     for key in ("shaft", "motor_curve", "reference_speed"):
         if d.get(key) is not None:
-            rows.append((f"drive {key.replace('_', ' ')}", str(d[key])))
+            rows.append((f"drive {key.replace('_', ' ')}", _setting(d[key])))
     return Table("Drive, load and run", ("item", "setting"), rows)
+
+
+def _setting(value) -> str:
+    """A resolved case value for a table: a mapping as "name value unit" pairs, speeds in rad/s
+    also in rpm, numbers with 4 significant digits (never Python's repr)."""
+    if isinstance(value, dict):
+        return "; ".join(f"{k.replace('_', ' ')} {_setting(v)}" for k, v in value.items())
+    if isinstance(value, str) and unit_of(value) == "rad/s":
+        rad_s = number(value)
+        return f"{fmt(rad_s)} rad/s ({fmt(rad_s * 30.0 / math.pi)} rpm)"
+    if isinstance(value, str) and unit_of(value):
+        return qty(value)
+    return fmt(value)
 
 
 def modifications_table(data: ReportData) -> Table | None:
@@ -245,8 +258,13 @@ def results_table(data: ReportData) -> Table:
         rows.append((label, fmt(v), unit))
     known = {k for k, *_ in METRICS} | _NOT_SHOWN
     for key, v in m.items():
-        if key not in known and isinstance(v, int | float | list):
-            rows.append((key, fmt(v), "see name"))
+        if key in known or isinstance(v, bool):
+            continue
+        if isinstance(v, int | float) or (isinstance(v, list)
+                                           and all(isinstance(x, int | float) for x in v)):
+            label = _key_label(key)
+            unit = label[label.rfind("[") + 1:-1] if label.endswith("]") else ""
+            rows.append((label.rsplit(" [", 1)[0] if unit else label, fmt(v), unit))
     note = str(data.analysis.get("window_reason") or "")
     return Table("Results of the steady window", ("quantity", "value", "unit"), rows,
                  f"window: {note}" if note else "")
@@ -307,7 +325,9 @@ def checks_table(data: ReportData) -> Table:
 
 def _key_label(key: str) -> str:
     """'wall_time_s' -> 'wall time [s]'."""
-    for suffix, unit in (("_s", "s"), ("_Hz", "Hz"), ("_N", "N"), ("_mm", "mm")):
+    for suffix, unit in (("_rad_s", "rad/s"), ("_deg_s", "deg/s"), ("_N_mm", "N/mm"),
+                         ("_Nmm", "N·mm"), ("_percent", "%"), ("_mJ", "mJ"), ("_W", "W"),
+                         ("_s", "s"), ("_Hz", "Hz"), ("_N", "N"), ("_mm", "mm")):
         if key.endswith(suffix):
             return key[: -len(suffix)].replace("_", " ") + f" [{unit}]"
     return key.replace("_", " ")
@@ -316,7 +336,10 @@ def _key_label(key: str) -> str:
 def provenance_table(data: ReportData) -> Table:
     """Manifest: versions, case file and hash, command line, overrides."""
     man = data.run.manifest
-    rows = [("case file", str(man.get("case_file", "–"))),
+    version = (man.get("versions") or {}).get("gearcli", "–")
+    rows = [("results computed (UTC)", str(man.get("created_utc", "–"))),
+            ("by gearcli", str(version)),
+            ("case file", str(man.get("case_file", "–"))),
             ("case sha256", str(man.get("case_sha256", "–"))),
             ("command line", shlex.join(str(a) for a in man.get("command_line") or [])),
             ("overrides", "; ".join(str(o) for o in man.get("overrides") or []) or "none")]

@@ -1,0 +1,30 @@
+"""`gearcli run` on the drivetrain case (rigid-body mode, shafts, motor curve, bearings): the
+whole chain works and the report shows no raw Python (issue 19). A summary.json whose
+rigid-body mode has a null damping ratio was refused by read_run before (a regression)."""
+
+from __future__ import annotations
+
+import json
+
+from typer.testing import CliRunner
+
+from gearcli.cli import app
+from tests.conftest import ROOT
+
+runner = CliRunner()
+
+
+def test_run_drivetrain_report_is_readable(tmp_path):
+    out = tmp_path / "dt"
+    res = runner.invoke(app, ["run", str(ROOT / "cases" / "drivetrain.yaml"), "-o", str(out),
+                              "--format", "md", "-q", "--set", "run.end_time=0.6"])
+    assert res.exit_code in (0, 4), res.output
+    text = (out / "report.md").read_text()
+    for raw in ("{'", "[{", "see name", "True}", "None,", ": None"):
+        assert raw not in text, raw
+    assert "no load speed 104.7 rad/s (1000 rpm)" in text
+    assert "```yaml" in text and "reference_speed: 3000" in text  # the case as written
+    assert "results computed (UTC)" in text
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["scalars"]["modes"][0]["rigid_body"] is True
+    assert summary["scalars"]["modes"][0]["damping_ratio"] is None
