@@ -4,9 +4,12 @@ For each varied parameter and each trend metric, the (parameter, metric) pairs o
 that isolate that parameter are reduced to one value per parameter level (mean over the other
 parameters in a grid; the points varying it alone, plus the base point, in a one-at-a-time
 design; every point in zip/lhs designs). Reported: the tested range, the metric at its ends,
-the change over the range (least-squares slope x range, relative to the mean), the Spearman
-rank correlation and a direction: "increases" / "decreases" when |rho| >= 0.8, else
-"non-monotonic" (or "no effect" when the change is below 0.1 %).
+the change from the lowest to the highest level (relative to the metric at the lowest level,
+and as a ratio: a 7x rise is +600 %, x7.0), the Spearman rank correlation and a direction:
+"increases" / "decreases" when |rho| >= 0.8, else "non-monotonic" (or "no effect" when the
+metric moves by less than 0.1 % of its mean over the levels). The plots draw one line per
+combination of the other parameters of a grid (at most MAX_LINES; more are drawn as the main
+effect, labelled so), never an average across unrelated points as if it were a case.
 """
 
 from __future__ import annotations
@@ -22,7 +25,10 @@ from gearcli.pipeline.sweep_study import MESH_FREQUENCY, Study
 TREND_METRICS = ("force_max_N", "dynamic_factor", "dte_peak_to_peak_mm",
                  "gear_speed_gmf_amplitude_rad_s")
 TREND_COLUMNS = ("parameter", "metric", "points", "parameter_min", "parameter_max",
-                 "metric_at_min", "metric_at_max", "change_percent", "spearman_rho", "direction")
+                 "metric_at_min", "metric_at_max", "change_percent", "ratio", "spearman_rho",
+                 "direction")
+#: Most lines (combinations of the other parameters) in one trend plot.
+MAX_LINES = 8
 #: Further metrics of the speed plot.
 PLOT_METRICS = ("dte_rms_mm", "mesh_natural_frequency_Hz")
 #: |Spearman rho| needed to call a trend monotonic.
@@ -84,11 +90,12 @@ def trend_rows(df, study: Study) -> list[dict]:
             x, y = parameter_levels(df, study, p.column, m)
             row = {"parameter": p.column, "metric": m, "points": int(x.size)}
             if x.size >= 2 and np.ptp(x) > 0:
-                slope = np.polyfit(x, y, 1)[0]
-                mean = float(np.mean(np.abs(y))) or 1.0
-                change = 100.0 * slope * np.ptp(x) / mean
+                first, last = float(y[0]), float(y[-1])
+                change = 100.0 * (last - first) / abs(first) if first != 0.0 else math.nan
+                ratio = last / first if first != 0.0 else math.nan
+                spread = 100.0 * np.ptp(y) / (float(np.mean(np.abs(y))) or 1.0)
                 rho = float(spearmanr(x, y).statistic) if np.ptp(y) > 0 else 0.0
-                if abs(change) < NO_EFFECT_PERCENT or not math.isfinite(rho):
+                if spread < NO_EFFECT_PERCENT or not math.isfinite(rho):
                     direction = "no effect"
                 elif abs(rho) >= MONOTONIC_RHO:
                     direction = "increases" if rho > 0 else "decreases"
@@ -96,7 +103,8 @@ def trend_rows(df, study: Study) -> list[dict]:
                     direction = "non-monotonic"
                 row.update(parameter_min=float(x[0]), parameter_max=float(x[-1]),
                            metric_at_min=float(y[0]), metric_at_max=float(y[-1]),
-                           change_percent=float(change), spearman_rho=rho, direction=direction)
+                           change_percent=float(change), ratio=float(ratio), spearman_rho=rho,
+                           direction=direction)
             else:
                 row.update(direction="not varied (fewer than 2 numeric levels)")
             rows.append(row)
@@ -131,7 +139,8 @@ def _markdown(study: Study, df, trends: list[dict]) -> str:
     n_ok = int((df["status"] == "ok").sum())
     lines = [f"# Trends: {study.name}", "",
              f"{len(df)} points ({study.design}), {n_ok} ok, {len(df) - n_ok} failed. "
-             "Effect = least-squares slope x tested range, relative to the mean metric; "
+             "Change = metric at the highest level against the lowest (grids: the main effect, "
+             "the mean over the other parameters; one-at-a-time: the others at their base); "
              f"direction from the Spearman rank correlation (|rho| >= {MONOTONIC_RHO}).", "",
              "| parameter | tested range | metric | at min | at max | change | direction |",
              "|---|---|---|---|---|---|---|"]
@@ -142,7 +151,7 @@ def _markdown(study: Study, df, trends: list[dict]) -> str:
             continue
         lines.append(f"| {t['parameter']} | {t['parameter_min']:.4g} … {t['parameter_max']:.4g}"
                      f" | {t['metric']} | {t['metric_at_min']:.4g} | {t['metric_at_max']:.4g} "
-                     f"| {t['change_percent']:+.1f} % | {t['direction']} "
+                     f"| {_change(t)} | {t['direction']} "
                      f"(rho {t['spearman_rho']:+.2f}) |")
     failed = df[df["status"] != "ok"]
     if len(failed):
@@ -150,6 +159,12 @@ def _markdown(study: Study, df, trends: list[dict]) -> str:
         lines += [f"- point {int(r['point'])}: {r['error']}" for _, r in failed.iterrows()]
     lines += ["", "Plots: " + ", ".join(f"`{p}`" for p in _plot_names(study)), ""]
     return "\n".join(lines)
+
+
+def _change(t: dict) -> str:
+    if not math.isfinite(t.get("change_percent", math.nan)):
+        return "— (zero at the lowest level)"
+    return f"{t['change_percent']:+.1f} % (x{t['ratio']:.3g})"
 
 
 def _plot_names(study: Study) -> list[str]:
@@ -173,8 +188,11 @@ def _plots(out: Path, study: Study, df) -> list[Path]:
         fig = Figure(figsize=(10, 7), layout="constrained")
         axes = fig.subplots(2, 2)
         for ax, m in zip(axes.flat, TREND_METRICS, strict=True):
-            x, y = parameter_levels(df, study, p.column, m)
-            ax.plot(x, y, "o-", ms=3)
+            lines = _trend_lines(df, study, p, m)
+            for label, x, y in lines:
+                ax.plot(x, y, "o-", ms=3, label=label or None)
+            if any(label for label, _, _ in lines):
+                ax.legend(fontsize=7)
             ax.set_xlabel(p.column)
             ax.set_ylabel(m)
             ax.grid(alpha=0.3)
@@ -186,6 +204,29 @@ def _plots(out: Path, study: Study, df) -> list[Path]:
     if speed is not None:
         paths.append(_speed_plot(out, study, df, speed, Figure))
     return paths
+
+
+def _trend_lines(df, study: Study, p, metric: str):
+    """(label, x, y) lines of one trend panel: a grid's combinations of the other parameters
+    one line each (the metric at each level of ``p`` with the others fixed), or the main
+    effect when there are more than MAX_LINES; other designs: parameter_levels."""
+    others = [q.column for q in study.parameters if q is not p]
+    if study.design != "grid" or not others:
+        x, y = parameter_levels(df, study, p.column, metric)
+        return [("", x, y)]
+    ok = df[df["status"] == "ok"]
+    groups = list(ok.groupby(others, dropna=False))
+    if len(groups) > MAX_LINES:
+        x, y = parameter_levels(df, study, p.column, metric)
+        return [(f"main effect (mean over {len(groups)} combinations)", x, y)]
+    lines = []
+    for key, g in groups:
+        key = key if isinstance(key, tuple) else (key,)
+        g = g.sort_values(p.column)
+        label = ", ".join(f"{c} = {v:g}" if isinstance(v, int | float) else f"{c} = {v}"
+                          for c, v in zip(others, key, strict=True))
+        lines.append((label, g[p.column].to_numpy(float), g[metric].to_numpy(float)))
+    return lines
 
 
 def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N803

@@ -1,0 +1,57 @@
+"""Trend arithmetic of gearcli sweep (issue 19): the change from the lowest to the highest level
+with the right sign and ratio, directions from the rank correlation, and grid plots with one
+line per combination of the other parameters."""
+
+from __future__ import annotations
+
+import pandas as pd
+import pytest
+
+from gearcli.pipeline.sweep_study import load_study_text
+from gearcli.pipeline.sweep_trends import _trend_lines, trend_rows
+from tests.unit.sweep_helpers import FAST_SET
+
+COL = "gears.face_width [mm]"
+
+
+def _study(parameters: str, design: str = "grid"):
+    return load_study_text(FAST_SET + f"design: {design}\nparameters:\n{parameters}", "t.yaml")
+
+
+def _frame(study, values):
+    rows = []
+    for pt, v in zip(study.points, values, strict=True):
+        rows.append({"point": pt.index, **pt.values, "status": "ok", "dynamic_factor": v,
+                     "force_max_N": v, "dte_peak_to_peak_mm": v,
+                     "gear_speed_gmf_amplitude_rad_s": v})
+    return pd.DataFrame(rows)
+
+
+@pytest.mark.parametrize("values, change, ratio, direction", [
+    ([1.0, 1.2, 7.0], 600.0, 7.0, "increases"),      # a 7x rise is +600 %, not +17 %
+    ([2.0, 1.0, 3.0], 50.0, 1.5, "non-monotonic"),   # a rise overall, with a dip: positive
+    ([4.0, 3.0, 1.0], -75.0, 0.25, "decreases"),
+])
+def test_change_is_the_highest_level_against_the_lowest(values, change, ratio, direction):
+    study = _study("  gears.face_width: [\"60 mm\", \"80 mm\", \"100 mm\"]\n")
+    row = next(r for r in trend_rows(_frame(study, values), study)
+               if r["metric"] == "dynamic_factor")
+    assert row["change_percent"] == pytest.approx(change)
+    assert row["ratio"] == pytest.approx(ratio)
+    assert row["direction"] == direction
+    assert (row["metric_at_min"], row["metric_at_max"]) == (values[0], values[-1])
+
+
+def test_grid_plots_one_line_per_combination_of_the_others():
+    study = _study("  gears.face_width: [\"60 mm\", \"100 mm\"]\n"
+                   "  contact.max_damping: [\"1 N*s/mm\", \"5 N*s/mm\"]\n")
+    # a peak in neither case: the averaged curve would invent one
+    values = {(60.0, 1.0): 1.0, (60.0, 5.0): 3.0, (100.0, 1.0): 3.0, (100.0, 5.0): 1.0}
+    df = _frame(study, [values[(pt.values[COL], pt.values["contact.max_damping [N*s/mm]"])]
+                        for pt in study.points])
+    p = next(q for q in study.parameters if q.column == COL)
+    lines = _trend_lines(df, study, p, "dynamic_factor")
+    assert len(lines) == 2
+    by_label = {label: list(y) for label, _, y in lines}
+    assert by_label == {"contact.max_damping [N*s/mm] = 1": [1.0, 3.0],
+                        "contact.max_damping [N*s/mm] = 5": [3.0, 1.0]}
