@@ -64,12 +64,32 @@ def qfield(dim: Dim, default: float | None = ..., description: str = "", **kw) -
     The description gets the default unit and value appended, so `gearcli schema` documents it.
     """
     text = f"{description} [{dim.default}]"
+    extra = _user_unit_limits(dim, kw)
+    if extra:
+        text += " (" + ", ".join(f"{_SIGN[k]} {v:g}" for k, v in extra.items()) + ")"
     if default is None:
-        return Field(default=None, description=text + " (optional)", **kw)
+        return Field(default=None, description=text + " (optional)",
+                     json_schema_extra=extra or None, **kw)
     if default is ...:
-        return Field(description=text + " (required)", **kw)
+        return Field(description=text + " (required)", json_schema_extra=extra or None, **kw)
     text += f" (default {default:g} {dim.default})"
-    return Field(default=units.default_to_internal(default, dim), description=text, **kw)
+    # the schema shows the default as written in a case file (a number in the default unit),
+    # not the internal value (20 deg, not 0.349 rad)
+    return Field(default=units.default_to_internal(default, dim), description=text,
+                 json_schema_extra={**extra, "default": default}, **kw)
+
+
+#: JSON Schema keyword of each pydantic limit, and its sign for descriptions.
+_LIMIT_KEYWORDS = {"gt": "exclusiveMinimum", "ge": "minimum", "lt": "exclusiveMaximum",
+                   "le": "maximum"}
+_SIGN = {"exclusiveMinimum": ">", "minimum": ">=", "exclusiveMaximum": "<", "maximum": "<="}
+
+
+def _user_unit_limits(dim: Dim, kw: dict) -> dict:
+    """The field's pydantic limits (internal units) as JSON Schema keywords in the default
+    unit of the case file (they apply to plain numbers, which are in that unit)."""
+    scale = units.default_to_internal(1.0, dim)
+    return {_LIMIT_KEYWORDS[k]: kw[k] / scale for k in _LIMIT_KEYWORDS if k in kw}
 
 
 Length = quantity(units.LENGTH)

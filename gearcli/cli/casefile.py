@@ -15,9 +15,20 @@ from gearcli.cli.common import handle_errors
 def schema(
     results: bool = typer.Option(False, "--results",
                                  help="The JSON Schema of summary.json instead of the case's."),
+    study: bool = typer.Option(False, "--study",
+                               help="The JSON Schema of a study file (gearcli sweep)."),
 ) -> None:
     """Print the case file's JSON Schema (for editor completion and validation), or with
-    --results that of the results' summary.json."""
+    --results that of the results' summary.json, or with --study that of a study file.
+
+    Example: gearcli schema > case.schema.json"""
+    if study:
+        import json
+
+        from gearcli.pipeline.sweep_study import StudyFile
+
+        typer.echo(json.dumps(StudyFile.model_json_schema(), indent=2))
+        return
     if results:
         import json
 
