@@ -19,22 +19,29 @@ def analyze(
     ),
     as_json: bool = typer.Option(False, "--json", help="Print analysis.json to stdout."),
     strict: bool = typer.Option(False, "--strict", help="Warnings count as failed checks."),
+    force: bool = typer.Option(False, "--force", help="Replace an earlier analysis in DIR."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
 ) -> None:
-    """Check a run: speed ratio, mesh-frequency lines, aliasing, resonance margin, energy.
+    """Check a run: speed ratio, mesh-frequency lines, aliasing, resonance margin, dynamic
+    factor, contact loss, energy; writes analysis.json, spectrum.csv, harmonics.csv into DIR.
 
     Exit codes: 0 every check passed, 4 a check failed, 1 bad input.
+
+    Example: gearcli analyze out/seed --window 2 4 --force
     """
     import json
 
     from gearcli.errors import CheckFailed
-    from gearcli.pipeline.analysis_io import write_analysis
+    from gearcli.io.files import check_no_earlier
+    from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
     from gearcli.pipeline.analyze import analyze as run_analysis
 
+    check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
     result = run_analysis(folder, window, strict)
     doc = write_analysis(result)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
-    else:
+    elif not quiet:
         print_checks(doc)
     if not result.passed:
         failed = [c.name for c in result.checks if not c.passed]

@@ -18,13 +18,21 @@ def report(
     out: Path | None = typer.Option(
         None, "-o", "--out", help="Report file (default DIR/report.*)."
     ),
+    force: bool = typer.Option(False, "--force", help="Replace an earlier report."),
 ) -> None:
-    """Figures (PNG + SVG) and a report: case tables, geometry, results, checks, manifest."""
+    """Figures (PNG + SVG) and a report: case tables, geometry, results, checks, manifest.
+
+    Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError
+    from gearcli.io.files import check_new_file, check_no_earlier
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):
         raise OutputError(f"--format {fmt}: expected html or md")
+    target = out if out is not None else folder / f"report.{fmt}"
+    check_new_file(target, force, "-o" if out is not None else "the report")
+    if out is None:
+        check_no_earlier(folder, ("figures",), force, "report's figures")
     path = build_report(folder, fmt, out)
     typer.echo(f"report written to {path}")
 

@@ -27,7 +27,8 @@ def stress(
         False, "--safety", help="Require safety factors: error when the case lacks "
         "contact_fatigue_limit / bending_fatigue_limit."
     ),
-    force: bool = typer.Option(False, "--force", help="Replace an existing --plot file."),
+    force: bool = typer.Option(False, "--force",
+                               help="Replace an earlier stress.json/stress.csv and --plot file."),
 ) -> None:
     """Hertz contact stress and ISO 6336-3 root stress of every tooth pair from the simulated
     forces; writes DIR/stress.csv (histories) and DIR/stress.json (maxima, ISO static values,
@@ -39,8 +40,9 @@ def stress(
 
     if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
         raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
-    from gearcli.io.files import check_new_file
+    from gearcli.io.files import check_new_file, check_no_earlier
 
+    check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
     check_new_file(plot, force, "--plot")
     result = compute_stress(folder, window, require_limits=safety)
     doc = write_stress(result)

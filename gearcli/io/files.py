@@ -26,6 +26,15 @@ def write_new_text(path: str | Path, text: str) -> None:
         os.unlink(tmp)
 
 
+def check_no_earlier(folder: str | Path, names, force: bool, what: str) -> None:
+    """Refuse to rewrite the files ``names`` of ``folder`` (an earlier ``what``) without
+    ``force``: existing results are never replaced silently. Call before the work."""
+    earlier = [n for n in names if (Path(folder) / n).exists()]
+    if earlier and not force:
+        raise OutputError(f"{folder}: already holds {', '.join(earlier)} (an earlier {what}); "
+                          "use --force to replace them")
+
+
 def check_new_file(path: str | Path | None, force: bool, option: str) -> None:
     """Refuse to replace an existing file named by ``option`` (e.g. ``--plot``) without
     ``force``; refuse a folder or a path in a missing folder. Call before the work."""

@@ -26,6 +26,10 @@ def _clean(value):
     return value
 
 
+#: The files `gearcli analyze` writes into a results folder.
+ANALYSIS_FILES = ("analysis.json", "spectrum.csv", "harmonics.csv")
+
+
 def analysis_document(res: Analysis) -> dict:
     return _clean({
         "schema_version": RESULTS_SCHEMA_VERSION,

@@ -24,7 +24,8 @@ def seed_dir(tmp_path_factory):
 
 
 def _analyze(folder, *args):
-    return runner.invoke(app, ["analyze", str(folder), "--json", *args])
+    """analyze with --force: these tests rerun it on one shared folder on purpose."""
+    return runner.invoke(app, ["analyze", str(folder), "--json", "--force", *args])
 
 
 def test_seed_fails_its_dynamic_factor_and_contact_loss_and_says_what_was_not_checked(seed_dir):

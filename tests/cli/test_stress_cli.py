@@ -56,7 +56,8 @@ def relieved_dir(tmp_path_factory):
 
 
 def _stress(folder, *args):
-    return runner.invoke(app, ["stress", str(folder), *args])
+    """stress with --force: these tests rerun it on shared folders on purpose."""
+    return runner.invoke(app, ["stress", str(folder), "--force", *args])
 
 
 def _json(folder, *args):
@@ -203,7 +204,7 @@ def test_report_gains_a_stress_section(relieved_dir):
     assert _stress(relieved_dir, *WINDOW, "--safety").exit_code == 0
     assert runner.invoke(app, ["analyze", str(relieved_dir)]).exit_code \
         in (0, 4)
-    result = runner.invoke(app, ["report", str(relieved_dir), "--format", "md"])
+    result = runner.invoke(app, ["report", str(relieved_dir), "--format", "md", "--force"])
     assert result.exit_code == 0, result.output
     text = (relieved_dir / "report.md").read_text()
     assert "## Stress" in text and "contact σ\\_H" in text
