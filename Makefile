@@ -7,7 +7,7 @@ CASE   ?= cases/seed.yaml
 OUT    ?= out/seed
 JOBS   ?= auto
 
-.PHONY: install warm demo test test-fast bench lint clean
+.PHONY: install warm demo test test-fast bench lint clean browser
 
 install: $(STAMP)
 
@@ -31,8 +31,21 @@ demo: $(STAMP)
 	if [ $$rc -eq 4 ]; then echo "(exit 4: a check failed or the run is outside the model's \
 	validity; the verdicts are in $(OUT)/report.html)"; elif [ $$rc -ne 0 ]; then exit $$rc; fi
 
-test: lint
+test: lint browser
 	$(BIN)/python -m pytest -n $(JOBS) -q
+
+# Debian's chromium and chromium-driver for the report's browser test, installed where they are
+# missing and apt may be used (root); elsewhere that one test is skipped and says why.
+browser:
+	@if ! command -v chromium >/dev/null || ! command -v chromedriver >/dev/null; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing chromium and chromium-driver (apt) for the browser test"; \
+	    apt-get install -y -q chromium chromium-driver >/dev/null 2>&1 || \
+	    { apt-get update -q >/dev/null 2>&1 && \
+	      apt-get install -y -q chromium chromium-driver >/dev/null 2>&1; } || \
+	    echo "could not install chromium: the browser test will be skipped"; \
+	  else echo "no chromium: the browser test will be skipped"; fi; \
+	fi
 
 test-fast: $(STAMP)
 	$(BIN)/python -m pytest -n $(JOBS) -q -m "not slow"
