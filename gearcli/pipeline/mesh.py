@@ -88,6 +88,25 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))
 
 
+def _iso_resonance(res: MeshAnalysis) -> dict:
+    """ISO 6336-1 Method B resonance speed n_E1 and the case's resonance ratio N = n1/n_E1
+    with its K_v (B_p = B_f = 0, B_k = 1; gearcli/model/iso_kv.py)."""
+    from gearcli.model.iso_kv import dynamic_factor
+    from gearcli.pipeline.mesh_input import iso_dynamic
+
+    iso = iso_dynamic(res.source.case, res.geometry)
+    speed = res.geometry.pinion_speed_rad_s
+    if speed:
+        n1 = abs(speed) * 30.0 / math.pi
+        ratio = n1 / iso["resonance_speed_rpm"]
+        kv = dynamic_factor(ratio, eps_gamma=iso["eps_gamma"],
+                            c_prime_N_mm_um=iso["c_prime_N_mm_um"],
+                            line_load_N_mm=iso["line_load_N_mm"])
+        iso.update(pinion_speed_rpm=n1, resonance_ratio=ratio, k_v=float(kv.k_v),
+                   speed_range=str(kv.range_name))
+    return iso
+
+
 def mesh_document(res: MeshAnalysis) -> dict:
     """JSON document of a mesh analysis (internal units, names carry units)."""
     lm, g = res.loaded, res.geometry.geometry
@@ -115,6 +134,7 @@ def mesh_document(res: MeshAnalysis) -> dict:
             "iso6336_single_pair_c_prime_b_N_mm": res.iso.pair_stiffness_N_mm,
             "iso6336_mean_c_gamma_alpha_b_N_mm": res.iso.mesh_stiffness_N_mm,
         },
+        "iso6336_method_b": _iso_resonance(res),
         "notes": list(res.notes),
     }
     if res.harris is not None:

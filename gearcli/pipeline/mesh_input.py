@@ -5,6 +5,7 @@ tooth law's pair stiffness k(x)) and the one linearisation (model.mesh) that `si
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -84,3 +85,27 @@ def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
                      ct.exponent, ct.max_damping, ct.penetration_depth, g.pinion.r_b_mm,
                      g.gear.r_b_mm, geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,
                      pinion_free=case.drive.type != "speed")
+
+
+def iso_dynamic(case: Case, geo: GeometryResult):
+    """ISO 6336-1 Method B resonance data of the case's pair (gearcli/model/iso_kv.py): the
+    reduced mass (solid gears, or the given bores), n_E1 [min⁻¹], the line load F_t/b [N/mm]
+    (K_A = 1) and c′ [N/(mm·µm)] at the case's load; K_v as a function of N via
+    :func:`gearcli.model.iso_kv.dynamic_factor` with B_k = 1 (no deviations or relief known
+    to Method B here). Returns a dict (internal units where not stated)."""
+    from gearcli.model.iso_kv import reduced_mass_kg_mm, resonance_speed_rpm
+
+    g, gears = geo.geometry, case.gears
+    iso = iso_stiffness(case, geo)
+    d_m1 = 0.5 * (g.pinion.d_a_mm + g.pinion.d_f_mm)
+    d_m2 = 0.5 * (g.gear.d_a_mm + g.gear.d_f_mm)
+    rho = case.material.density * 1e3  # t/mm³ -> kg/mm³
+    q1 = (gears.pinion.bore_diameter or 0.0) / d_m1
+    q2 = (gears.gear.bore_diameter or 0.0) / d_m2
+    m_red = reduced_mass_kg_mm(d_m1, g.pinion.d_b_mm, rho, rho, g.ratio, q1, q2)
+    width = min(g.pinion.face_width_mm, g.gear.face_width_mm)
+    line_load = static_force_N(case, geo) * math.cos(g.pressure_angle_rad) / width
+    return {"reduced_mass_kg_mm": m_red, "c_prime_N_mm_um": iso.c_prime,
+            "c_gamma_alpha_N_mm_um": iso.c_gamma_alpha, "line_load_N_mm": line_load,
+            "eps_gamma": g.eps_alpha,
+            "resonance_speed_rpm": resonance_speed_rpm(g.pinion.teeth, iso.c_gamma_alpha, m_red)}

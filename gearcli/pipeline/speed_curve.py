@@ -40,7 +40,8 @@ MIN_START_S = 0.05
 
 DIRECTIONS = ("up", "down")
 COLUMNS = ("point", "direction", "mesh_frequency [Hz]", "pinion_speed [rpm]",
-           "resonance_ratio", "dynamic_factor", "force_max_N", "dte_peak_to_peak_mm",
+           "resonance_ratio", "iso_resonance_ratio", "dynamic_factor", "force_max_N",
+           "dte_peak_to_peak_mm",
            "contact_loss_fraction", "status", "error")
 
 
@@ -184,17 +185,39 @@ class SpeedCurve:
     errors: list[str]  #: a direction whose simulation failed: its one-line error
     study_file: str = ""
     base_case_json: str = "{}"
+    iso: dict | None = None  #: ISO 6336-1 Method B data of the base case (mesh_input.iso_dynamic)
+    pinion_teeth: int = 0
 
 
 def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None) -> SpeedCurve:
     """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow)."""
-    from gearcli.pipeline.sweep_run import execute
+    from gearcli.pipeline.geometry import run_geometry
+    from gearcli.pipeline.mesh_input import iso_dynamic
+    from gearcli.pipeline.sweep_run import case_from_json, execute
 
     results = list(execute(run_direction, plan(study), jobs, scheduler))
     rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r["point"])
     f_n = next((res["f_n_Hz"] for res in results if not res["error"]), math.nan)
+    base = case_from_json(study.base_case_json, study.name)
+    iso = iso_dynamic(base.case, run_geometry(base))
+    for r in rows:
+        r["iso_resonance_ratio"] = r["pinion_speed [rpm]"] / iso["resonance_speed_rpm"]
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
-                      str(study.file), study.base_case_json)
+                      str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth)
+
+
+def iso_curve(curve: SpeedCurve, points: int = 400):
+    """(N = f_z/f_n [-], K_v [-], ISO ranges) of ISO 6336-1 Method B over the curve's speeds,
+    on the figure's axis (the ISO resonance ratio n1/n_E1 mapped through f_z)."""
+    from gearcli.model.iso_kv import dynamic_factor
+
+    iso = curve.iso
+    f_z = np.linspace(min(r["mesh_frequency [Hz]"] for r in curve.rows),
+                      max(r["mesh_frequency [Hz]"] for r in curve.rows), points)
+    n_iso = f_z / curve.pinion_teeth * 60.0 / iso["resonance_speed_rpm"]
+    kv = dynamic_factor(n_iso, eps_gamma=iso["eps_gamma"], c_prime_N_mm_um=iso["c_prime_N_mm_um"],
+                        line_load_N_mm=iso["line_load_N_mm"])
+    return f_z / curve.f_n_Hz, kv.k_v, n_iso
 
 
 def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
@@ -218,11 +241,12 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
-               "errors": curve.errors}
+               "iso6336_method_b": curve.iso, "errors": curve.errors}
         (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,
                       "resolved_case": json.loads(curve.base_case_json)}
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
-        fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name)
+        fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name,
+                               iso=iso_curve(curve) if curve.iso else None)
         fig.savefig(tmp / "speed_curve.png", dpi=110)

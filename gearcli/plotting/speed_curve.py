@@ -13,11 +13,12 @@ __all__ = ["plot_speed_curve"]
 _STYLE = {"up": ("#1565c0", "^", "run-up"), "down": ("#c62828", "v", "run-down")}
 
 
-def plot_speed_curve(rows: list[dict], f_n_Hz: float, title: str = "") -> Figure:
+def plot_speed_curve(rows: list[dict], f_n_Hz: float, title: str = "", iso=None) -> Figure:
     """Dynamic factor [-] against N = f_z / f_n [-] (f_n the case's mesh mode) for the run-up
     and the run-down of gearcli/pipeline/speed_curve.py; points outside the model's validity
     are marked with a grey cross at the top of the axes, not plotted as values; dotted lines
-    at f_n/2, f_n and 2 f_n."""
+    at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO) arrays: ISO 6336-1 Method B's K_v on the
+    same axis (its own resonance ratio n1/n_E1 on a secondary axis)."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(8.0, 4.8))
@@ -32,6 +33,13 @@ def plot_speed_curve(rows: list[dict], f_n_Hz: float, title: str = "") -> Figure
         if bad:
             ax.plot([r["resonance_ratio"] for r in bad], [1.05 * top] * len(bad), "x",
                     color="0.5", label=f"{label}: outside the model's validity")
+    if iso is not None:
+        x_iso, k_v, n_iso = iso
+        ax.plot(x_iso, k_v, color="0.25", lw=1.6, ls="--",
+                label="ISO 6336-1 Method B K_v (B_p = B_f = 0, B_k = 1)")
+        ratio = x_iso[-1] / n_iso[-1] if n_iso[-1] else 1.0
+        top = ax.secondary_xaxis("top", functions=(lambda x: x / ratio, lambda x: x * ratio))
+        top.set_xlabel("ISO resonance ratio N = n1 / n_E1", fontsize=8)
     for n, text in ((0.5, "f_n/2"), (1.0, "f_n"), (2.0, "2 f_n")):
         ax.axvline(n, color="0.6", ls=":", lw=1)
         ax.text(n, 1.0, f" {text}", transform=ax.get_xaxis_transform(), va="top", ha="left",

@@ -1,0 +1,102 @@
+"""ISO 6336-1 Method B K_v (gearcli/model/iso_kv.py): coefficients, ranges, continuity, N_S,
+the reduced mass by the standard's formula against the polar moments of the same discs, and
+the resonance speed of the seed pair worked in docs/theory.md §10.4.
+
+No published worked example with K_v numbers was reachable offline (ISO/TR 6336-30 is not
+public); the coefficient table was cross-checked in three independent public implementations
+(module docstring). That gap is stated in the closing note of issue 15."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from gearcli.model.iso_kv import (
+    coefficients,
+    dynamic_factor,
+    main_resonance_start,
+    reduced_mass_kg_mm,
+    resonance_speed_rpm,
+)
+
+KW = {"eps_gamma": 1.6, "c_prime_N_mm_um": 14.0, "line_load_N_mm": 300.0,
+      "f_pb_eff_um": 8.0, "f_f_eff_um": 6.0, "tip_relief_um": 10.0}
+
+
+def test_coefficients_for_spur_and_high_contact_ratios():
+    assert coefficients(1.4) == (0.32, 0.34, 0.23, 0.90, 0.47, 0.47, 0.75)
+    c = coefficients(1.8)
+    assert c.cv7 == pytest.approx(0.125 * math.sin(math.pi * (1.8 - 2.0)) + 0.875)
+    c = coefficients(2.2)
+    assert (c.cv2, c.cv3, c.cv4, c.cv6) == pytest.approx(
+        (0.57 / 1.9, 0.096 / 0.64, (0.57 - 0.11) / 0.76, 0.12 / 0.46))
+    assert coefficients(3.0).cv7 == 1.0
+    with pytest.raises(ValueError):
+        coefficients(1.0)
+
+
+def test_ranges_values_and_continuity():
+    b_p, b_f, b_k = 14 * 8 / 300, 14 * 6 / 300, abs(1 - 14 * 10 / 300)
+    n = np.array([0.0, 0.5, 1.0, 1.15, 1.3, 1.5, 2.0])
+    kv = dynamic_factor(n, **KW)
+    assert kv.n_s == 0.85  # line load >= 100 N/mm
+    assert list(kv.range_name) == ["sub-critical", "sub-critical", "main resonance",
+                                   "main resonance", "intermediate", "super-critical",
+                                   "super-critical"]
+    assert kv.k_v[0] == pytest.approx(1.0)  # K_v -> 1 as N -> 0
+    assert kv.k_v[1] == pytest.approx(0.5 * (0.32 * b_p + 0.34 * b_f + 0.23 * b_k) + 1)
+    main = 0.32 * b_p + 0.34 * b_f + 0.90 * b_k + 1
+    sup = 0.47 * b_p + 0.47 * b_f + coefficients(1.6).cv7  # 0.756 for eps_gamma 1.6
+    assert kv.k_v[2] == pytest.approx(main) and kv.k_v[5] == pytest.approx(sup)
+    # the intermediate range joins the main resonance value at 1.15 and the super-critical
+    # value at 1.5 (linear interpolation, eq. 22)
+    edge = dynamic_factor(np.array([1.15 + 1e-9, 1.5 - 1e-9]), **KW).k_v
+    assert edge == pytest.approx([main, sup], rel=1e-6)
+    assert kv.k_v[4] == pytest.approx(sup + (main - sup) * (1.5 - 1.3) / 0.35)
+
+
+def test_main_resonance_start_on_both_sides_of_100_N_per_mm():
+    assert main_resonance_start(50.0) == pytest.approx(0.5 + 0.35 * math.sqrt(0.5))
+    assert main_resonance_start(99.999) == pytest.approx(0.85, abs=1e-5)
+    assert main_resonance_start(150.0) == 0.85
+    assert dynamic_factor(0.8, **{**KW, "line_load_N_mm": 50.0}).range_name == "main resonance"
+
+
+def test_reduced_mass_is_that_of_the_two_discs_on_the_line_of_action():
+    """Eq. 30 is m1* m2*/(m1* + m2*) with m* = J*/r_b², J* = π ρ d_m⁴/32 a solid disc of
+    diameter d_m per unit width and d_m2 = u d_m1, d_b2 = u d_b1: a second, independent form."""
+    d_m1, d_b1, rho, u = 106.0, 98.67, 7.85e-6, 43 / 21
+    m1 = math.pi * rho * d_m1**4 / 32 / (d_b1 / 2) ** 2
+    m2 = math.pi * rho * (u * d_m1) ** 4 / 32 / (u * d_b1 / 2) ** 2
+    assert reduced_mass_kg_mm(d_m1, d_b1, rho, rho, u) == pytest.approx(m1 * m2 / (m1 + m2))
+    # a bore removes the inner disc: (1 - q^4) of the polar moment
+    q = 0.4
+    m1b = m1 * (1 - q**4)
+    assert reduced_mass_kg_mm(d_m1, d_b1, rho, rho, u, q1=q) == pytest.approx(
+        m1b * m2 / (m1b + m2))
+
+
+def test_resonance_speed_of_the_seed_pair():
+    """docs/theory.md §10.4: c_γα = 12.89 N/(mm·µm), m_red = 0.0690 kg/mm, z1 = 17:
+    n_E1 = 30 000/(π 17) √(12.89/0.0690) = 7677 min⁻¹."""
+    assert resonance_speed_rpm(17, 12.89, 0.0690) == pytest.approx(7677, rel=5e-4)
+
+
+def test_gearcli_mesh_reports_the_resonance_speed_and_ratio():
+    import json
+
+    from typer.testing import CliRunner
+
+    from gearcli.cli import app
+    from tests.conftest import ROOT
+
+    res = CliRunner().invoke(app, ["mesh", str(ROOT / "cases" / "iso_pair.yaml"), "--json"])
+    assert res.exit_code == 0, res.output
+    iso = json.loads(res.output)["iso6336_method_b"]
+    assert iso["pinion_speed_rpm"] == pytest.approx(1500.0)
+    assert iso["resonance_ratio"] == pytest.approx(1500.0 / iso["resonance_speed_rpm"])
+    assert iso["resonance_speed_rpm"] == pytest.approx(resonance_speed_rpm(
+        21, iso["c_gamma_alpha_N_mm_um"], iso["reduced_mass_kg_mm"]))
+    assert iso["speed_range"] == "sub-critical" and iso["k_v"] > 1.0
