@@ -44,7 +44,9 @@ def schema(
 @app.command()
 @handle_errors
 def new(path: Path = typer.Argument(..., help="Where to write the starter case (.yaml).")) -> None:
-    """Write a commented starter case (the seed study); never overwrites a file."""
+    """Write a commented starter case (the seed study); never overwrites a file.
+
+    Example: gearcli new mycase.yaml"""
     from gearcli.case.starter import starter_text
     from gearcli.io.files import write_new_text
 

@@ -65,8 +65,12 @@ def geometry(
         None, "--plot", help="Draw the pair in mesh to FILE (.png, .svg or .pdf)."
     ),
     force: bool = typer.Option(False, "--force", help="Replace an existing --plot file."),
+    set_: list[str] = typer.Option(
+        [], "--set", help="Override a case value: key.path=value (repeatable)."),
 ) -> None:
-    """Involute geometry of the pair, checked (ISO 21771): per gear, per pair, warnings."""
+    """Involute geometry of the pair, checked (ISO 21771): per gear, per pair, warnings.
+
+    Example: gearcli geometry cases/seed.yaml --set gears.module=8 --json"""
     from gearcli.pipeline.geometry import geometry_dict, run_geometry
 
     if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
@@ -76,7 +80,9 @@ def geometry(
     from gearcli.io.files import check_new_file
 
     check_new_file(plot, force, "--plot")
-    result = run_geometry(case)
+    from gearcli.case.load import load_case
+
+    result = run_geometry(load_case(case, set_))
     data = geometry_dict(result)
     if plot is not None:
         from gearcli.pipeline.geometry import save_geometry_plot

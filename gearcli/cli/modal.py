@@ -29,6 +29,8 @@ def modal(
     resonance-margin check at the case speed.
 
     Exit codes: 0 ok, 4 the margin check failed, 1 bad input.
+
+    Example: gearcli modal cases/drivetrain.yaml --plot campbell.png
     """
     import json
 

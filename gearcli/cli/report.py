@@ -51,7 +51,10 @@ def run(
 
     All or nothing: the results, the analysis and the report are written into one temporary
     folder that replaces DIR only when all of them are complete (earlier results survive
-    until then)."""
+    until then).
+
+    Example: gearcli run cases/iso_pair.yaml -o out/iso --format md
+    """
     from gearcli.cli.analyze import print_checks
     from gearcli.errors import CheckFailed, InvalidResultError, OutputError
     from gearcli.io.outdir import atomic_dir, check_target

@@ -31,7 +31,10 @@ def simulate(
              "compressed: long runs; needs -o DIR)."),
 ) -> None:
     """Integrate the 2-DOF tooth-contact model; write timeseries.csv (or .parquet),
-    summary.json, manifest.json (atomically; never over earlier results without --force)."""
+    summary.json, manifest.json (atomically; never over earlier results without --force).
+
+    Example: gearcli simulate cases/seed.yaml -o out/seed --set run.end_time=2
+    """
     import json
 
     from gearcli.errors import OutputError

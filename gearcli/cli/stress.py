@@ -32,7 +32,9 @@ def stress(
 ) -> None:
     """Hertz contact stress and ISO 6336-3 root stress of every tooth pair from the simulated
     forces; writes DIR/stress.csv (histories) and DIR/stress.json (maxima, ISO static values,
-    ratios, safety factors). Stresses in MPa."""
+    ratios, safety factors). Stresses in MPa.
+
+    Example: gearcli stress out/seed --safety --plot out/seed/stress.png"""
     import json
 
     from gearcli.errors import OutputError

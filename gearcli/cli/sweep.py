@@ -56,7 +56,10 @@ def sweep(
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar, no summary line."),
 ) -> None:
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
-    failed points are recorded, never abort the study."""
+    failed points are recorded, never abort the study.
+
+    Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2
+    """
     from gearcli.errors import OutputError
     from gearcli.pipeline.sweep_run import run_study
     from gearcli.pipeline.sweep_study import load_study

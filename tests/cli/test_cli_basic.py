@@ -71,3 +71,13 @@ def test_new_into_missing_folder(tmp_path):
 def test_unknown_command_is_usage_error():
     result = runner.invoke(app, ["frobnicate"])
     assert result.exit_code == 2
+
+
+def test_every_command_has_an_example_in_its_help():
+    """Issue 19: an example in every command's help, and shell completion is offered."""
+    for command in ("geometry", "simulate", "analyze", "report", "run", "stress", "modal",
+                    "mesh", "sweep", "schema", "new"):
+        result = runner.invoke(app, [command, "--help"])
+        assert result.exit_code == 0
+        assert f"Example: gearcli {command}" in result.output, command
+    assert "--install-completion" in runner.invoke(app, ["--help"]).output
