@@ -21,6 +21,9 @@ def analyze(
     strict: bool = typer.Option(False, "--strict", help="Warnings count as failed checks."),
     force: bool = typer.Option(False, "--force", help="Replace an earlier analysis in DIR."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
+    orders: Path | None = typer.Option(
+        None, "--orders", help="Also draw the order map of the run (spectra of the mesh force "
+        "against pinion speed and time, mesh orders and modes) to FILE (.png, .svg, .pdf)."),
 ) -> None:
     """Check a run: speed ratio, mesh-frequency lines, aliasing, resonance margin, dynamic
     factor, contact loss, energy; writes analysis.json, spectrum.csv, harmonics.csv into DIR.
@@ -37,8 +40,18 @@ def analyze(
     from gearcli.pipeline.analyze import analyze as run_analysis
 
     check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
+    if orders is not None:
+        from gearcli.errors import OutputError
+        from gearcli.io.files import check_new_file
+
+        if orders.suffix.lower() not in (".png", ".svg", ".pdf"):
+            raise OutputError(f"--orders {orders}: expected a file name ending in .png, .svg "
+                              "or .pdf")
+        check_new_file(orders, force, "--orders")
     result = run_analysis(folder, window, strict)
     doc = write_analysis(result)
+    if orders is not None:
+        _save_order_map(result, orders)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
@@ -46,6 +59,23 @@ def analyze(
     if not result.passed:
         failed = [c.name for c in result.checks if not c.passed]
         raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
+
+
+def _save_order_map(result, path: Path) -> None:
+    import io
+
+    from gearcli.io.files import write_atomic
+    from gearcli.plotting.orders import plot_order_map
+
+    c, s = result.run.columns, result.run.summary["scalars"]
+    teeth = int(result.run.manifest["resolved_case"]["gears"]["pinion"]["teeth"])
+    modes = [m["natural_frequency_Hz"] for m in s.get("modes", [])
+             if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
+    fig = plot_order_map(c["t_s"], c["force_total_N"], c["omega1_rad_s"], teeth, modes,
+                         label="mesh force", unit="N")
+    buf = io.BytesIO()
+    fig.savefig(buf, format=path.suffix.lower().lstrip("."), dpi=110)
+    write_atomic(path, buf.getvalue())
 
 
 def print_checks(doc: dict) -> None:

@@ -11,6 +11,9 @@ import numpy as np
 from gearcli.io.files import write_atomic
 from gearcli.model.gap import Modifications, Relief, modification_gaps
 from gearcli.plotting import results as plots
+from gearcli.plotting.campbell import plot_campbell_summary
+from gearcli.plotting.geometry import plot_pair
+from gearcli.plotting.orders import plot_order_map
 from gearcli.report.data import ReportData, number
 
 #: Resolution of the PNG files (the HTML embeds them) [dots per inch].
@@ -87,6 +90,30 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
          "physical lines.",
          lambda: _spectra(data)),
     ]
+    if data.geometry is not None:
+        jobs.insert(0, ("geometry", "The pair in mesh at its operating centre distance, drawn "
+                        "from the generated tooth profiles (involute, trochoid fillet, tip), "
+                        "with the line of action and the path of contact.",
+                        lambda: plot_pair(data.geometry, title=f"{data.run.summary.get('case')}: "
+                                          "spur pair in mesh")))
+    modes = data.scalars.get("modes") or []
+    if any(not m.get("rigid_body") for m in modes):
+        jobs.append(("campbell", "Campbell diagram from the modes of the linearised model "
+                     "(summary.json): gear-mesh orders k·f_z against pinion speed, the modes "
+                     "(dashed: overdamped, no resonant peak), crossings with peaked modes "
+                     "circled and the case speed marked.",
+                     lambda: plot_campbell_summary(
+                         modes, teeth[0], abs(data.scalars.get("pinion_speed_mean_deg_s", 0.0))
+                         / 6.0, int(data.case.get("checks", {}).get("harmonics", 5)))))
+    omega1 = c["omega1_rad_s"]
+    if abs(float(omega1.min())) < 0.9 * abs(float(omega1[-1])):  # a run-up: the order map
+        elastic_Hz = [m["natural_frequency_Hz"] for m in modes
+                      if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
+        jobs.append(("orders", "Order map of the run-up: short-time spectra of the mesh force "
+                     "against pinion speed (left) and time (right), with the mesh orders "
+                     "k·z1·n/60 (white) and the modes (dashed); dB re the largest amplitude.",
+                     lambda: plot_order_map(t, c["force_total_N"], omega1, teeth[0], elastic_Hz,
+                                            label="mesh force", unit="N")))
     if data.has_errors_or_relief():
         jobs.append(("modifications", "What the case's manufacturing errors and profile "
                      "modifications change: the once-per-revolution DTE they add (mean over each "

@@ -105,7 +105,9 @@ def test_html_is_written_next_to_the_results_and_figures_as_png_and_svg(short_di
     pngs = sorted((short_dir / "figures").glob("*.png"))
     svgs = sorted((short_dir / "figures").glob("*.svg"))
     assert [p.stem for p in pngs] == [p.stem for p in svgs]
-    assert {p.stem for p in pngs} == {"speeds", "force", "mesh_cycles", "dte", "spectra"}
+    # the short seed run has a run-up (order map) and an overdamped mesh mode (Campbell)
+    assert {p.stem for p in pngs} == {"geometry", "speeds", "force", "mesh_cycles", "dte",
+                                      "spectra", "campbell", "orders"}
     for p in pngs:
         assert p.read_bytes().startswith(PNG_SIGNATURE)
     for p in svgs:
@@ -235,7 +237,8 @@ def test_errors_and_relief_add_a_figure(tmp_path):
         "modifications.tip_relief.pinion={amount: 0.05, length: 6}"])
     text = build_report(folder).read_text()
     assert (folder / "figures" / "modifications.png").is_file()
-    assert text.count("data:image/png;base64") == 6
+    # geometry, speeds, force, mesh cycles, DTE, spectra, Campbell, order map, modifications
+    assert text.count("data:image/png;base64") == 9
     rows, _ = _table(_parse(text), "Profile modifications and errors")
     assert {r[0] for r in rows[1:]} == {"pinion tip relief", "gear runout"}
 
