@@ -110,6 +110,11 @@ def geometry(case, set: Mapping[str, Any] | None = None):  # noqa: A002
     return run_geometry(load_case(case, set))
 
 
+def _field(label: str, default: Any = math.nan):
+    """A Summary field with its table label."""
+    return dataclasses.field(default=default, metadata={"label": label})
+
+
 @dataclasses.dataclass(frozen=True)
 class Summary:
     """The scalars of a run over its steady window (summary.json's ``scalars``), typed.
@@ -118,53 +123,33 @@ class Summary:
     dimensionless; ``metadata["label"]`` is the text the tables print.
     """
 
-    dynamic_factor: float | None = dataclasses.field(
-        default=None, metadata={"label": "dynamic factor max F / F_static"})
-    force_max_N: float = dataclasses.field(default=math.nan,
-                                           metadata={"label": "true maximum normal force"})
-    force_max_t_s: float = dataclasses.field(default=math.nan,
-                                             metadata={"label": "time of the maximum"})
-    force_min_N: float = dataclasses.field(default=math.nan, metadata={"label": "minimum force"})
-    force_mean_N: float = dataclasses.field(default=math.nan, metadata={"label": "mean force"})
-    force_rms_N: float = dataclasses.field(default=math.nan, metadata={"label": "RMS force"})
-    force_static_N: float = dataclasses.field(default=math.nan,
-                                              metadata={"label": "static force T_load / r_b2"})
-    dte_mean_mm: float = dataclasses.field(default=math.nan, metadata={"label": "DTE mean"})
-    dte_peak_to_peak_mm: float = dataclasses.field(default=math.nan,
-                                                   metadata={"label": "DTE peak-to-peak"})
-    dte_rms_mm: float = dataclasses.field(default=math.nan, metadata={"label": "DTE RMS"})
-    contact_loss_fraction: float = dataclasses.field(
-        default=math.nan, metadata={"label": "contact-loss fraction of the window"})
-    coast_force_max_N: float = dataclasses.field(default=math.nan,
-                                                 metadata={"label": "largest coast force"})
-    pairs_in_contact_mean: float = dataclasses.field(default=math.nan,
-                                                     metadata={"label": "mean pairs in contact"})
-    speed_ratio_mean: float = dataclasses.field(default=math.nan,
-                                                metadata={"label": "mean speed ratio"})
-    speed_ratio_theory: float = dataclasses.field(default=math.nan,
-                                                  metadata={"label": "speed ratio z2/z1"})
-    pinion_speed_mean_deg_s: float = dataclasses.field(default=math.nan,
-                                                       metadata={"label": "mean pinion speed"})
-    gear_speed_mean_deg_s: float = dataclasses.field(default=math.nan,
-                                                     metadata={"label": "mean gear speed"})
-    gear_mesh_frequency_Hz: float | None = dataclasses.field(
-        default=None, metadata={"label": "gear-mesh frequency f_z"})
-    mesh_natural_frequency_Hz: float = dataclasses.field(
-        default=math.nan, metadata={"label": "mesh natural frequency f_n"})
-    mesh_damping_ratio: float = dataclasses.field(default=math.nan,
-                                                  metadata={"label": "mesh damping ratio"})
-    mesh_stiffness_N_mm: float = dataclasses.field(
-        default=math.nan, metadata={"label": "mesh stiffness (linearised)"})
-    static_deflection_mm: float = dataclasses.field(default=math.nan,
-                                                    metadata={"label": "static deflection"})
-    output_rate_Hz: float = dataclasses.field(default=math.nan,
-                                              metadata={"label": "output sample rate"})
-    window_s: tuple[float, float] = dataclasses.field(
-        default=(math.nan, math.nan), metadata={"label": "steady window"})
-    energy_relative_residual: float = dataclasses.field(
-        default=math.nan, metadata={"label": "energy balance relative residual"})
-    status: str = dataclasses.field(default="ok", metadata={"label": "validity"})
-    invalid_reason: str = dataclasses.field(default="", metadata={"label": "why not valid"})
+    dynamic_factor: float | None = _field("dynamic factor max F / F_static", None)
+    force_max_N: float = _field("true maximum normal force")
+    force_max_t_s: float = _field("time of the maximum")
+    force_min_N: float = _field("minimum force")
+    force_mean_N: float = _field("mean force")
+    force_rms_N: float = _field("RMS force")
+    force_static_N: float = _field("static force T_load / r_b2")
+    dte_mean_mm: float = _field("DTE mean")
+    dte_peak_to_peak_mm: float = _field("DTE peak-to-peak")
+    dte_rms_mm: float = _field("DTE RMS")
+    contact_loss_fraction: float = _field("contact-loss fraction of the window")
+    coast_force_max_N: float = _field("largest coast force")
+    pairs_in_contact_mean: float = _field("mean pairs in contact")
+    speed_ratio_mean: float = _field("mean speed ratio")
+    speed_ratio_theory: float = _field("speed ratio z2/z1")
+    pinion_speed_mean_deg_s: float = _field("mean pinion speed")
+    gear_speed_mean_deg_s: float = _field("mean gear speed")
+    gear_mesh_frequency_Hz: float | None = _field("gear-mesh frequency f_z", None)
+    mesh_natural_frequency_Hz: float = _field("mesh natural frequency f_n")
+    mesh_damping_ratio: float = _field("mesh damping ratio")
+    mesh_stiffness_N_mm: float = _field("mesh stiffness (linearised)")
+    static_deflection_mm: float = _field("static deflection")
+    output_rate_Hz: float = _field("output sample rate")
+    window_s: tuple[float, float] = _field("steady window", (math.nan, math.nan))
+    energy_relative_residual: float = _field("energy balance relative residual")
+    status: str = _field("validity", "ok")
+    invalid_reason: str = _field("why not valid", "")
 
     @classmethod
     def from_scalars(cls, scalars: Mapping[str, Any], status: str = "ok",
