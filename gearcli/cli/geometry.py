@@ -67,6 +67,7 @@ def geometry(
     force: bool = typer.Option(False, "--force", help="Replace an existing --plot file."),
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors and warnings."),
 ) -> None:
     """Involute geometry of the pair, checked (ISO 21771): per gear, per pair, warnings.
 
@@ -92,7 +93,7 @@ def geometry(
         import json
 
         typer.echo(json.dumps(data, indent=2))
-    else:
+    elif not quiet:
         _print_tables(data)
         if plot is not None:
             typer.echo(f"drawing written to {plot}")

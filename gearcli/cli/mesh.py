@@ -26,6 +26,7 @@ def mesh(
                                "or --plot file."),
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
 ) -> None:
     """Loaded tooth contact of the pair without dynamics: at each roll position over two mesh
     cycles the static equilibrium with the case's load (all gaps: profile modifications,
@@ -58,6 +59,8 @@ def mesh(
         save_mesh_plot(res, plot)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
+        return
+    if quiet:
         return
     _print(doc)
     for path in (out, plot):

@@ -23,6 +23,7 @@ def modal(
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
     force: bool = typer.Option(False, "--force", help="Replace an existing --plot file."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
 ) -> None:
     """Modes of the linearised model that `simulate` integrates (case key `model`: torsional
     or lateral-torsional), crossings of the mesh harmonics and shaft orders, and the
@@ -45,7 +46,7 @@ def modal(
         save_campbell_plot(res, plot)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
-    else:
+    elif not quiet:
         _print(doc)
         if plot is not None:
             typer.echo(f"wrote {plot}")

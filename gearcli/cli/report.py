@@ -19,6 +19,7 @@ def report(
         None, "-o", "--out", help="Report file (default DIR/report.*)."
     ),
     force: bool = typer.Option(False, "--force", help="Replace an earlier report."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="Print nothing but errors."),
 ) -> None:
     """Figures (PNG + SVG) and a report: case tables, geometry, results, checks, manifest.
 
@@ -34,7 +35,8 @@ def report(
     if out is None:
         check_no_earlier(folder, ("figures",), force, "report's figures")
     path = build_report(folder, fmt, out)
-    typer.echo(f"report written to {path}")
+    if not quiet:
+        typer.echo(f"report written to {path}")
 
 
 @app.command()

@@ -29,6 +29,7 @@ def stress(
     ),
     force: bool = typer.Option(False, "--force",
                                help="Replace an earlier stress.json/stress.csv and --plot file."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
 ) -> None:
     """Hertz contact stress and ISO 6336-3 root stress of every tooth pair from the simulated
     forces; writes DIR/stress.csv (histories) and DIR/stress.json (maxima, ISO static values,
@@ -52,7 +53,7 @@ def stress(
         save_stress_plot(result, plot)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
-    else:
+    elif not quiet:
         print_tables(doc)
 
 

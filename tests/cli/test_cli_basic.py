@@ -81,3 +81,13 @@ def test_every_command_has_an_example_in_its_help():
         assert result.exit_code == 0
         assert f"Example: gearcli {command}" in result.output, command
     assert "--install-completion" in runner.invoke(app, ["--help"]).output
+
+
+def test_quiet_commands_print_nothing_on_success(tmp_path):
+    """Issue 19: --quiet wherever a command prints tables."""
+    for args in (["geometry", str(SEED), "-q"],
+                 ["modal", str(SEED), "-q"],
+                 ["mesh", str(SEED), "-q"]):
+        result = runner.invoke(app, args)
+        assert result.exit_code in (0, 4), (args, result.output)
+        assert result.stdout.strip() == "", (args, result.stdout)
