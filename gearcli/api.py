@@ -110,9 +110,14 @@ def geometry(case, set: Mapping[str, Any] | None = None):  # noqa: A002
     return run_geometry(load_case(case, set))
 
 
-def _field(label: str, default: Any = math.nan):
-    """A Summary field with its table label."""
-    return dataclasses.field(default=default, metadata={"label": label})
+def _field(key: str, default: Any = math.nan):
+    """A Summary field with the label and display unit of metric ``key`` (gearcli/io/metrics.py,
+    the one place the tables read them from)."""
+    from gearcli.io.metrics import METRICS
+
+    m = METRICS.get(key)
+    meta = {"label": m.label, "unit": m.unit, "scale": m.scale} if m else {"label": key}
+    return dataclasses.field(default=default, metadata=meta)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -120,36 +125,37 @@ class Summary:
     """The scalars of a run over its steady window (summary.json's ``scalars``), typed.
 
     Every field's unit is in its name (``_N``, ``_mm``, ``_Hz``, ``_s``, ``_deg_s``) or it is
-    dimensionless; ``metadata["label"]`` is the text the tables print.
+    dimensionless; ``metadata`` holds the label and display unit the tables print
+    (gearcli/io/metrics.py).
     """
 
-    dynamic_factor: float | None = _field("dynamic factor max F / F_static", None)
-    force_max_N: float = _field("true maximum normal force")
-    force_max_t_s: float = _field("time of the maximum")
-    force_min_N: float = _field("minimum force")
-    force_mean_N: float = _field("mean force")
-    force_rms_N: float = _field("RMS force")
-    force_static_N: float = _field("static force T_load / r_b2")
-    dte_mean_mm: float = _field("DTE mean")
-    dte_peak_to_peak_mm: float = _field("DTE peak-to-peak")
-    dte_rms_mm: float = _field("DTE RMS")
-    contact_loss_fraction: float = _field("contact-loss fraction of the window")
-    coast_force_max_N: float = _field("largest coast force")
-    pairs_in_contact_mean: float = _field("mean pairs in contact")
-    speed_ratio_mean: float = _field("mean speed ratio")
-    speed_ratio_theory: float = _field("speed ratio z2/z1")
-    pinion_speed_mean_deg_s: float = _field("mean pinion speed")
-    gear_speed_mean_deg_s: float = _field("mean gear speed")
-    gear_mesh_frequency_Hz: float | None = _field("gear-mesh frequency f_z", None)
-    mesh_natural_frequency_Hz: float = _field("mesh natural frequency f_n")
-    mesh_damping_ratio: float = _field("mesh damping ratio")
-    mesh_stiffness_N_mm: float = _field("mesh stiffness (linearised)")
-    static_deflection_mm: float = _field("static deflection")
-    output_rate_Hz: float = _field("output sample rate")
-    window_s: tuple[float, float] = _field("steady window", (math.nan, math.nan))
-    energy_relative_residual: float = _field("energy balance relative residual")
-    status: str = _field("validity", "ok")
-    invalid_reason: str = _field("why not valid", "")
+    dynamic_factor: float | None = _field("dynamic_factor", None)
+    force_max_N: float = _field("force_max_N")
+    force_max_t_s: float = _field("force_max_t_s")
+    force_min_N: float = _field("force_min_N")
+    force_mean_N: float = _field("force_mean_N")
+    force_rms_N: float = _field("force_rms_N")
+    force_static_N: float = _field("force_static_N")
+    dte_mean_mm: float = _field("dte_mean_mm")
+    dte_peak_to_peak_mm: float = _field("dte_peak_to_peak_mm")
+    dte_rms_mm: float = _field("dte_rms_mm")
+    contact_loss_fraction: float = _field("contact_loss_fraction")
+    coast_force_max_N: float = _field("coast_force_max_N")
+    pairs_in_contact_mean: float = _field("pairs_in_contact_mean")
+    speed_ratio_mean: float = _field("speed_ratio_mean")
+    speed_ratio_theory: float = _field("speed_ratio_theory")
+    pinion_speed_mean_deg_s: float = _field("pinion_speed_mean_deg_s")
+    gear_speed_mean_deg_s: float = _field("gear_speed_mean_deg_s")
+    gear_mesh_frequency_Hz: float | None = _field("gear_mesh_frequency_Hz", None)
+    mesh_natural_frequency_Hz: float = _field("mesh_natural_frequency_Hz")
+    mesh_damping_ratio: float = _field("mesh_damping_ratio")
+    mesh_stiffness_N_mm: float = _field("mesh_stiffness_N_mm")
+    static_deflection_mm: float = _field("static_deflection_mm")
+    output_rate_Hz: float = _field("output_rate_Hz")
+    window_s: tuple[float, float] = _field("window_s", (math.nan, math.nan))
+    energy_relative_residual: float = _field("energy_relative_residual")
+    status: str = _field("status", "ok")  # validity of the run: "ok" or "invalid"
+    invalid_reason: str = _field("invalid_reason", "")
 
     @classmethod
     def from_scalars(cls, scalars: Mapping[str, Any], status: str = "ok",

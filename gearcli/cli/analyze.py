@@ -78,26 +78,19 @@ def _save_order_map(result, path: Path) -> None:
     write_atomic(path, buf.getvalue())
 
 
+#: The analysis table's metrics, in order (labels and units: gearcli/io/metrics.py).
+ANALYZE_KEYS = ("gear_speed_mean_deg_s", "speed_ratio_error_percent",
+                "gear_speed_fluctuation_percent", "force_mean_N", "force_rms_N", "force_max_N",
+                "force_static_N", "dynamic_factor", "dte_peak_to_peak_mm", "dte_rms_mm",
+                "contact_loss_fraction", "coast_impacts", "friction_loss_W", "mesh_efficiency",
+                "gear_mesh_frequency_Hz", "mesh_natural_frequency_Hz", "mesh_damping_ratio")
+
+
 def print_checks(doc: dict) -> None:
     m = doc["metrics"]
-    rows = [
-        ("mean gear speed", m["gear_speed_mean_deg_s"], "deg/s"),
-        ("speed ratio error", m["speed_ratio_error_percent"], "%"),
-        ("gear speed fluctuation (p-p)", m["gear_speed_fluctuation_percent"], "%"),
-        ("mean / RMS normal force", f"{m['force_mean_N']:.1f} / {m['force_rms_N']:.1f}", "N"),
-        (f"max normal force ({m['force_max_source']})", m["force_max_N"], "N"),
-        ("static force T_load / r_b2", m["force_static_N"], "N"),
-        ("dynamic factor", m["dynamic_factor"], ""),
-        ("DTE peak-to-peak / RMS",
-         f"{m['dte_peak_to_peak_mm']:.5f} / {m['dte_rms_mm']:.5f}", "mm"),
-        ("contact-loss fraction", m["contact_loss_fraction"], ""),
-        ("coast-flank impacts", m["coast_impacts"], ""),
-        ("friction loss / mesh efficiency",
-         f"{m['friction_loss_W']:.1f} W / {m['mesh_efficiency'] or float('nan'):.4f}", ""),
-        ("gear-mesh frequency f_z", m["gear_mesh_frequency_Hz"], "Hz"),
-        ("mesh mode f_n / damping ratio",
-         f"{m['mesh_natural_frequency_Hz']:.1f} / {m['mesh_damping_ratio']:.3f}", "Hz / -"),
-    ]
+    from gearcli.io.metrics import rows as metric_rows
+
+    rows = metric_rows(m, ANALYZE_KEYS)
     w0, w1 = m["window_s"]
     print_quantity_table(f"{doc['case']}: window {w0:.3f}-{w1:.3f} s ({m['window_reason']})",
                          rows)

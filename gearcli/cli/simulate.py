@@ -76,27 +76,24 @@ def simulate(
         raise InvalidResultError(f"{case}: {result.invalid_reason}{where}")
 
 
+#: The summary table's metrics, in order (labels and units: gearcli/io/metrics.py).
+SUMMARY_KEYS = ("pinion_speed_mean_deg_s", "gear_speed_mean_deg_s", "speed_ratio_mean",
+                "speed_ratio_theory", "force_mean_N", "force_max_N", "force_min_N",
+                "force_static_N", "dynamic_factor", "dte_mean_mm", "dte_peak_to_peak_mm",
+                "static_deflection_mm", "mesh_stiffness_N_mm", "mesh_natural_frequency_Hz",
+                "mesh_damping_ratio", "gear_mesh_frequency_Hz", "contact_loss_fraction",
+                "energy_relative_residual")
+
+
 def _print_summary(doc: dict, out: str) -> None:
     s, sv = doc["scalars"], doc["solver"]
     w0, w1 = s["window_s"]
-    rows = [
-        ("mean pinion speed", s["pinion_speed_mean_deg_s"], "deg/s"),
-        ("mean gear speed", s["gear_speed_mean_deg_s"], "deg/s"),
-        ("speed ratio (theory)",
-         f"{s['speed_ratio_mean']:.6f} ({s['speed_ratio_theory']:.6f})", ""),
-        ("mean normal force", s["force_mean_N"], "N"),
-        ("max / min normal force", f"{s['force_max_N']:.1f} / {s['force_min_N']:.1f}", "N"),
-        ("static force T_load / r_b2", s["force_static_N"], "N"),
-        ("dynamic factor", s["dynamic_factor"] if doc["status"] == "ok"
-         else "not valid (see the error below)", ""),
-        ("DTE mean / peak-to-peak",
-         f"{s['dte_mean_mm']:.5f} / {s['dte_peak_to_peak_mm']:.5f}", "mm"),
-        ("mesh stiffness (linearised)", s["mesh_stiffness_N_mm"], "N/mm"),
-        ("mesh mode f_n / damping ratio",
-         f"{s['mesh_natural_frequency_Hz']:.1f} / {s['mesh_damping_ratio']:.3f}", "Hz / -"),
-        ("gear-mesh frequency", s["gear_mesh_frequency_Hz"], "Hz"),
-        ("contact-loss fraction", s["contact_loss_fraction"], ""),
-        ("energy balance (relative residual)", s["energy_balance"]["relative_residual"], ""),
+    from gearcli.io.metrics import rows as metric_rows
+
+    shown = {**s, "energy_relative_residual": s["energy_balance"]["relative_residual"]}
+    if doc["status"] != "ok":
+        shown["dynamic_factor"] = "not valid (see the error below)"
+    rows = metric_rows(shown, SUMMARY_KEYS) + [
         ("solver steps / RHS evaluations",
          f"{sv['accepted_steps']} (+{sv['rejected_steps']} rejected) / "
          f"{sv['rhs_evaluations']}", ""),

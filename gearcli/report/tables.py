@@ -6,6 +6,7 @@ import math
 import shlex
 from dataclasses import dataclass, field
 
+from gearcli.io.metrics import display
 from gearcli.report.data import ReportData, number, unit_of
 
 
@@ -203,39 +204,16 @@ def modifications_table(data: ReportData) -> Table | None:
 
 # --- results ----------------------------------------------------------------------------------
 #: (metrics key, label, unit, scale) in report order; keys absent from analysis.json are skipped.
-METRICS = (
-    ("pinion_speed_mean_deg_s", "pinion speed, mean", "deg/s", 1.0),
-    ("gear_speed_mean_deg_s", "gear speed, mean", "deg/s", 1.0),
-    ("speed_ratio", "speed ratio ω1/ω2", "–", 1.0),
-    ("speed_ratio_theory", "speed ratio, theory z2/z1", "–", 1.0),
-    ("speed_ratio_error_percent", "speed ratio error", "%", 1.0),
-    ("gear_speed_fluctuation_percent", "gear speed fluctuation, peak to peak / mean", "%", 1.0),
-    ("force_static_N", "static normal force T_load/r_b2", "N", 1.0),
-    ("force_mean_N", "normal force, mean", "N", 1.0),
-    ("force_rms_N", "normal force, RMS", "N", 1.0),
-    ("force_max_N", "normal force, maximum", "N", 1.0),
-    ("force_min_N", "normal force, minimum", "N", 1.0),
-    ("dynamic_factor", "dynamic factor F_max / F_static", "–", 1.0),
-    ("dte_mean_mm", "DTE, mean", "µm", 1e3),
-    ("dte_peak_to_peak_mm", "DTE, peak to peak", "µm", 1e3),
-    ("dte_rms_mm", "DTE, standard deviation", "µm", 1e3),
-    ("contact_loss_fraction", "time without drive-flank contact", "%", 100.0),
-    ("coast_impacts", "coast-flank impacts", "–", 1.0),
-    ("input_power_W", "input power", "W", 1.0),
-    ("friction_loss_W", "friction loss", "W", 1.0),
-    ("mesh_efficiency", "mesh efficiency", "–", 1.0),
-    ("drive_torque_mean_Nmm", "drive torque, mean", "N·m", 1e-3),
-    ("drive_torque_ripple_Nmm", "drive torque, peak to peak", "N·m", 1e-3),
-    ("gear_mesh_frequency_Hz", "gear-mesh frequency f_z", "Hz", 1.0),
-    ("pinion_shaft_Hz", "pinion shaft frequency n1", "Hz", 1.0),
-    ("gear_shaft_Hz", "gear shaft frequency n2", "Hz", 1.0),
-    ("mesh_natural_frequency_Hz", "mesh mode natural frequency f_n", "Hz", 1.0),
-    ("mesh_damping_ratio", "mesh mode damping ratio ζ", "–", 1.0),
-    ("resonance_margins_percent", "distance of k·f_z from the nearest mode (k = 1, 2, ..)", "%",
-     1.0),
-    ("output_rate_Hz", "output sampling rate", "Hz", 1.0),
-    ("frequency_resolution_Hz", "spectrum resolution", "Hz", 1.0),
-    ("samples", "samples in the window", "–", 1.0),
+#: The metrics of the results table, in order (labels and units: gearcli/io/metrics.py).
+RESULT_KEYS = (
+    "pinion_speed_mean_deg_s", "gear_speed_mean_deg_s", "speed_ratio", "speed_ratio_theory",
+    "speed_ratio_error_percent", "gear_speed_fluctuation_percent", "force_static_N",
+    "force_mean_N", "force_rms_N", "force_max_N", "force_min_N", "dynamic_factor",
+    "dte_mean_mm", "dte_peak_to_peak_mm", "dte_rms_mm", "contact_loss_fraction",
+    "coast_impacts", "input_power_W", "friction_loss_W", "mesh_efficiency",
+    "drive_torque_mean_Nmm", "drive_torque_ripple_Nmm", "gear_mesh_frequency_Hz",
+    "pinion_shaft_Hz", "gear_shaft_Hz", "mesh_natural_frequency_Hz", "mesh_damping_ratio",
+    "resonance_margins_percent", "output_rate_Hz", "frequency_resolution_Hz", "samples",
 )
 _NOT_SHOWN = {"window_s", "window_reason", "force_max_source"}
 
@@ -245,18 +223,14 @@ def results_table(data: ReportData) -> Table:
     m = data.metrics
     w0, w1 = data.window_s
     rows = [("steady window analysed", f"{w0:.4g} – {w1:.4g}", "s")]
-    for key, label, unit, scale in METRICS:
+    for key in RESULT_KEYS:
         if key not in m:
             continue
-        v = m[key]
-        if scale != 1.0 and isinstance(v, int | float):
-            v = v * scale
-        elif scale != 1.0 and isinstance(v, list):
-            v = [x * scale for x in v]
+        label, v, unit = display(key, m[key])
         if key == "force_max_N" and m.get("force_max_source"):
             label += f" (from the {m['force_max_source']})"
         rows.append((label, fmt(v), unit))
-    known = {k for k, *_ in METRICS} | _NOT_SHOWN
+    known = set(RESULT_KEYS) | _NOT_SHOWN
     for key, v in m.items():
         if key in known or isinstance(v, bool):
             continue

@@ -125,3 +125,22 @@ def test_documents_carry_the_schema_version_and_the_results_schema_validates_one
     for key in schema["properties"]["scalars"]["properties"]:
         assert key in summary["scalars"], key
     assert gearcli.geometry(SEED).to_dict()["pinion"]["z"] == 17
+
+
+def test_metric_labels_and_units_come_from_one_registry():
+    """gearcli/io/metrics.py is the one place of a metric's label and display unit: the
+    typed Summary, the report's results table and the CLI tables read it (issue 17)."""
+    import dataclasses
+
+    from gearcli.cli.analyze import ANALYZE_KEYS
+    from gearcli.cli.simulate import SUMMARY_KEYS
+    from gearcli.io.metrics import METRICS
+    from gearcli.report.tables import RESULT_KEYS
+
+    for f in dataclasses.fields(gearcli.Summary):
+        if f.name in ("status", "invalid_reason"):
+            continue
+        assert f.metadata["label"] == METRICS[f.name].label, f.name
+        assert f.metadata["unit"] == METRICS[f.name].unit, f.name
+    for keys in (ANALYZE_KEYS, SUMMARY_KEYS, RESULT_KEYS):
+        assert set(keys) <= set(METRICS)
