@@ -92,9 +92,10 @@ def _speed_curve(spec, out: Path, jobs, scheduler, force: bool, quiet: bool) -> 
     curve = run_speed_curve(spec, jobs, scheduler)
     write_speed_curve(curve, out, force)
     if not quiet:
-        invalid = sum(r["status"] != "ok" for r in curve.rows)
-        typer.echo(f"{len(curve.rows)} points, {invalid} outside the model's validity; results "
-                   f"in {out}/ (summary.csv, speed_curve.png)")
+        invalid = sum(r["status"] == "invalid" for r in curve.rows)
+        failed = sum(r["status"] == "failed" for r in curve.rows)
+        typer.echo(f"{len(curve.rows)} points, {invalid} outside the model's validity, "
+                   f"{failed} failed; results in {out}/ (summary.csv, speed_curve.png)")
     for e in curve.errors:
         typer.echo(f"warning: a direction failed: {e}", err=True)
 

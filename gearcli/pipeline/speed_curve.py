@@ -132,8 +132,16 @@ def run_direction(payload: dict) -> dict:
                        tuple(map(tuple, payload["windows_s"])), payload["end_time_s"])
     try:
         res = run_simulation(case_from_json(payload["case_json"], payload["name"]), zoom=False)
-    except GearcliError as exc:
-        return {"rows": [], "f_n_Hz": math.nan, "error": str(exc).splitlines()[0]}
+    except GearcliError as exc:  # every level of this direction is a failed row, with the reason
+        error = str(exc).splitlines()[0]
+        teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
+        rows = [{"point": payload["first"] + i, "direction": payload["direction"],
+                 "mesh_frequency [Hz]": fz, "pinion_speed [rpm]": fz / teeth * 60.0,
+                 "resonance_ratio": math.nan, "dynamic_factor": math.nan,
+                 "force_max_N": math.nan, "dte_peak_to_peak_mm": math.nan,
+                 "contact_loss_fraction": math.nan, "status": "failed", "error": error}
+                for i, fz in enumerate(stairs.f_z_Hz)]
+        return {"rows": rows, "f_n_Hz": math.nan, "error": error}
     f_n = res.summary["mesh_natural_frequency_Hz"]
     return {"rows": measure_levels(res, stairs, payload["direction"], f_n, payload["first"]),
             "f_n_Hz": f_n, "error": ""}

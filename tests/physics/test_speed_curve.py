@@ -60,7 +60,7 @@ def test_run_up_and_run_down_differ_in_the_jump_band_and_agree_outside(curve):
 
 def test_outputs_and_provenance(curve):
     out, output = curve
-    assert "30 points, 0 outside the model's validity" in output
+    assert "30 points, 0 outside the model's validity, 0 failed" in output
     assert (out / "speed_curve.png").stat().st_size > 10_000
     doc = json.loads((out / "speed_curve.json").read_text())
     assert doc["mesh_natural_frequency_Hz"] == pytest.approx(1761.4, rel=0.01)
@@ -83,3 +83,23 @@ def test_bad_speed_curve_studies_are_one_line_errors(tmp_path, parameters, expec
     res = runner.invoke(app, ["sweep", str(study), "-o", str(tmp_path / "o")])
     assert res.exit_code == 1 and expected in res.output, res.output
     assert res.output.startswith("error: ")
+
+
+def test_a_failed_direction_is_reported_row_by_row(tmp_path):
+    """Without backlash and with ζ = 0.03 the run-down starts at the resonance and the solver
+    stops at the penetration limit: its speeds are 'failed' rows with the reason, the run-up's
+    are measured (ok or invalid), and the study still finishes (exit 0)."""
+    study = tmp_path / "fail.yaml"
+    study.write_text(STUDY.replace("  gears.pinion.thickness_allowance: 0.2 mm\n", "")
+                     .replace("num: 15", "num: 4"))
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["sweep", str(study), "-o", str(out), "--jobs", "1"])
+    assert res.exit_code == 0, res.output
+    df = pd.read_csv(out / "summary.csv")
+    down = df[df["direction"] == "down"]
+    assert len(down) == 4 and set(down["status"]) == {"failed"}
+    assert down["error"].str.contains("penetration_limit").all()
+    assert down["dynamic_factor"].isna().all()
+    up = df[df["direction"] == "up"]
+    assert set(up["status"]) <= {"ok", "invalid"} and (up["status"] == "ok").any()
+    assert "4 failed" in res.output
