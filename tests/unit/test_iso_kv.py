@@ -2,9 +2,11 @@
 the reduced mass by the standard's formula against the polar moments of the same discs, and
 the resonance speed of the seed pair worked in docs/theory.md §10.4.
 
-No published worked example with K_v numbers was reachable offline (ISO/TR 6336-30 is not
-public); the coefficient table was cross-checked in three independent public implementations
-(module docstring). That gap is stated in the closing note of issue 15."""
+Published worked example: KISSsoft's ISO 6336 Method B printouts of the NREL 5 MW reference
+gearbox (two spur meshes and one helical pair with ε_γ > 2), at the end of this file; they are all
+in the sub-critical range, so the main-resonance and super-critical formulas are checked by the
+coefficient table (cross-checked in three public implementations, module docstring), the range
+limits and continuity only."""
 
 from __future__ import annotations
 
@@ -100,3 +102,35 @@ def test_gearcli_mesh_reports_the_resonance_speed_and_ratio():
     assert iso["resonance_speed_rpm"] == pytest.approx(resonance_speed_rpm(
         21, iso["c_gamma_alpha_N_mm_um"], iso["reduced_mass_kg_mm"]))
     assert iso["speed_range"] == "sub-critical" and iso["k_v"] > 1.0
+
+
+# --- a published worked example: KISSsoft (Release 03/2017) ISO 6336:2006 Method B printouts of
+# the NREL 5 MW reference gearbox, public in github.com/gfsReboucas/Drivetrain, files
+# @NREL_5MW/stage_02.rtf (spur planetary stage) and stage_03.rtf (helical parallel stage).
+# Quoted inputs (N/mm, µm, 1/min, kg/mm) and printed results; the reduced masses are the
+# printout's (its sun-planet value follows the standard's planetary rule, not eq. 30).
+KISSSOFT = [
+    # name, z1, c′, c_γα, m_red, ε_γ, K_A·F_t/b, f_pb (larger), y_p, f_fα (larger), y_f, C_a,
+    # printed n_E1, printed N, printed K_V, decimals printed
+    ("stage 2 sun-planet (spur)", 18, 12.240, 15.640, 0.1534, 1.370, 1.25 * 519.82,
+     17.90, 1.342, 23.00, 1.725, 2.0, 5357, 0.046, 1.02, 2),
+    ("stage 2 planet-ring (spur)", 36, 14.053, 20.563, 1.4684, 1.618, 1.25 * 519.82,
+     20.70, 3.142, 27.00, 4.098, 2.0, 993, 0.124, 1.06, 2),
+    ("stage 3 pair (helical, ε_γ > 2)", 24, 13.832, 18.632, 0.36503, 2.884, 1.25 * 666.85,
+     15.90, 1.2, 22.00, 1.6, 2.0, 2843, 0.410, 1.092, 3),
+]
+
+
+@pytest.mark.parametrize("row", KISSSOFT, ids=[r[0] for r in KISSSOFT])
+def test_kissoft_printouts_of_the_nrel_5mw_gearbox(row):
+    (_, z1, c_p, c_ga, m_red, eps_g, w, f_pb, y_p, f_fa, y_f, c_a,
+     n_e1_printed, n_printed, kv_printed, decimals) = row
+    # n_E1 = 30000/(π z1) sqrt(c_γα/m_red) (ISO 6336-1 eq. 6): the printed integer; the inputs'
+    # printed digits (m_red to 4-5 significant digits) allow ±1 1/min
+    assert resonance_speed_rpm(z1, c_ga, m_red) == pytest.approx(n_e1_printed, abs=1.0)
+    kv = dynamic_factor(n_printed, eps_gamma=eps_g, c_prime_N_mm_um=c_p, line_load_N_mm=w,
+                        f_pb_eff_um=f_pb - y_p, f_f_eff_um=f_fa - y_f, tip_relief_um=c_a)
+    assert str(kv.range_name) == "sub-critical"
+    # K_V as printed, to its printed decimals (half a unit of the last digit) plus the effect of
+    # N printed to 3 decimals (±0.0005 · K ≤ 0.0003 here)
+    assert float(kv.k_v) == pytest.approx(kv_printed, abs=0.5 * 10.0 ** -decimals + 3e-4)
