@@ -15,26 +15,25 @@ units out (mm, N, s, t, rad; every name and column carries its unit, docs/theory
 
 from __future__ import annotations
 
-import dataclasses
 import json
-import math
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from gearcli.results import SCHEMA_VERSION, AnalysisMetrics, GearStress, Mode, Summary
+
 __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
-           "stress", "sweep",
-           "Simulation", "Summary", "SCHEMA_VERSION"]
-
-#: Version of the result documents (summary.json, analysis.json, stress.json, modal and mesh
-#: JSON) and of :class:`Summary`: raised when a key is renamed or removed.
-from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION  # noqa: E402
+           "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Summary",
+           "AnalysisMetrics", "GearStress", "Mode", "SCHEMA_VERSION"]
 
 
-def _overrides(set_: Mapping[str, Any] | None) -> list[str]:
+def _overrides(set_) -> list[str]:
     """``{"key.path": value}`` as the command line's ``--set key.path=value`` texts (values
-    as JSON, which the override parser reads as YAML: numbers, strings with units, lists)."""
+    as JSON, which the override parser reads as YAML: numbers, strings with units, lists);
+    a sequence of such texts (the command line's) as it is."""
+    if set_ is not None and not isinstance(set_, Mapping):
+        return [str(item) for item in set_]
     out = []
     for key, value in (set_ or {}).items():
         text = value if isinstance(value, str) else json.dumps(value)
@@ -50,9 +49,10 @@ def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the
     source : str, Path, mapping or LoadedCase
         A case file [YAML], the case as Python data (the YAML's mapping), or an already
         loaded case (returned as is when ``set`` is empty).
-    set : mapping, optional
+    set : mapping or sequence of str, optional
         Overrides ``{"key.path": value}`` as ``--set`` gives them, e.g.
-        ``{"gears.module": "8 mm", "run.end_time": 0.5}`` (numbers in the key's default unit).
+        ``{"gears.module": "8 mm", "run.end_time": 0.5}`` (numbers in the key's default unit),
+        or the command line's ``["key.path=value", ...]``.
 
     Returns
     -------
@@ -110,103 +110,6 @@ def geometry(case, set: Mapping[str, Any] | None = None):  # noqa: A002
     return run_geometry(load_case(case, set))
 
 
-def _field(key: str, default: Any = math.nan):
-    """A Summary field with the label and display unit of metric ``key`` (gearcli/io/metrics.py,
-    the one place the tables read them from)."""
-    from gearcli.io.metrics import METRICS
-
-    m = METRICS.get(key)
-    meta = {"label": m.label, "unit": m.unit, "scale": m.scale} if m else {"label": key}
-    return dataclasses.field(default=default, metadata=meta)
-
-
-@dataclasses.dataclass(frozen=True)
-class Summary:
-    """The scalars of a run over its steady window (summary.json's ``scalars``), typed.
-
-    Every field's unit is in its name (``_N``, ``_mm``, ``_Hz``, ``_s``, ``_deg_s``) or it is
-    dimensionless; ``metadata`` holds the label and display unit the tables print
-    (gearcli/io/metrics.py).
-    """
-
-    dynamic_factor: float | None = _field("dynamic_factor", None)
-    force_max_N: float = _field("force_max_N")
-    force_max_t_s: float = _field("force_max_t_s")
-    force_min_N: float = _field("force_min_N")
-    force_mean_N: float = _field("force_mean_N")
-    force_rms_N: float = _field("force_rms_N")
-    force_static_N: float = _field("force_static_N")
-    dte_mean_mm: float = _field("dte_mean_mm")
-    dte_peak_to_peak_mm: float = _field("dte_peak_to_peak_mm")
-    dte_rms_mm: float = _field("dte_rms_mm")
-    contact_loss_fraction: float = _field("contact_loss_fraction")
-    coast_force_max_N: float = _field("coast_force_max_N")
-    pairs_in_contact_mean: float = _field("pairs_in_contact_mean")
-    speed_ratio_mean: float = _field("speed_ratio_mean")
-    speed_ratio_theory: float = _field("speed_ratio_theory")
-    pinion_speed_mean_deg_s: float = _field("pinion_speed_mean_deg_s")
-    gear_speed_mean_deg_s: float = _field("gear_speed_mean_deg_s")
-    gear_mesh_frequency_Hz: float | None = _field("gear_mesh_frequency_Hz", None)
-    mesh_natural_frequency_Hz: float = _field("mesh_natural_frequency_Hz")
-    mesh_damping_ratio: float = _field("mesh_damping_ratio")
-    mesh_stiffness_N_mm: float = _field("mesh_stiffness_N_mm")
-    static_deflection_mm: float = _field("static_deflection_mm")
-    output_rate_Hz: float = _field("output_rate_Hz")
-    window_s: tuple[float, float] = _field("window_s", (math.nan, math.nan))
-    energy_relative_residual: float = _field("energy_relative_residual")
-    status: str = _field("status", "ok")  # validity of the run: "ok" or "invalid"
-    invalid_reason: str = _field("invalid_reason", "")
-
-    @classmethod
-    def from_scalars(cls, scalars: Mapping[str, Any], status: str = "ok",
-                     invalid_reason: str = "") -> Summary:
-        names = {f.name for f in dataclasses.fields(cls)}
-        values = {k: v for k, v in scalars.items() if k in names}
-        if "window_s" in values:
-            values["window_s"] = tuple(values["window_s"])
-        balance = scalars.get("energy_balance") or {}
-        return cls(**values, energy_relative_residual=balance.get("relative_residual", math.nan),
-                   status=status, invalid_reason=invalid_reason)
-
-    def to_dict(self) -> dict[str, Any]:
-        return dataclasses.asdict(self)
-
-
-def results_schema() -> dict:
-    """JSON Schema (draft 2020-12) of summary.json: its top-level keys and ``scalars`` from
-    :class:`Summary` (the modes, energy balance and solver counters as open objects)."""
-    from pydantic import TypeAdapter
-
-    from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
-
-    scalars = TypeAdapter(Summary).json_schema()
-    for name in ("status", "invalid_reason", "energy_relative_residual"):
-        scalars["properties"].pop(name, None)
-    for f in dataclasses.fields(Summary):
-        if f.name in scalars["properties"]:
-            scalars["properties"][f.name]["description"] = f.metadata.get("label", "")
-    scalars["properties"]["energy_balance"] = {"type": "object"}
-    scalars["properties"]["modes"] = {"type": "array", "items": {"type": "object"}}
-    scalars["additionalProperties"] = True
-    return {
-        "$schema": "https://json-schema.org/draft/2020-12/schema",
-        "title": "gearcli summary.json",
-        "type": "object",
-        "required": ["schema_version", "case", "status", "rows", "scalars"],
-        "properties": {
-            "schema_version": {"const": RESULTS_SCHEMA_VERSION},
-            "case": {"type": "string"},
-            "status": {"enum": ["ok", "invalid"]},
-            "invalid_reason": {"type": "string"},
-            "solver": {"type": "object"},
-            "rows": {"type": "integer", "minimum": 1},
-            "slots": {"type": "integer"},
-            "warnings": {"type": "array", "items": {"type": "string"}},
-            "scalars": scalars,
-        },
-    }
-
-
 class Simulation:
     """A finished run (`gearcli simulate`): the time series, the typed summary, the modes.
 
@@ -232,6 +135,7 @@ class Simulation:
         self.warnings = list(result.warnings)
         self.status = result.status
         self.invalid_reason = result.invalid_reason
+        self.overrides: list[str] = []  #: the ``--set`` texts it was run with (manifest)
         self._series = None
 
     @property
@@ -257,12 +161,12 @@ class Simulation:
         folder only with ``force``). ``format``: "csv" or "parquet" for the time series."""
         from gearcli.pipeline.outputs import write_simulation
 
-        return write_simulation(self.result, folder, force, None, format)
+        return write_simulation(self.result, folder, force, self.overrides, format)
 
-    def plot(self, what: str = "force"):
+    def plot(self, what: str = "force", units: str = "engineering"):
         """A figure of the run: ``"force"`` (mesh force with the static force and the true
-        maximum), ``"dte"`` (dynamic transmission error) or ``"speeds"``; returns a
-        ``matplotlib.figure.Figure``."""
+        maximum), ``"dte"`` (dynamic transmission error) or ``"speeds"`` (in the display
+        ``units``: "engineering" rpm or "si" rad/s); returns a ``matplotlib.figure.Figure``."""
         from gearcli.plotting import results as plots
 
         c = self.result.columns()
@@ -277,7 +181,8 @@ class Simulation:
         if what == "speeds":
             g = self.result.geometry.geometry
             return plots.plot_speeds(t, c["omega1_rad_s"], c["omega2_rad_s"],
-                                     (g.pinion.teeth, g.gear.teeth), window, None, f_z)
+                                     (g.pinion.teeth, g.gear.teeth), window, None, f_z,
+                                     units)
         raise ValueError(f"plot {what!r}: expected 'force', 'dte' or 'speeds'")
 
     def __repr__(self) -> str:
@@ -286,19 +191,21 @@ class Simulation:
                 f"dynamic factor {df if df is None else round(df, 4)}>")
 
 
-def simulate(case, set: Mapping[str, Any] | None = None, progress=None,  # noqa: A002
-             zoom: bool = False) -> Simulation:
+def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
+             status=None) -> Simulation:
     """Integrate the tooth-contact model of a case (`gearcli simulate`).
 
     Parameters
     ----------
     case : str, Path, mapping or LoadedCase
-    set : mapping, optional
+    set : mapping or sequence of str, optional
         Overrides as in :func:`load_case`.
     progress : callable(t, t_start, t_end), optional
         Called as the integration advances [s].
     zoom : bool
         Also evaluate the dense output for the figures' zooms (one more solve).
+    status : callable(str), optional
+        Told the stage the call is in ("building the model", ...).
 
     Returns
     -------
@@ -315,7 +222,12 @@ def simulate(case, set: Mapping[str, Any] | None = None, progress=None,  # noqa:
     """
     from gearcli.pipeline.simulate import run_simulation
 
-    return Simulation(run_simulation(load_case(case, set), progress=progress, zoom=zoom))
+    if status:
+        status("loading the case")
+    sim = Simulation(run_simulation(load_case(case, set), progress=progress, zoom=zoom,
+                                    status=status))
+    sim.overrides = _overrides(set)
+    return sim
 
 
 def _folder_of(run, stack) -> Path:
@@ -326,7 +238,51 @@ def _folder_of(run, stack) -> Path:
     return Path(run)
 
 
-def analyze(run, window: tuple[float, float] | None = None):
+class Analysis:
+    """Metrics, spectra and checks of a run's window (`gearcli analyze`).
+
+    Attributes
+    ----------
+    metrics : AnalysisMetrics
+        Typed metrics (internal units, the unit in each name).
+    checks : list of gearcli.pipeline.analyze.Check
+        ``name``, ``value``, ``limit``, ``passed``, ``checked`` (False: not checked, with the
+        reason in ``note``).
+    passed : bool
+    spectra : pandas.DataFrame
+        One-sided amplitude spectra indexed by frequency [Hz] (spectrum.csv's columns).
+    warnings : list of str
+    result : gearcli.pipeline.analyze.Analysis
+        The untyped analysis (dict metrics, spectra arrays, mesh lines).
+    """
+
+    def __init__(self, result) -> None:
+        self.result = result
+        self.metrics = AnalysisMetrics.from_metrics(result.metrics)
+        self.checks = list(result.checks)
+        self.passed = result.passed
+        self.warnings = list(result.warnings)
+        self._spectra = None
+
+    @property
+    def spectra(self):
+        if self._spectra is None:
+            self._spectra = spectra_frame(self.result)
+        return self._spectra
+
+    def document(self) -> dict:
+        """analysis.json as a dict (what :meth:`save` writes)."""
+        from gearcli.pipeline.analysis_io import analysis_document
+
+        return analysis_document(self.result)
+
+    def __repr__(self) -> str:
+        failed = [c.name for c in self.checks if not c.passed]
+        return (f"<Analysis {self.result.run.name}: "
+                f"{'passed' if self.passed else 'failed: ' + ', '.join(failed)}>")
+
+
+def analyze(run, window: tuple[float, float] | None = None, strict: bool = False) -> Analysis:
     """Metrics, spectra and checks of a run (`gearcli analyze`).
 
     Parameters
@@ -335,19 +291,19 @@ def analyze(run, window: tuple[float, float] | None = None):
         A simulation, or a results folder of `gearcli simulate`.
     window : (float, float), optional
         Analysis window [s]; default the steady window.
+    strict : bool
+        Warnings count as failed checks.
 
     Returns
     -------
-    gearcli.pipeline.analyze.Analysis
-        ``.metrics`` (dict, internal units), ``.checks``, ``.passed``, ``.spectra`` (dict of
-        arrays; :func:`spectra_frame` makes a DataFrame).
+    Analysis
     """
     import contextlib
 
     from gearcli.pipeline.analyze import analyze as run_analysis
 
     with contextlib.ExitStack() as stack:
-        return run_analysis(_folder_of(run, stack), window)
+        return Analysis(run_analysis(_folder_of(run, stack), window, strict))
 
 
 def spectra_frame(analysis):
@@ -356,20 +312,65 @@ def spectra_frame(analysis):
 
     from gearcli.pipeline.analysis_io import spectrum_columns
 
-    columns = spectrum_columns(analysis)
+    columns = spectrum_columns(getattr(analysis, "result", analysis))
     f = columns.pop("frequency_Hz")
     return pd.DataFrame(columns, index=pd.Index(f, name="frequency_Hz"))
 
 
-def modal(case, set: Mapping[str, Any] | None = None):  # noqa: A002
+class Modal:
+    """Modes of the linearised model, crossings and the resonance-margin check (`gearcli
+    modal`).
+
+    Attributes
+    ----------
+    modes : list of Mode
+    checks : list, passed : bool
+    result : gearcli.pipeline.modal.ModalAnalysis
+    """
+
+    def __init__(self, result) -> None:
+        from gearcli.pipeline.modal import modal_document
+
+        self.result = result
+        self._doc = modal_document(result)
+        self.modes = [Mode.from_document(m) for m in self._doc["modes"]]
+        self.checks = list(result.checks)
+        self.passed = result.passed
+
+    def document(self) -> dict:
+        """What `gearcli modal --json` prints."""
+        return self._doc
+
+    def plot(self):
+        """The Campbell diagram and mode shapes (a ``matplotlib.figure.Figure``)."""
+        from gearcli.pipeline.modal import campbell_figure
+
+        return campbell_figure(self.result)
+
+    def __repr__(self) -> str:
+        f = [round(m.natural_frequency_Hz, 1) for m in self.modes if not m.rigid_body
+             and m.natural_frequency_Hz]
+        return f"<Modal {self.result.name}: modes at {f} Hz>"
+
+
+def modal(case, set=None,  # noqa: A002
+          speed_range_deg_s: tuple[float, float] | None = None) -> Modal:
     """Natural frequencies, damping ratios and mode shapes of the linearised model
-    (`gearcli modal`); returns :class:`gearcli.pipeline.modal.ModalAnalysis`."""
+    (`gearcli modal`).
+
+    Parameters
+    ----------
+    case : str, Path, mapping or LoadedCase
+    set : overrides as in :func:`load_case`
+    speed_range_deg_s : (float, float), optional
+        Pinion speed range of the Campbell diagram [deg/s] (default 0 .. 1.5 x case speed).
+    """
     from gearcli.pipeline.modal import run_modal
 
-    return run_modal(load_case(case, set))
+    return Modal(run_modal(load_case(case, set), speed_range_deg_s=speed_range_deg_s))
 
 
-def mesh(case, set: Mapping[str, Any] | None = None, **options):  # noqa: A002
+def mesh(case, set=None, **options):  # noqa: A002
     """Quasi-static loaded tooth contact: static transmission error, load sharing, mesh
     stiffness against ISO 6336-1 (`gearcli mesh`); ``options`` as
     :func:`gearcli.pipeline.mesh.run_mesh` takes them (``load_N``, ``harris``, ...)."""
@@ -378,15 +379,58 @@ def mesh(case, set: Mapping[str, Any] | None = None, **options):  # noqa: A002
     return run_mesh(load_case(case, set), **options)
 
 
-def stress(run, window: tuple[float, float] | None = None):
-    """ISO 6336 contact and root stresses along the run (`gearcli stress`); ``run`` a
-    Simulation or a results folder. Returns :class:`gearcli.pipeline.stress.StressResult`."""
+class Stress:
+    """Contact and root stresses along a run (`gearcli stress`).
+
+    Attributes
+    ----------
+    pinion, gear : GearStress
+        Peak dynamic stresses against the ISO 6336 static values [MPa], safety factors.
+    result : gearcli.pipeline.stress.StressResult
+        The histories (``t_s``, ``sigma_H``, ...) per slot.
+    """
+
+    def __init__(self, result) -> None:
+        from gearcli.pipeline.stress import stress_document
+
+        self.result = result
+        self._doc = stress_document(result)
+        self.pinion = GearStress.from_document(self._doc, "pinion")
+        self.gear = GearStress.from_document(self._doc, "gear")
+        self.warnings = list(result.warnings)
+
+    def document(self) -> dict:
+        """stress.json as a dict."""
+        return self._doc
+
+    def __repr__(self) -> str:
+        return (f"<Stress {self.result.name}: σ_H peak {self.pinion.sigma_H_peak_MPa:.4g} MPa, "
+                f"σ_F peak pinion {self.pinion.sigma_F_peak_MPa:.4g} MPa>")
+
+
+def stress(run, window: tuple[float, float] | None = None, require_limits: bool = False):
+    """ISO 6336 contact and root stresses along the run (`gearcli stress`).
+
+    Parameters
+    ----------
+    run : Simulation or str or Path
+        A simulation, or a results folder of `gearcli simulate`.
+    window : (float, float), optional
+        Window of the maxima [s] (default the steady window).
+    require_limits : bool
+        Raise CaseError when the case lacks the fatigue limits for safety factors.
+
+    Returns
+    -------
+    Stress
+    """
     import contextlib
 
     from gearcli.pipeline.stress import compute_stress
 
     with contextlib.ExitStack() as stack:
-        return compute_stress(_folder_of(run, stack), window)
+        return Stress(compute_stress(_folder_of(run, stack), window,
+                                     require_limits=require_limits))
 
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,

@@ -7,16 +7,23 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import handle_errors, print_checks_table, print_quantity_table
+from gearcli.cli.common import (
+    display_units,
+    handle_errors,
+    option_quantities,
+    print_checks_table,
+    print_quantity_table,
+)
 
 
 @app.command()
 @handle_errors
 def analyze(
     folder: Path = typer.Argument(..., help="Results folder written by gearcli simulate."),
-    window: tuple[float, float] | None = typer.Option(
-        None, "--window", help="Analysis window T0 T1 [s] (default: automatic steady state)."
-    ),
+    window: tuple[str, str] | None = typer.Option(
+        None, "--window", help="Analysis window T0 T1: times with units ('2 s' '4000 ms') or "
+        "numbers in s (default: automatic steady state).",
+        metavar="T0 T1"),
     as_json: bool = typer.Option(False, "--json", help="Print analysis.json to stdout."),
     strict: bool = typer.Option(False, "--strict", help="Warnings count as failed checks."),
     force: bool = typer.Option(False, "--force", help="Replace an earlier analysis in DIR."),
@@ -34,10 +41,10 @@ def analyze(
     """
     import json
 
+    from gearcli import api
     from gearcli.errors import CheckFailed
     from gearcli.io.files import check_no_earlier
     from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
-    from gearcli.pipeline.analyze import analyze as run_analysis
 
     check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
     if orders is not None:
@@ -48,20 +55,21 @@ def analyze(
             raise OutputError(f"--orders {orders}: expected a file name ending in .png, .svg "
                               "or .pdf")
         check_new_file(orders, force, "--orders")
-    result = run_analysis(folder, window, strict)
+    analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
+    result = analysis.result
     doc = write_analysis(result)
     if orders is not None:
-        _save_order_map(result, orders)
+        _save_order_map(result, orders, display_units())
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
-        print_checks(doc)
+        print_checks(doc, display_units())
     if not result.passed:
         failed = [c.name for c in result.checks if not c.passed]
         raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
 
 
-def _save_order_map(result, path: Path) -> None:
+def _save_order_map(result, path: Path, units: str) -> None:
     import io
 
     from gearcli.io.files import write_atomic
@@ -72,7 +80,7 @@ def _save_order_map(result, path: Path) -> None:
     modes = [m["natural_frequency_Hz"] for m in s.get("modes", [])
              if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
     fig = plot_order_map(c["t_s"], c["force_total_N"], c["omega1_rad_s"], teeth, modes,
-                         label="mesh force", unit="N")
+                         label="mesh force", unit="N", units=units)
     buf = io.BytesIO()
     fig.savefig(buf, format=path.suffix.lower().lstrip("."), dpi=110)
     write_atomic(path, buf.getvalue())
@@ -86,11 +94,13 @@ ANALYZE_KEYS = ("gear_speed_mean_deg_s", "speed_ratio_error_percent",
                 "gear_mesh_frequency_Hz", "mesh_natural_frequency_Hz", "mesh_damping_ratio")
 
 
-def print_checks(doc: dict) -> None:
-    m = doc["metrics"]
-    from gearcli.io.metrics import rows as metric_rows
+def print_checks(doc: dict, units: str = "engineering") -> None:
+    """The analysis table (metrics in the display ``units``) and the checks table."""
+    from gearcli.results import AnalysisMetrics
+    from gearcli.results import rows as metric_rows
 
-    rows = metric_rows(m, ANALYZE_KEYS)
+    m = doc["metrics"]
+    rows = metric_rows(AnalysisMetrics.from_metrics(m), ANALYZE_KEYS, units)
     w0, w1 = m["window_s"]
     print_quantity_table(f"{doc['case']}: window {w0:.3f}-{w1:.3f} s ({m['window_reason']})",
                          rows)

@@ -62,14 +62,36 @@ def _version(value: bool) -> None:
         raise typer.Exit()
 
 
+#: The display-unit systems (gearcli/display_units.py; listed here so that `--help` does
+#: not import it).
+UNIT_SYSTEMS = ("engineering", "si")
+
+
+#: Settings of the root options for the command that runs (set by the root callback on every
+#: invocation, so one process running several commands, as tests do, starts each afresh).
+settings = {"units": "engineering"}
+
+
 @app.callback()
 def _root(
     version: bool = typer.Option(
         False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
     ),
+    units: str = typer.Option(
+        "engineering", "--units", envvar="GEARCLI_UNITS", metavar="engineering|si",
+        help="Display units of the tables, figures and reports: engineering (rpm, mm, µm, "
+             "N·m, N/µm, MPa) or si (rad/s, m, N·m, N/m). Files keep their unit-suffixed "
+             "columns. Also GEARCLI_UNITS."),
 ) -> None:
     """Dynamics of spur gear pairs from a YAML case file.
 
     Exit codes: 0 ok, 1 bad input, 2 usage, 3 internal error (log path printed),
-    4 a check failed, 130 interrupted.
+    4 a check failed or a result is outside the model's validity, 130 interrupted.
+
+    Example: gearcli --units si run cases/seed.yaml -o out/seed
     """
+    if units not in UNIT_SYSTEMS:
+        typer.echo(f"error: --units {units}: expected one of {', '.join(UNIT_SYSTEMS)}",
+                   err=True)
+        raise typer.Exit(1)
+    settings["units"] = units

@@ -14,14 +14,19 @@ from gearcli.cli.common import handle_errors
 @handle_errors
 def schema(
     results: bool = typer.Option(False, "--results",
-                                 help="The JSON Schema of summary.json instead of the case's."),
+                                 help="The JSON Schema of a result document instead of the "
+                                      "case's (--kind)."),
+    kind: str = typer.Option("summary", "--kind", metavar="summary|analysis|stress|modal",
+                             help="With --results: summary.json, analysis.json, stress.json "
+                                  "or gearcli modal --json."),
     study: bool = typer.Option(False, "--study",
                                help="The JSON Schema of a study file (gearcli sweep)."),
 ) -> None:
     """Print the case file's JSON Schema (for editor completion and validation), or with
-    --results that of the results' summary.json, or with --study that of a study file.
+    --results that of a result document (summary.json unless --kind), or with --study that of
+    a study file.
 
-    Example: gearcli schema > case.schema.json"""
+    Example: gearcli schema --results --kind analysis > analysis.schema.json"""
     if study:
         import json
 
@@ -32,9 +37,12 @@ def schema(
     if results:
         import json
 
-        from gearcli.api import results_schema
+        from gearcli.errors import OutputError
+        from gearcli.results import KINDS, json_schema
 
-        typer.echo(json.dumps(results_schema(), indent=2))
+        if kind not in KINDS:
+            raise OutputError(f"--kind {kind}: expected one of {', '.join(KINDS)}")
+        typer.echo(json.dumps(json_schema(kind), indent=2))
         return
     from gearcli.case.schema_text import schema_text
 

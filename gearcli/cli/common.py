@@ -124,6 +124,37 @@ def _write_log(text: str) -> Path:
     return Path(name)
 
 
+def display_units() -> str:
+    """The display-unit system of this command line (``gearcli --units`` or GEARCLI_UNITS)."""
+    from gearcli.cli.app import settings
+
+    return settings["units"]
+
+
+def option_quantities(texts, dim_name: str, option: str) -> tuple[float, ...] | None:
+    """Values of an option that takes quantities (``--window 2 4``, ``--window '2 s' '4 s'``,
+    ``--speed-range 0 '6000 rpm'``) in the internal unit of the gearcli.units dimension
+    ``dim_name`` ("TIME", "ANGULAR_VELOCITY"); bare numbers are in its case-file default
+    unit. None stays None; a bad value raises CaseError naming the option (exit 1)."""
+    if texts is None:
+        return None
+    from gearcli import units
+    from gearcli.errors import CaseError
+
+    dim = getattr(units, dim_name)
+    out = []
+    for text in texts:
+        try:
+            value: float | str = float(text)
+        except ValueError:
+            value = text
+        try:
+            out.append(units.parse_quantity(value, dim))
+        except units.UnitError as exc:
+            raise CaseError(f"{option} {text!r}: {exc}") from None
+    return tuple(out)
+
+
 def is_terminal() -> bool:
     return sys.stdout.isatty()
 

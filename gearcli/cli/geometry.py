@@ -7,9 +7,10 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import format_value, handle_errors
+from gearcli.cli.common import display_units, format_value, handle_errors
 
-# (label, json key, unit) rows of the per-gear and per-pair tables.
+# (label, json key, stored unit) rows of the per-gear and per-pair tables (shown in the display
+# units, gearcli/display_units.py).
 GEAR_ROWS = [
     ("teeth z", "z", ""),
     ("module m", "module_mm", "mm"),
@@ -72,7 +73,8 @@ def geometry(
     """Involute geometry of the pair, checked (ISO 21771): per gear, per pair, warnings.
 
     Example: gearcli geometry cases/seed.yaml --set gears.module=8 --json"""
-    from gearcli.pipeline.geometry import geometry_dict, run_geometry
+    from gearcli import api
+    from gearcli.pipeline.geometry import geometry_dict
 
     if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
         from gearcli.errors import OutputError
@@ -81,9 +83,7 @@ def geometry(
     from gearcli.io.files import check_new_file
 
     check_new_file(plot, force, "--plot")
-    from gearcli.case.load import load_case
-
-    result = run_geometry(load_case(case, set_))
+    result = api.geometry(case, set_)
     data = geometry_dict(result)
     if plot is not None:
         from gearcli.pipeline.geometry import save_geometry_plot
@@ -94,16 +94,18 @@ def geometry(
 
         typer.echo(json.dumps(data, indent=2))
     elif not quiet:
-        _print_tables(data)
+        _print_tables(data, display_units())
         if plot is not None:
             typer.echo(f"drawing written to {plot}")
     for w in data["warnings"]:
         typer.echo(f"warning: {w['message']}", err=True)
 
 
-def _print_tables(data: dict) -> None:
+def _print_tables(data: dict, units: str) -> None:
     from rich.console import Console
     from rich.table import Table
+
+    from gearcli.display_units import convert
 
     console = Console()
     t = Table(title=f"Gear geometry — {data['case']}", title_justify="left")
@@ -112,8 +114,9 @@ def _print_tables(data: dict) -> None:
     t.add_column("gear", justify="right")
     t.add_column("unit")
     for label, key, unit in GEAR_ROWS:
-        pinion, gear = data["pinion"].get(key), data["gear"].get(key)
-        t.add_row(label, format_value(pinion), format_value(gear), unit)
+        (pinion, gear), shown = convert([data["pinion"].get(key), data["gear"].get(key)], unit,
+                                        units)
+        t.add_row(label, format_value(pinion), format_value(gear), shown)
     console.print(t)
     p = Table(title="Pair", title_justify="left")
     p.add_column("quantity")
@@ -121,5 +124,6 @@ def _print_tables(data: dict) -> None:
     p.add_column("unit")
     for label, key, unit in PAIR_ROWS:
         if data["pair"].get(key) is not None:
-            p.add_row(label, format_value(data["pair"][key]), unit)
+            value, shown = convert(data["pair"][key], unit, units)
+            p.add_row(label, format_value(value), shown)
     console.print(p)

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import format_value, handle_errors
+from gearcli.cli.common import display_units, format_value, handle_errors
 
 
 @app.command()
@@ -40,8 +40,9 @@ def mesh(
     """
     import json
 
+    from gearcli import api
     from gearcli.errors import CaseError
-    from gearcli.pipeline.mesh import mesh_document, run_mesh, save_mesh_plot, write_mesh
+    from gearcli.pipeline.mesh import mesh_document, save_mesh_plot, write_mesh
 
     if load is not None and not load > 0.0:
         raise CaseError(f"--load must be a force > 0 N, got {load}")
@@ -51,7 +52,7 @@ def mesh(
     check_new_file(plot, force, "--plot")
     if out is not None:
         check_target(out, force)  # before the work, not after
-    res = run_mesh(case, set_, load, harris)
+    res = api.mesh(case, set_, load_N=load, harris=harris)
     doc = mesh_document(res)
     if out is not None:
         write_mesh(res, out, force, set_)
@@ -62,24 +63,28 @@ def mesh(
         return
     if quiet:
         return
-    _print(doc)
+    _print(doc, display_units())
     for path in (out, plot):
         if path is not None:
             typer.echo(f"wrote {path}")
 
 
-def _table(title: str, rows: list[tuple[str, float]]):
+def _table(title: str, rows: list[tuple[str, float, str]], units: str):
+    """A (quantity, value, unit) table; values in their stored unit, shown in ``units``."""
     from rich.table import Table
 
+    from gearcli.display_units import convert
+
     t = Table(title=title, title_justify="left")
-    t.add_column("quantity")
-    t.add_column("value")
-    for label, value in rows:
-        t.add_row(label, format_value(value))
+    for col in ("quantity", "value", "unit"):
+        t.add_column(col)
+    for label, value, unit in rows:
+        shown, shown_unit = convert(value, unit, units)
+        t.add_row(label, format_value(shown), shown_unit)
     return t
 
 
-def _print(doc: dict) -> None:
+def _print(doc: dict, units: str) -> None:
     from rich.console import Console
 
     console = Console()
@@ -87,19 +92,19 @@ def _print(doc: dict) -> None:
                   f"{format_value(doc['force_N'])} N, {doc['contact_law']}")
     ste, st = doc["ste"], doc["stiffness"]
     console.print(_table("Static transmission error", [
-        ("mean [µm]", ste["mean_um"]),
-        ("peak-to-peak [µm]", ste["peak_to_peak_um"]),
-        ("peak-to-peak (arcsec at the pinion)", ste["peak_to_peak_arcsec"]),
-        *((f"{k} amplitude [µm]", v) for k, v in ste["harmonics_um"].items()),
-        ("unloaded TE peak-to-peak [µm]", ste["unloaded_te_peak_to_peak_um"]),
-    ]))
-    console.print(_table("Mesh stiffness [N/mm]", [
-        ("mean over the cycle", st["mesh_mean_N_mm"]),
-        ("single-pair zone (mean)", st["single_pair_zone_N_mm"]),
-        ("double-pair zone (mean)", st["double_pair_zone_N_mm"]),
-        ("ISO 6336-1 c′b (single pair)", st["iso6336_single_pair_c_prime_b_N_mm"]),
-        ("ISO 6336-1 c_γα b (mean)", st["iso6336_mean_c_gamma_alpha_b_N_mm"]),
-    ]))
+        ("mean", ste["mean_um"], "µm"),
+        ("peak-to-peak", ste["peak_to_peak_um"], "µm"),
+        ("peak-to-peak at the pinion", ste["peak_to_peak_arcsec"], "arcsec"),
+        *((f"{k} amplitude", v, "µm") for k, v in ste["harmonics_um"].items()),
+        ("unloaded TE peak-to-peak", ste["unloaded_te_peak_to_peak_um"], "µm"),
+    ], units))
+    console.print(_table("Mesh stiffness", [
+        ("mean over the cycle", st["mesh_mean_N_mm"], "N/mm"),
+        ("single-pair zone (mean)", st["single_pair_zone_N_mm"], "N/mm"),
+        ("double-pair zone (mean)", st["double_pair_zone_N_mm"], "N/mm"),
+        ("ISO 6336-1 c′b (single pair)", st["iso6336_single_pair_c_prime_b_N_mm"], "N/mm"),
+        ("ISO 6336-1 c_γα b (mean)", st["iso6336_mean_c_gamma_alpha_b_N_mm"], "N/mm"),
+    ], units))
     if "harris" in doc:
         from rich.table import Table
 

@@ -2,12 +2,19 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import format_value, handle_errors, print_checks_table
+from gearcli.cli.common import (
+    display_units,
+    format_value,
+    handle_errors,
+    option_quantities,
+    print_checks_table,
+)
 
 
 @app.command()
@@ -15,9 +22,10 @@ from gearcli.cli.common import format_value, handle_errors, print_checks_table
 def modal(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     as_json: bool = typer.Option(False, "--json", help="Print the report as JSON."),
-    speed_range: tuple[float, float] | None = typer.Option(
-        None, "--speed-range", help="Pinion speed range A B [deg/s] of the Campbell diagram "
-        "(default 0 .. 1.5 x case speed)."),
+    speed_range: tuple[str, str] | None = typer.Option(
+        None, "--speed-range", metavar="A B", help="Pinion speed range of the Campbell "
+        "diagram: two speeds with units ('0 rpm' '6000 rpm') or numbers in deg/s (default "
+        "0 .. 1.5 x case speed)."),
     plot: Path | None = typer.Option(None, "--plot", help="Write the Campbell diagram and "
                                      "mode shapes (.png, .svg, .pdf)."),
     set_: list[str] = typer.Option(
@@ -35,19 +43,23 @@ def modal(
     """
     import json
 
+    from gearcli import api
     from gearcli.errors import CheckFailed
     from gearcli.io.files import check_new_file
-    from gearcli.pipeline.modal import modal_document, run_modal, save_campbell_plot
+    from gearcli.pipeline.modal import save_campbell_plot
 
     check_new_file(plot, force, "--plot")
-    res = run_modal(case, set_, speed_range)
-    doc = modal_document(res)
+    units = display_units()
+    speeds = option_quantities(speed_range, "ANGULAR_VELOCITY", "--speed-range")
+    modal_result = api.modal(case, set_, None if speeds is None else
+                             (math.degrees(speeds[0]), math.degrees(speeds[1])))
+    res, doc = modal_result.result, modal_result.document()
     if plot is not None:
-        save_campbell_plot(res, plot)
+        save_campbell_plot(res, plot, units)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
-        _print(doc)
+        _print(doc, units)
         if plot is not None:
             typer.echo(f"wrote {plot}")
     if not res.passed:
@@ -55,19 +67,26 @@ def modal(
         raise CheckFailed(f"{case}: check(s) failed: {', '.join(failed)}")
 
 
-def _print(doc: dict) -> None:
+def _print(doc: dict, units: str) -> None:
     from rich.console import Console
     from rich.table import Table
 
+    from gearcli.display_units import convert
+
     console = Console()
     lin = doc["linearisation"]
+
+    def q(value, unit):
+        x, u = convert(value, unit, units)
+        return f"{x:.4g} {u}"
+
     console.print(
         f"[bold]{doc['case']}[/bold]: {doc['model']} model, drive '{doc['drive']}', "
         f"linearised at F = {lin['static_force_N']:.1f} N: k_mesh = "
-        f"{lin['mesh_stiffness_N_mm']:.4g} N/mm (single pair "
-        f"{lin['single_pair_stiffness_N_mm']:.4g}, double pair "
-        f"{lin['double_pair_stiffness_N_mm']:.4g}), c_mesh = "
-        f"{lin['mesh_damping_Ns_mm']:.4g} N*s/mm, friction off")
+        f"{q(lin['mesh_stiffness_N_mm'], 'N/mm')} (single pair "
+        f"{q(lin['single_pair_stiffness_N_mm'], 'N/mm')}, double pair "
+        f"{q(lin['double_pair_stiffness_N_mm'], 'N/mm')}), c_mesh = "
+        f"{q(lin['mesh_damping_Ns_mm'], 'N*s/mm')}, friction off")
     t = Table(title="Modes", title_justify="left")
     for col in ("mode", "f [Hz]", "zeta", "description",
                 "shape as lengths, rotations as r_b θ (largest = 1): "
@@ -81,13 +100,13 @@ def _print(doc: dict) -> None:
         shape = ", ".join(f"{v:+.3f}" for v in m["shape"].values())
         t.add_row(str(m["mode"]), f, z, m["description"], shape)
     console.print(t)
-    lo, hi = doc["speed_range_deg_s"]
-    c = Table(title=f"Crossings (pinion speed, {lo:g}-{hi:g} deg/s)", title_justify="left")
-    for col in ("order", "mode", "f [Hz]", "pinion speed [deg/s]"):
+    (lo, hi), unit = convert(doc["speed_range_deg_s"], "deg/s", units)
+    c = Table(title=f"Crossings (pinion speed, {lo:.4g}-{hi:.4g} {unit})", title_justify="left")
+    for col in ("order", "mode", "f [Hz]", f"pinion speed [{unit}]"):
         c.add_column(col)
     for x in doc["crossings"]:
         if x["in_range"]:
             c.add_row(x["order"], str(x["mode"]), format_value(x["frequency_Hz"]),
-                      format_value(x["pinion_speed_deg_s"]))
+                      format_value(convert(x["pinion_speed_deg_s"], "deg/s", units)[0]))
     console.print(c)
     print_checks_table(doc["checks"])

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import handle_errors, status_reporter
+from gearcli.cli.common import display_units, handle_errors, status_reporter
 
 
 @app.command()
@@ -34,7 +34,7 @@ def report(
     check_new_file(target, force, "-o" if out is not None else "the report")
     if out is None:
         check_no_earlier(folder, ("figures",), force, "report's figures")
-    path = build_report(folder, fmt, out)
+    path = build_report(folder, fmt, out, display_units())
     if not quiet:
         typer.echo(f"report written to {path}")
 
@@ -57,21 +57,21 @@ def run(
 
     Example: gearcli run cases/iso_pair.yaml -o out/iso --format md
     """
+    from gearcli import api
     from gearcli.cli.analyze import print_checks
     from gearcli.errors import CheckFailed, InvalidResultError, OutputError
     from gearcli.io.outdir import atomic_dir, check_target
     from gearcli.pipeline.analysis_io import write_analysis
-    from gearcli.pipeline.analyze import analyze as run_analysis
     from gearcli.pipeline.outputs import write_simulation_files
-    from gearcli.pipeline.simulate import run_simulation
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):
         raise OutputError(f"--format {fmt}: expected html or md")
     check_target(out, force)
+    units = display_units()
     with status_reporter(enabled=not quiet) as status:
-        result = run_simulation(case, set_, status=status,
-                                progress=status.progress if status else None)
+        result = api.simulate(case, set_, status=status, zoom=True,
+                              progress=status.progress if status else None).result
         if result.status != "ok":  # keep the run for diagnosis; nothing to analyse
             with atomic_dir(out, force) as tmp:
                 write_simulation_files(result, tmp, set_)
@@ -81,12 +81,12 @@ def run(
             status("analysing and writing the report")
         with atomic_dir(out, force) as tmp:
             write_simulation_files(result, tmp, set_)
-            analysis = run_analysis(tmp)
-            doc = write_analysis(analysis)
-            name = build_report(tmp, fmt, None).name
+            analysis = api.analyze(tmp)
+            doc = write_analysis(analysis.result)
+            name = build_report(tmp, fmt, None, units).name
     path = out / name
     if not quiet:
-        print_checks(doc)
+        print_checks(doc, units)
         for w in result.warnings:
             typer.echo(f"warning: {w}", err=True)
     typer.echo(f"report written to {path}")

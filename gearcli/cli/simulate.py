@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import (
+    display_units,
     handle_errors,
     print_quantity_table,
     status_reporter,
@@ -37,15 +38,10 @@ def simulate(
     """
     import json
 
+    from gearcli import api
     from gearcli.errors import OutputError
     from gearcli.io.outdir import check_target
-    from gearcli.pipeline.outputs import (
-        TIMESERIES_FORMATS,
-        summary_document,
-        timeseries_csv,
-        write_simulation,
-    )
-    from gearcli.pipeline.simulate import run_simulation
+    from gearcli.pipeline.outputs import TIMESERIES_FORMATS, summary_document, timeseries_csv
 
     to_stdout = out == "-"
     if fmt not in TIMESERIES_FORMATS:
@@ -55,17 +51,18 @@ def simulate(
     if not to_stdout:
         check_target(out, force)  # fail before a long run, not after
     with status_reporter(enabled=not quiet and not to_stdout and not as_json) as status:
-        result = run_simulation(case, set_, status=status,
-                                    progress=status.progress if status else None)
+        sim = api.simulate(case, set_, status=status, zoom=True,
+                           progress=status.progress if status else None)
+    result = sim.result
     if to_stdout:
         typer.echo(timeseries_csv(result), nl=False)
     else:
-        write_simulation(result, out, force, set_, fmt)
+        sim.save(out, force, fmt)
     doc = summary_document(result)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet and not to_stdout:
-        _print_summary(doc, out)
+        _print_summary(doc, out, display_units())
     for w in result.warnings:
         if not quiet:
             typer.echo(f"warning: {w}", err=True)
@@ -85,7 +82,7 @@ SUMMARY_KEYS = ("pinion_speed_mean_deg_s", "gear_speed_mean_deg_s", "speed_ratio
                 "energy_relative_residual")
 
 
-def _print_summary(doc: dict, out: str) -> None:
+def _print_summary(doc: dict, out: str, units: str) -> None:
     s, sv = doc["scalars"], doc["solver"]
     w0, w1 = s["window_s"]
     from gearcli.io.metrics import rows as metric_rows
@@ -93,7 +90,7 @@ def _print_summary(doc: dict, out: str) -> None:
     shown = {**s, "energy_relative_residual": s["energy_balance"]["relative_residual"]}
     if doc["status"] != "ok":
         shown["dynamic_factor"] = "not valid (see the error below)"
-    rows = metric_rows(shown, SUMMARY_KEYS) + [
+    rows = metric_rows(shown, SUMMARY_KEYS, units) + [
         ("solver steps / RHS evaluations",
          f"{sv['accepted_steps']} (+{sv['rejected_steps']} rejected) / "
          f"{sv['rhs_evaluations']}", ""),

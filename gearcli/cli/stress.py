@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import handle_errors
+from gearcli.cli.common import handle_errors, option_quantities
 
 
 @app.command()
@@ -19,9 +19,9 @@ def stress(
         None, "--plot", help="Plot σ_H and σ_F over a few mesh cycles and along the path "
         "of contact to FILE (.png, .svg or .pdf)."
     ),
-    window: tuple[float, float] | None = typer.Option(
-        None, "--window", help="Window T0 T1 [s] for the maxima (default: the run's steady "
-        "window)."
+    window: tuple[str, str] | None = typer.Option(
+        None, "--window", help="Window T0 T1 for the maxima: times with units or numbers in s "
+        "(default: the run's steady window).", metavar="T0 T1"
     ),
     safety: bool = typer.Option(
         False, "--safety", help="Require safety factors: error when the case lacks "
@@ -38,8 +38,9 @@ def stress(
     Example: gearcli stress out/seed --safety --plot out/seed/stress.png"""
     import json
 
+    from gearcli import api
     from gearcli.errors import OutputError
-    from gearcli.pipeline.stress import compute_stress, save_stress_plot, write_stress
+    from gearcli.pipeline.stress import save_stress_plot, write_stress
 
     if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
         raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
@@ -47,7 +48,8 @@ def stress(
 
     check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
     check_new_file(plot, force, "--plot")
-    result = compute_stress(folder, window, require_limits=safety)
+    result = api.stress(folder, option_quantities(window, "TIME", "--window"),
+                        require_limits=safety).result
     doc = write_stress(result)
     if plot is not None:
         save_stress_plot(result, plot)

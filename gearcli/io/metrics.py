@@ -1,18 +1,20 @@
-"""Labels and display units of the result metrics, defined once (issue 17): the CLI tables, the
-report tables and the Python API's typed :class:`gearcli.api.Summary` read them from here, so a
+"""Labels and stored units of the result metrics, defined once (issue 17): the CLI tables, the
+report tables and the Python API's typed results (gearcli/results.py) read them from here, so a
 metric is added or renamed in one place. Keys are the names of summary.json's ``scalars`` and
-analysis.json's ``metrics`` (internal units, the unit in the name); ``scale`` converts the stored
-value to the display ``unit``."""
+analysis.json's ``metrics`` (internal units, the unit in the name); the display unit follows the
+display-unit setting (gearcli/display_units.py: rpm or rad/s, µm or m, ...)."""
 
 from __future__ import annotations
 
 from typing import NamedTuple
 
+from gearcli.display_units import DEFAULT, convert, unit_and_factor
+
 
 class Metric(NamedTuple):
     label: str
-    unit: str  #: display unit ("–" for dimensionless)
-    scale: float = 1.0  #: display value = stored value * scale
+    unit: str  #: stored unit ("–" dimensionless, "fraction" a fraction shown in %)
+    fine: bool = False  #: a deflection: µm in engineering units (display_units)
 
 
 METRICS: dict[str, Metric] = {
@@ -31,25 +33,25 @@ METRICS: dict[str, Metric] = {
     "force_max_t_s": Metric("time of the maximum force", "s"),
     "force_min_N": Metric("normal force, minimum", "N"),
     "dynamic_factor": Metric("dynamic factor F_max / F_static", "–"),
-    "dte_mean_mm": Metric("DTE, mean", "µm", 1e3),
-    "dte_peak_to_peak_mm": Metric("DTE, peak to peak", "µm", 1e3),
-    "dte_rms_mm": Metric("DTE, standard deviation", "µm", 1e3),
-    "contact_loss_fraction": Metric("time without drive-flank contact", "%", 100.0),
+    "dte_mean_mm": Metric("DTE, mean", "mm", True),
+    "dte_peak_to_peak_mm": Metric("DTE, peak to peak", "mm", True),
+    "dte_rms_mm": Metric("DTE, standard deviation", "mm", True),
+    "contact_loss_fraction": Metric("time without drive-flank contact", "fraction"),
     "coast_impacts": Metric("coast-flank impacts", "–"),
     "coast_force_max_N": Metric("coast-flank force, maximum", "N"),
     "pairs_in_contact_mean": Metric("tooth pairs in contact, mean", "–"),
     "input_power_W": Metric("input power", "W"),
     "friction_loss_W": Metric("friction loss", "W"),
     "mesh_efficiency": Metric("mesh efficiency", "–"),
-    "drive_torque_mean_Nmm": Metric("drive torque, mean", "N·m", 1e-3),
-    "drive_torque_ripple_Nmm": Metric("drive torque, peak to peak", "N·m", 1e-3),
+    "drive_torque_mean_Nmm": Metric("drive torque, mean", "N*mm"),
+    "drive_torque_ripple_Nmm": Metric("drive torque, peak to peak", "N*mm"),
     "gear_mesh_frequency_Hz": Metric("gear-mesh frequency f_z", "Hz"),
     "pinion_shaft_Hz": Metric("pinion shaft frequency n1", "Hz"),
     "gear_shaft_Hz": Metric("gear shaft frequency n2", "Hz"),
     "mesh_natural_frequency_Hz": Metric("mesh mode natural frequency f_n", "Hz"),
     "mesh_damping_ratio": Metric("mesh mode damping ratio ζ", "–"),
     "mesh_stiffness_N_mm": Metric("mesh stiffness (linearised)", "N/mm"),
-    "static_deflection_mm": Metric("static deflection", "µm", 1e3),
+    "static_deflection_mm": Metric("static deflection", "mm", True),
     "resonance_margins_percent": Metric("distance of k·f_z from the nearest mode (k = 1, 2, ..)",
                                         "%"),
     "output_rate_Hz": Metric("output sampling rate", "Hz"),
@@ -57,19 +59,34 @@ METRICS: dict[str, Metric] = {
     "samples": Metric("samples in the window", "–"),
     "energy_relative_residual": Metric("energy balance, relative residual", "–"),
     "window_s": Metric("steady window", "s"),
+    # stress.json, per gear (gearcli stress)
+    "sigma_H_peak_MPa": Metric("contact stress σ_H, dynamic peak", "MPa"),
+    "sigma_F_peak_MPa": Metric("root stress σ_F, dynamic peak", "MPa"),
+    "sigma_H_iso_MPa": Metric("ISO static σ_H (Z_B or Z_D σ_H0, single contact)", "MPa"),
+    "sigma_F0_MPa": Metric("ISO static σ_F0 = F_t/(b m) Y_F Y_S", "MPa"),
+    "ratio_sigma_H_to_static": Metric("dynamic / static σ_H", "–"),
+    "ratio_sigma_F_to_static": Metric("dynamic / static σ_F", "–"),
+    "S_H": Metric("safety S_H = σ_Hlim / σ_H,max", "–"),
+    "S_F": Metric("safety S_F = σ_Flim Y_ST / σ_F,max", "–"),
+    # modal (gearcli modal), per mode
+    "natural_frequency_Hz": Metric("natural frequency", "Hz"),
+    "damping_ratio": Metric("damping ratio ζ", "–"),
 }
 
 
-def display(key: str, value):
-    """(label, value in the display unit, unit) of a stored metric (lists elementwise)."""
+def display(key: str, value, system: str = DEFAULT):
+    """(label, value in the display unit, display unit) of a stored metric (lists
+    elementwise)."""
     m = METRICS[key]
-    if m.scale != 1.0 and isinstance(value, int | float) and not isinstance(value, bool):
-        value = value * m.scale
-    elif m.scale != 1.0 and isinstance(value, list):
-        value = [v * m.scale for v in value]
-    return m.label, value, m.unit
+    shown, unit = convert(value, m.unit, system, m.fine)
+    return m.label, shown, unit
 
 
-def rows(values: dict, keys) -> list[tuple[str, object, str]]:
+def display_unit(key: str, system: str = DEFAULT) -> str:
+    m = METRICS[key]
+    return unit_and_factor(m.unit, system, m.fine)[0]
+
+
+def rows(values: dict, keys, system: str = DEFAULT) -> list[tuple[str, object, str]]:
     """Display rows of the ``keys`` present in ``values``."""
-    return [display(k, values[k]) for k in keys if k in values]
+    return [display(k, values[k], system) for k in keys if k in values]

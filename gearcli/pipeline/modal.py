@@ -241,16 +241,22 @@ def modal_document(res: ModalAnalysis) -> dict:
     }
 
 
-def save_campbell_plot(res: ModalAnalysis, path: str | Path) -> None:
+def campbell_figure(res: ModalAnalysis, units: str = "engineering"):
+    """Campbell diagram + mode shapes (a matplotlib Figure); shaft speeds in ``units``."""
+    from gearcli.plotting.campbell import plot_campbell
+
+    return plot_campbell(res.result, res.orders, res.speed_range_deg_s, res.case_speed_deg_s,
+                         title=f"{res.name}: {res.loaded.case.model} model, drive "
+                               f"'{res.system.drive}'", units=units)
+
+
+def save_campbell_plot(res: ModalAnalysis, path: str | Path, units: str = "engineering") -> None:
     """Campbell diagram + mode shapes, written atomically (.png, .svg or .pdf)."""
     import io
 
     from gearcli.io.files import write_atomic
-    from gearcli.plotting.campbell import plot_campbell
 
-    fig = plot_campbell(res.result, res.orders, res.speed_range_deg_s, res.case_speed_deg_s,
-                        title=f"{res.name}: {res.loaded.case.model} model, drive "
-                              f"'{res.system.drive}'")
+    fig = campbell_figure(res, units)
     buf = io.BytesIO()
     fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=150)
     write_atomic(path, buf.getvalue())

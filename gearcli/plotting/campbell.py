@@ -27,7 +27,7 @@ _MODE_COLOURS = ["#c62828", "#1565c0", "#2e7d32", "#6a1b9a", "#ef6c00", "#00838f
 
 def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
                   speed_range_deg_s: tuple[float, float], case_speed_deg_s: float | None,
-                  title: str = "") -> Figure:
+                  title: str = "", units: str = "engineering") -> Figure:
     """Campbell diagram (left) and mode shapes (right) of a modal result (any model).
 
     Parameters
@@ -40,8 +40,14 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
         Pinion speed axis [deg/s].
     case_speed_deg_s : float or None
         The case's pinion speed [deg/s], marked when given.
+    units : str
+        Display units of the speed axis (gearcli/display_units.py: rpm or rad/s).
     """
     from matplotlib.figure import Figure
+
+    from gearcli.display_units import unit_and_factor
+
+    speed_unit, k = unit_and_factor("deg/s", units)
 
     fig = Figure(figsize=(12.0, 7.0), layout="constrained")
     ax, axs = fig.subplots(1, 2, width_ratios=[2.3, 1.0])
@@ -57,11 +63,11 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
     greys = np.linspace(0.15, 0.65, max(len(gmf), 1))
     for o, grey in zip(gmf, greys, strict=False):
         f = o.per_rev * speed / 360.0
-        ax.plot(speed, f, color=str(grey), lw=1.0)
-        _label_line(ax, speed, f, o.name, f_top)
+        ax.plot(k * speed, f, color=str(grey), lw=1.0)
+        _label_line(ax, k * speed, f, o.name, f_top)
     for o, style in zip(shafts, ("--", ":"), strict=False):
         f = o.per_rev * speed / 360.0
-        ax.plot(speed, f, color="#555555", lw=1.0, ls=style, label=f"{o.name} (shaft order)")
+        ax.plot(k * speed, f, color="#555555", lw=1.0, ls=style, label=f"{o.name} (shaft order)")
     for m, col in zip(elastic, mode_colours, strict=False):
         ax.axhline(m.natural_frequency_Hz, color=col, lw=2.0,
                    label=f"mode {m.number}: {m.natural_frequency_Hz:.0f} Hz, "
@@ -69,14 +75,14 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
         for o in orders:
             n = m.natural_frequency_Hz / o.per_rev * 360.0
             if lo <= n <= hi:
-                ax.plot(n, m.natural_frequency_Hz, "o" if m.has_peak else "x", ms=7,
+                ax.plot(k * n, m.natural_frequency_Hz, "o" if m.has_peak else "x", ms=7,
                         mfc="none", mec=col, color=col, mew=1.6)
     if case_speed_deg_s is not None and lo <= case_speed_deg_s <= hi:
-        ax.axvline(case_speed_deg_s, color="#ef6c00", lw=1.5, ls="-.",
-                   label=f"case speed {case_speed_deg_s:.0f} deg/s")
-    ax.set_xlim(lo, hi)
+        ax.axvline(k * case_speed_deg_s, color="#ef6c00", lw=1.5, ls="-.",
+                   label=f"case speed {k * case_speed_deg_s:.4g} {speed_unit}")
+    ax.set_xlim(k * lo, k * hi)
     ax.set_ylim(0.0, f_top)
-    ax.set_xlabel("pinion speed [deg/s]")
+    ax.set_xlabel(f"pinion speed [{speed_unit}]")
     ax.set_ylabel("frequency [Hz]")
     ax.set_title("Campbell diagram (o crossing with a resonant mode, x mode without a peak)",
                  fontsize=9)
@@ -124,14 +130,19 @@ def _plot_shapes(ax, result: ModalResult, colours) -> None:
 
 
 def plot_campbell_summary(modes: list[dict], pinion_teeth: int, case_speed_rpm: float,
-                          harmonics: int = 5, title: str = "") -> Figure:
+                          harmonics: int = 5, title: str = "",
+                          units: str = "engineering") -> Figure:
     """Campbell diagram from a run's stored modes (summary.json ``scalars.modes``): the mode
     frequencies [Hz] as horizontal lines (dashed: no resonant peak, ζ >= 1/√2), the gear-mesh
     orders k z1 n1/60 (k = 1 .. ``harmonics``) against the pinion speed [rpm] up to 1.5 times
-    the case speed, their crossings with the peaked modes circled and the case speed marked."""
+    the case speed, their crossings with the peaked modes circled and the case speed marked;
+    the speed axis in the display ``units`` (rpm or rad/s)."""
     from matplotlib.figure import Figure
 
+    from gearcli.display_units import unit_and_factor
     from gearcli.model.modal import has_resonant_peak
+
+    unit, k_n = unit_and_factor("rpm", units)
 
     fig = Figure(figsize=(8.0, 4.8))
     ax = fig.add_subplot()
@@ -141,9 +152,10 @@ def plot_campbell_summary(modes: list[dict], pinion_teeth: int, case_speed_rpm: 
     f_top = max([m["natural_frequency_Hz"] for m in elastic]
                 + [harmonics * pinion_teeth * top_speed / 60.0]) * 1.1
     for k in range(1, harmonics + 1):
-        ax.plot(n, k * pinion_teeth * n / 60.0, color="0.35", lw=0.9)
+        ax.plot(k_n * n, k * pinion_teeth * n / 60.0, color="0.35", lw=0.9)
         x_end = min(top_speed, f_top * 60.0 / (k * pinion_teeth))
-        ax.text(x_end, k * pinion_teeth * x_end / 60.0, f" {k}×f_z", fontsize=7, va="bottom")
+        ax.text(k_n * x_end, k * pinion_teeth * x_end / 60.0, f" {k}×f_z", fontsize=7,
+                va="bottom")
     for i, m in enumerate(elastic):
         f = m["natural_frequency_Hz"]
         peaked = has_resonant_peak(m.get("damping_ratio") or 0.0)
@@ -155,11 +167,11 @@ def plot_campbell_summary(modes: list[dict], pinion_teeth: int, case_speed_rpm: 
             for k in range(1, harmonics + 1):
                 n_cross = 60.0 * f / (k * pinion_teeth)
                 if n_cross <= top_speed:
-                    ax.plot(n_cross, f, "o", mfc="none", mec=colour, ms=7)
+                    ax.plot(k_n * n_cross, f, "o", mfc="none", mec=colour, ms=7)
     if case_speed_rpm > 0:
-        ax.axvline(case_speed_rpm, color="#2e7d32", lw=1.2, ls=":",
-                   label=f"case speed {case_speed_rpm:.0f} rpm")
-    ax.set(xlim=(0.0, top_speed), ylim=(0.0, f_top), xlabel="pinion speed [rpm]",
+        ax.axvline(k_n * case_speed_rpm, color="#2e7d32", lw=1.2, ls=":",
+                   label=f"case speed {k_n * case_speed_rpm:.4g} {unit}")
+    ax.set(xlim=(0.0, k_n * top_speed), ylim=(0.0, f_top), xlabel=f"pinion speed [{unit}]",
            ylabel="frequency [Hz]", title=title)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="upper left")

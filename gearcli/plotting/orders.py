@@ -36,13 +36,18 @@ def order_map(t_s, signal, omega1_rad_s, segment_s: float):
 def plot_order_map(t_s, signal, omega1_rad_s, pinion_teeth: int, modes_Hz=(), *,
                    label: str = "signal", unit: str = "", harmonics: int = 5,
                    f_max_Hz: float | None = None, segment_s: float | None = None,
-                   db: bool = True) -> Figure:
+                   db: bool = True, units: str = "engineering") -> Figure:
     """Order map: amplitude (dB re the largest, or linear) against pinion speed [rpm] (left)
     and time (right), frequencies up to ``f_max_Hz`` [Hz]; order lines k z1 n/60 [Hz],
     k = 1 .. ``harmonics``; modes as horizontal lines. ``segment_s`` defaults to 8 mesh
     periods at the final speed (a resolution of f_z/8 there). The speed panel shows the
-    segments of the run-up (speed below 99 % of its final value)."""
+    segments of the run-up (speed below 99 % of its final value); its speed axis in the
+    display ``units`` (rpm or rad/s, gearcli/display_units.py)."""
     from matplotlib.figure import Figure
+
+    from gearcli.display_units import unit_and_factor
+
+    speed_unit, k_n = unit_and_factor("rpm", units)
 
     t = np.asarray(t_s, float)
     omega = np.asarray(omega1_rad_s, float)
@@ -62,7 +67,8 @@ def plot_order_map(t_s, signal, omega1_rad_s, pinion_teeth: int, modes_Hz=(), *,
     up = np.abs(rpm) < 0.99 * n_end if n_end > 0 else np.ones(rpm.size, bool)
     if up.sum() < 2:
         up = np.ones(rpm.size, bool)
-    for ax, x, v, xlabel in ((ax_speed, rpm[up], values[:, up], "pinion speed [rpm] (run-up)"),
+    for ax, x, v, xlabel in ((ax_speed, k_n * rpm[up], values[:, up],
+                              f"pinion speed [{speed_unit}] (run-up)"),
                              (ax_time, t_mid, values, "time [s]")):
         mesh = ax.pcolormesh(x, f[keep], v, shading="nearest", cmap="viridis",
                              vmin=-60.0 if db else None)
@@ -71,11 +77,12 @@ def plot_order_map(t_s, signal, omega1_rad_s, pinion_teeth: int, modes_Hz=(), *,
             ax.axhline(fm, color="white", ls="--", lw=0.8)
     order_x = np.linspace(0.0, max(float(rpm[up].max()), 1.0), 50)
     for k in range(1, harmonics + 1):
-        ax_speed.plot(order_x, k * pinion_teeth * order_x / 60.0, color="w", lw=0.6, alpha=0.8)
-        ax_speed.text(order_x[-1], min(k * pinion_teeth * order_x[-1] / 60.0, f_top * 0.97),
+        ax_speed.plot(k_n * order_x, k * pinion_teeth * order_x / 60.0, color="w", lw=0.6,
+                      alpha=0.8)
+        ax_speed.text(k_n * order_x[-1], min(k * pinion_teeth * order_x[-1] / 60.0, f_top * 0.97),
                       f"{k}×", color="w", fontsize=7, ha="right")
     if np.ptp(rpm[up]) > 0:
-        ax_speed.set_xlim(float(rpm[up].min()), float(rpm[up].max()))
+        ax_speed.set_xlim(k_n * float(rpm[up].min()), k_n * float(rpm[up].max()))
     fig.colorbar(mesh, ax=ax_time, label=f"{label} amplitude " + (
         "[dB re max]" if db else f"[{unit}]"))
     fig.suptitle(f"Order map of the {label}: mesh orders k·z1·n/60 (white lines), modes "

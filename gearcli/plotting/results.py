@@ -78,18 +78,23 @@ def _note_coarse(ax: Axes, n_samples: int, cycles: float) -> None:
 
 
 def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_s=None,
-                zoom_s=None, f_z_Hz: float | None = None) -> Figure:
-    """Pinion and gear speed [deg/s] over the run, and the gear speed against its kinematic
-    value ω1·z1/z2 over a short stretch ``zoom_s`` = (t0, t1) [s] of the steady window."""
+                zoom_s=None, f_z_Hz: float | None = None, units: str = "engineering") -> Figure:
+    """Pinion and gear speed over the run (in the display ``units``: rpm or rad/s,
+    gearcli/display_units.py), and the gear speed against its kinematic value ω1·z1/z2 over
+    a short stretch ``zoom_s`` = (t0, t1) [s] of the steady window."""
+    from gearcli.display_units import speed_from_rad_s, speed_label
+
     t = np.asarray(t_s, float)
-    w1, w2 = np.degrees(omega1_rad_s), np.degrees(omega2_rad_s)
+    unit = speed_label(units)
+    w1 = speed_from_rad_s(np.asarray(omega1_rad_s, float), units)
+    w2 = speed_from_rad_s(np.asarray(omega2_rad_s, float), units)
     kin = w1 * teeth[0] / teeth[1]
     fig, (ax, zx) = _figure(2)
     _shade_window(ax, window_s)
     ax.plot(t, w1, color=PINION, lw=1.0, label=f"pinion ω1 (z1 = {teeth[0]})")
     ax.plot(t, w2, color=GEAR, lw=0.6, label=f"gear ω2 (z2 = {teeth[1]})")
     ax.plot(t, kin, color=KIN, lw=0.9, ls="--", label="kinematic gear speed ω1·z1/z2")
-    ax.set(xlabel="time [s]", ylabel="speed [deg/s]", xlim=(t[0], t[-1]))
+    ax.set(xlabel="time [s]", ylabel=f"speed [{unit}]", xlim=(t[0], t[-1]))
     ax.legend(loc="lower right", fontsize=8)
     sel = _in(t, window_s) if window_s is not None else np.ones(t.size, bool)
     k_mean = float(np.mean(kin[sel]))
@@ -100,13 +105,13 @@ def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_
         zx.plot(ms, w2[z], color=GEAR, lw=1.0, marker=".", ms=3, label="gear ω2 (output samples)")
         zx.plot(ms, kin[z], color=KIN, lw=0.9, ls="--", label="kinematic ω1·z1/z2")
         _zoom_axis(zx, zoom_s[0])
-        zx.set_ylabel("gear speed [deg/s]")
+        zx.set_ylabel(f"gear speed [{unit}]")
         zx.legend(loc="best", fontsize=8)
         _title_zoom(zx, int(z.sum()), zoom_s, f_z_Hz)
     else:
         zx.set_visible(False)
-    fig.suptitle(f"Gear speed fluctuates around the kinematic {k_mean:.0f} deg/s "
-                 f"(±{half:.0f} deg/s in the steady window)")
+    fig.suptitle(f"Gear speed fluctuates around the kinematic {k_mean:.4g} {unit} "
+                 f"(±{half:.3g} {unit} in the steady window)")
     return fig
 
 

@@ -15,7 +15,8 @@ from gearcli.report.markdown import render_markdown
 FORMATS = ("html", "md")
 
 
-def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | None = None) -> Path:
+def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | None = None,
+                 units: str = "engineering") -> Path:
     """Write the report of a results folder that ``gearcli analyze`` has processed.
 
     Parameters
@@ -25,6 +26,8 @@ def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | N
     fmt : "html" (one self-contained file: inline CSS, figures embedded as PNG data URIs) or
         "md" (Markdown linking the PNG files in ``folder/figures``)
     out_file : report path; default ``folder/report.html`` or ``folder/report.md``
+    units : display units of tables and figures, "engineering" (rpm, µm, N·m) or "si"
+        (gearcli/display_units.py)
 
     Returns
     -------
@@ -42,7 +45,7 @@ def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | N
     """
     if fmt not in FORMATS:
         raise ValueError(f"report format must be one of {', '.join(FORMATS)}; got {fmt!r}")
-    data = load_report_data(folder)
+    data = load_report_data(folder, units)
     out = Path(out_file) if out_file is not None else data.folder / f"report.{fmt}"
     if out.is_dir():
         raise OutputError(f"{out}: is a folder; expected a report file name")

@@ -29,6 +29,8 @@ class ReportData:
     #: zoom.csv: the solver's dense output around the force maximum and at the end of the run
     #: (pipeline/simulate.dense_zoom); empty for folders written without it
     zoom: dict = None  # type: ignore[assignment]
+    #: display units of the tables and figures (gearcli/display_units.py)
+    units: str = "engineering"
 
     @property
     def folder(self) -> Path:
@@ -73,7 +75,7 @@ class ReportData:
                    for v in pair.values())
 
 
-def load_report_data(folder: str | Path) -> ReportData:
+def load_report_data(folder: str | Path, units: str = "engineering") -> ReportData:
     """Read manifest, summary, time series (validated by read_run), analysis.json, spectrum.csv.
 
     Raises
@@ -109,7 +111,7 @@ def load_report_data(folder: str | Path) -> ReportData:
     zoom = {}
     if (run.folder / "zoom.csv").is_file():
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
-    return ReportData(run, analysis, spectrum, geometry, error, stress, zoom)
+    return ReportData(run, analysis, spectrum, geometry, error, stress, zoom, units)
 
 
 #: Non-numeric entries of analysis.json's metrics, by kind; every other entry is a number or null.

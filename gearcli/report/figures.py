@@ -69,7 +69,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
         ("speeds", "Pinion and gear speed over the run (shaded: the steady window analysed) and "
          "the gear speed against its kinematic value ω1·z1/z2 over 6 mesh cycles.",
          lambda: plots.plot_speeds(t, c["omega1_rad_s"], c["omega2_rad_s"], teeth, window,
-                                   (start, start + 6 * period), f_z)),
+                                   (start, start + 6 * period), f_z, data.units)),
         ("force", "Total normal mesh force with the static force T_load/r_b2; the marker is the "
          "true maximum taken from the solver's own steps (the output samples may miss it).",
          lambda: plots.plot_force(t, c["force_total_N"], static, f_max, t_max, window,
@@ -104,7 +104,8 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                      "circled and the case speed marked.",
                      lambda: plot_campbell_summary(
                          modes, teeth[0], abs(data.scalars.get("pinion_speed_mean_deg_s", 0.0))
-                         / 6.0, int(data.case.get("checks", {}).get("harmonics", 5)))))
+                         / 6.0, int(data.case.get("checks", {}).get("harmonics", 5)),
+                         units=data.units)))
     omega1 = c["omega1_rad_s"]
     if abs(float(omega1.min())) < 0.9 * abs(float(omega1[-1])):  # a run-up: the order map
         elastic_Hz = [m["natural_frequency_Hz"] for m in modes
@@ -113,7 +114,8 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                      "against pinion speed (left) and time (right), with the mesh orders "
                      "k·z1·n/60 (white) and the modes (dashed); dB re the largest amplitude.",
                      lambda: plot_order_map(t, c["force_total_N"], omega1, teeth[0], elastic_Hz,
-                                            label="mesh force", unit="N")))
+                                            label="mesh force", unit="N",
+                                            units=data.units)))
     if data.has_errors_or_relief():
         jobs.append(("modifications", "What the case's manufacturing errors and profile "
                      "modifications change: the once-per-revolution DTE they add (mean over each "

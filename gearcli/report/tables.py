@@ -6,6 +6,7 @@ import math
 import shlex
 from dataclasses import dataclass, field
 
+from gearcli.display_units import DEFAULT, convert
 from gearcli.io.metrics import display
 from gearcli.report.data import ReportData, number, unit_of
 
@@ -43,13 +44,19 @@ def fmt(value, digits: int = 4) -> str:
     return str(value)
 
 
-def qty(value, unit: str | None = None, scale: float = 1.0) -> str:
-    """A stored "number unit" string (or number) as 'number unit', optionally rescaled."""
+def qty(value, system: str = DEFAULT) -> str:
+    """A stored "number unit" string (internal units) as 'number unit' in the display units
+    ``system`` (gearcli/display_units.py: "104.7 rad/s" -> "1000 rpm")."""
     if value is None:
         return "–"
-    x = number(value) * scale
-    u = unit if unit is not None else unit_of(value)
+    x, u = convert(number(value), unit_of(value), system)
     return f"{fmt(x)} {u}".strip()
+
+
+def _cells(value, system: str) -> tuple[str, str]:
+    """(value, unit) cells of a stored "number unit" string in the display units."""
+    x, u = convert(number(value), unit_of(value), system)
+    return fmt(x), u
 
 
 def _deg(value) -> str:
@@ -59,45 +66,44 @@ def _deg(value) -> str:
 # --- the case ---------------------------------------------------------------------------------
 def gears_table(data: ReportData) -> Table:
     """Table 1-style: teeth, module, pressure angle, face width, diameters, material."""
-    case, geo = data.case, data.geometry
+    case, geo, u = data.case, data.geometry, data.units
     g = case["gears"]
     p, w = g["pinion"], g["gear"]
     mat = case.get("material") or {}
     rows = [
         ("number of teeth z", str(p["teeth"]), str(w["teeth"])),
-        ("module m", qty(g["module"]), qty(g["module"])),
+        ("module m", qty(g["module"], u), qty(g["module"], u)),
         ("pressure angle α", _deg(g["pressure_angle"]), _deg(g["pressure_angle"])),
-        ("face width b", qty(p.get("face_width") or g["face_width"]),
-         qty(w.get("face_width") or g["face_width"])),
+        ("face width b", qty(p.get("face_width") or g["face_width"], u),
+         qty(w.get("face_width") or g["face_width"], u)),
         ("profile shift x", fmt(p.get("profile_shift", 0.0)), fmt(w.get("profile_shift", 0.0))),
     ]
     if geo is not None:
         for label, attr in (("reference diameter d", "d_mm"), ("tip diameter d_a", "d_a_mm"),
                             ("base diameter d_b", "d_b_mm"), ("root diameter d_f", "d_f_mm")):
-            rows.append((label, f"{fmt(getattr(geo.pinion, attr))} mm",
-                         f"{fmt(getattr(geo.gear, attr))} mm"))
-    for label, key, scale, unit in (("density ρ", "density", 1e12, "kg/m³"),
-                                    ("Young's modulus E", "youngs_modulus", 1.0, "N/mm²"),
-                                    ("Poisson ratio ν", "poisson_ratio", 1.0, "")):
+            rows.append((label, qty(f"{getattr(geo.pinion, attr)} mm", u),
+                         qty(f"{getattr(geo.gear, attr)} mm", u)))
+    for label, key in (("density ρ", "density"), ("Young's modulus E", "youngs_modulus"),
+                       ("Poisson ratio ν", "poisson_ratio")):
         cells = []
         for gear in (p, w):
             m = gear.get("material") or mat
-            cells.append(qty(m.get(key), unit, scale) if m.get(key) is not None else "–")
+            cells.append(qty(m.get(key), u) if m.get(key) is not None else "–")
         rows.append((label, *cells))
-    rows.append(("inertia model", *(_inertia(gear) for gear in (p, w))))
+    rows.append(("inertia model", *(_inertia(gear, u) for gear in (p, w))))
     return Table("Gears and material", ("quantity", "pinion", "gear"), rows)
 
 
-def _inertia(gear: dict) -> str:
+def _inertia(gear: dict, u: str) -> str:
     i = gear.get("inertia") or {}
     model = i.get("model", "disc")
     if model == "disc":
         d = i.get("diameter")
-        text = "solid disc, " + ("pitch diameter" if d is None else qty(d))
+        text = "solid disc, " + ("pitch diameter" if d is None else qty(d, u))
     else:
-        text = f"given J = {qty(i.get('value'))}"
+        text = f"given J = {qty(i.get('value'), u)}"
     extra = number(i.get("extra")) if i.get("extra") is not None else 0.0
-    return text + (f" + {qty(i.get('extra'))}" if extra else "")
+    return text + (f" + {qty(i.get('extra'), u)}" if extra else "")
 
 
 def geometry_table(data: ReportData) -> Table | None:
@@ -129,19 +135,16 @@ def contact_table(data: ReportData) -> Table:
         ("engagement model", str(c.get("engagement", "")), ""),
         ("stiffness K", fmt(number(c.get("stiffness"))), f"N/mm^{e:g}"),
         ("force exponent e", fmt(e), "–"),
-        ("maximum damping c_max", fmt(number(c.get("max_damping"))), unit_of(c.get("max_damping"))),
-        ("damping ramp depth d_max", fmt(number(c.get("penetration_depth"))),
-         unit_of(c.get("penetration_depth"))),
+        ("maximum damping c_max", *_cells(c.get("max_damping"), data.units)),
+        ("damping ramp depth d_max", *_cells(c.get("penetration_depth"), data.units)),
         ("friction", "on" if f.get("enabled") else "off", ""),
     ]
     if f.get("enabled"):
         rows += [
             ("static coefficient μ_s", fmt(f.get("static_coefficient")), "–"),
             ("dynamic coefficient μ_d", fmt(f.get("dynamic_coefficient")), "–"),
-            ("stiction velocity v_s", fmt(number(f.get("stiction_velocity"))),
-             unit_of(f.get("stiction_velocity"))),
-            ("transition velocity v_d", fmt(number(f.get("transition_velocity"))),
-             unit_of(f.get("transition_velocity"))),
+            ("stiction velocity v_s", *_cells(f.get("stiction_velocity"), data.units)),
+            ("transition velocity v_d", *_cells(f.get("transition_velocity"), data.units)),
         ]
     return Table("Contact and friction", ("parameter", "value", "unit"), rows)
 
@@ -157,35 +160,33 @@ def drive_table(data: ReportData) -> Table:
     case = data.case
     d, ld = case.get("drive") or {}, case.get("load") or {}
     b, r = case.get("bearings") or {}, case.get("run") or {}
-    kind = d.get("type", "")
+    kind, u = d.get("type", ""), data.units
     rows = [
         ("drive (pinion)", f"{kind}: {_function(d.get(kind) if kind else None)}"),
-        ("initial pinion speed", qty(d.get("initial_speed"))),
+        ("initial pinion speed", qty(d.get("initial_speed"), u)),
         (f"load torque (on the {ld.get('applied_to', 'gear')})", _function(ld.get("torque"))),
-        ("load: viscous / quadratic", f"{qty(ld.get('viscous'))} / {qty(ld.get('quadratic'))}"),
-        ("bearing damping pinion / gear", f"{qty((b.get('pinion') or {}).get('damping'))} / "
-                                          f"{qty((b.get('gear') or {}).get('damping'))}"),
-        ("end time", qty(r.get("end_time"))),
+        ("load: viscous / quadratic",
+         f"{qty(ld.get('viscous'), u)} / {qty(ld.get('quadratic'), u)}"),
+        ("bearing damping pinion / gear", f"{qty((b.get('pinion') or {}).get('damping'), u)} / "
+                                          f"{qty((b.get('gear') or {}).get('damping'), u)}"),
+        ("end time", qty(r.get("end_time"), u)),
         ("output", f"{fmt(data.scalars.get('output_rate_Hz'))} Hz "
                    f"({data.run.summary.get('rows', '?')} rows)"),
-        ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / {qty(r.get('atol'))}"),
+        ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / {qty(r.get('atol'), u)}"),
     ]
     for key in ("shaft", "motor_curve", "reference_speed"):
         if d.get(key) is not None:
-            rows.append((f"drive {key.replace('_', ' ')}", _setting(d[key])))
+            rows.append((f"drive {key.replace('_', ' ')}", _setting(d[key], u)))
     return Table("Drive, load and run", ("item", "setting"), rows)
 
 
-def _setting(value) -> str:
-    """A resolved case value for a table: a mapping as "name value unit" pairs, speeds in rad/s
-    also in rpm, numbers with 4 significant digits (never Python's repr)."""
+def _setting(value, u: str) -> str:
+    """A resolved case value for a table: a mapping as "name value unit" pairs in the display
+    units ``u``, numbers with 4 significant digits (never Python's repr)."""
     if isinstance(value, dict):
-        return "; ".join(f"{k.replace('_', ' ')} {_setting(v)}" for k, v in value.items())
-    if isinstance(value, str) and unit_of(value) == "rad/s":
-        rad_s = number(value)
-        return f"{fmt(rad_s)} rad/s ({fmt(rad_s * 30.0 / math.pi)} rpm)"
+        return "; ".join(f"{k.replace('_', ' ')} {_setting(v, u)}" for k, v in value.items())
     if isinstance(value, str) and unit_of(value):
-        return qty(value)
+        return qty(value, u)
     return fmt(value)
 
 
@@ -226,7 +227,7 @@ def results_table(data: ReportData) -> Table:
     for key in RESULT_KEYS:
         if key not in m:
             continue
-        label, v, unit = display(key, m[key])
+        label, v, unit = display(key, m[key], data.units)
         if key == "force_max_N" and m.get("force_max_source"):
             label += f" (from the {m['force_max_source']})"
         rows.append((label, fmt(v), unit))

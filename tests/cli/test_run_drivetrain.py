@@ -22,7 +22,12 @@ def test_run_drivetrain_report_is_readable(tmp_path):
     text = (out / "report.md").read_text()
     for raw in ("{'", "[{", "see name", "True}", "None,", ": None"):
         assert raw not in text, raw
-    assert "no load speed 104.7 rad/s (1000 rpm)" in text
+    assert "no load speed 1000 rpm" in text  # engineering display units (the default)
+    si = runner.invoke(app, ["--units", "si", "report", str(out), "--format", "md", "-o",
+                             str(tmp_path / "si.md"), "-q"])
+    assert si.exit_code == 0, si.output
+    si_text = (tmp_path / "si.md").read_text()
+    assert "no load speed 104.7 rad/s" in si_text and "rpm" not in si_text.split("```yaml")[0]
     assert "```yaml" in text and "reference_speed: 3000" in text  # the case as written
     assert "results computed (UTC)" in text
     summary = json.loads((out / "summary.json").read_text())

@@ -68,12 +68,37 @@ def test_analyze_a_simulation_equals_analyze_of_the_cli_folder(tmp_path):
     from_api = gearcli.analyze(sim)
     sim.save(tmp_path / "run")
     from_folder = gearcli.analyze(tmp_path / "run")
-    assert from_api.metrics.keys() == from_folder.metrics.keys()
-    for key, value in from_folder.metrics.items():
+    assert isinstance(from_api.metrics, gearcli.AnalysisMetrics)
+    api_metrics, folder_metrics = from_api.metrics.to_dict(), from_folder.metrics.to_dict()
+    assert api_metrics.keys() == folder_metrics.keys()
+    for key, value in folder_metrics.items():
         if isinstance(value, float):
-            assert from_api.metrics[key] == pytest.approx(value, rel=1e-9, nan_ok=True), key
+            assert api_metrics[key] == pytest.approx(value, rel=1e-9, nan_ok=True), key
+    # the typed metrics are analysis.json's metrics, field by field
+    for key, value in from_folder.result.metrics.items():
+        if key in folder_metrics and isinstance(value, float):
+            assert folder_metrics[key] == value, key
+    assert from_api.passed == from_folder.passed and from_api.checks
     spectra = gearcli.spectra_frame(from_api)
     assert spectra.index.name == "frequency_Hz" and len(spectra.columns) >= 2
+    assert from_api.spectra.equals(spectra)
+    # stress: typed per-gear peaks equal stress.json's
+    st = gearcli.stress(tmp_path / "run")
+    doc = st.document()
+    assert st.pinion.teeth == 17 and st.gear.teeth == 25
+    assert st.pinion.sigma_H_peak_MPa == doc["pinion"]["peak_sigma_H"]["MPa"]
+    assert st.gear.sigma_F_peak_MPa == doc["gear"]["peak_sigma_F"]["MPa"]
+
+
+def test_modal_returns_typed_modes_equal_to_the_cli_json():
+    m = gearcli.modal(SEED)
+    res = runner.invoke(app, ["modal", str(SEED), "--json"])
+    assert res.exit_code in (0, 4), res.output
+    doc = json.loads(res.output)
+    assert [x.natural_frequency_Hz for x in m.modes] == \
+        [x["natural_frequency_Hz"] for x in doc["modes"]]
+    assert all(isinstance(x, gearcli.Mode) for x in m.modes)
+    assert m.passed == doc["passed"] and m.plot().axes
 
 
 def test_load_case_from_a_mapping_with_overrides_and_the_cli_error_messages(tmp_path):
@@ -118,6 +143,16 @@ def test_documents_carry_the_schema_version_and_the_results_schema_validates_one
     res = runner.invoke(app, ["schema", "--results"])
     assert res.exit_code == 0
     schema = json.loads(res.output)
+    res = runner.invoke(app, ["schema", "--results", "--kind", "analysis"])
+    assert res.exit_code == 0
+    a_schema = json.loads(res.output)
+    assert set(a_schema["required"]) <= set(analysis)
+    for key in a_schema["properties"]["metrics"]["properties"]:
+        assert key in analysis["metrics"], key
+    for kind in ("stress", "modal"):
+        assert runner.invoke(app, ["schema", "--results", "--kind", kind]).exit_code == 0
+    bad = runner.invoke(app, ["schema", "--results", "--kind", "spectra"])
+    assert bad.exit_code == 1 and "--kind spectra" in bad.output
     from pydantic import TypeAdapter  # noqa: F401  (pydantic is a dependency; jsonschema is not)
 
     # the schema's required keys and every scalar it names are in a real summary.json
