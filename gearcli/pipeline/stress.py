@@ -368,30 +368,15 @@ def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -
     import io
 
     from gearcli.io.files import write_atomic
-    from gearcli.plotting.stress import plot_stress
+    from gearcli.plotting.stress import plot_stress_of_run
 
-    geo, st = res.geometry, res.static
-    s = res.run.summary.get("scalars", {})
-    f_z = s.get("gear_mesh_frequency_Hz") or 0.0
-    t0, t1 = res.window_s
-    zoom = (max(t0, t1 - cycles / f_z), t1) if f_z > 0 else (t0, t1)
-    # single-pair full-load Hertz stress along the path (the quasi-static single-contact value)
-    x_ref = np.linspace(0.0, geo.g_alpha_mm, 200)
-    rho1 = geo.A_mm + x_ref
-    ref_h = hertz_line_contact_stress(st.force_normal_N, st.contact_face_width_mm, rho1,
-                                      geo.T1T2_mm - rho1, st.e_star_MPa)
-    marks = {k: v - geo.A_mm for k, v in geo.line_of_action_points().items()
-             if k in ("A", "B", "C", "D", "E")}
-    fig = plot_stress(
+    geo = res.geometry
+    f_z = res.run.summary.get("scalars", {}).get("gear_mesh_frequency_Hz") or 0.0
+    fig = plot_stress_of_run(
         res.t_s, res.x_mm, res.force_N, res.sigma_H, res.sigma_F_pinion, res.sigma_F_gear,
-        window_s=res.window_s, zoom_s=zoom, marks_mm=marks, single_pair_x_mm=x_ref,
-        single_pair_sigma_H=ref_h,
-        static_MPa={"sigma_H_B": st.pinion.Z_single * st.sigma_H0_MPa,
-                    "sigma_H_D": st.gear.Z_single * st.sigma_H0_MPa,
-                    "sigma_F0_pinion": st.pinion.sigma_F0_MPa,
-                    "sigma_F0_gear": st.gear.sigma_F0_MPa},
-        title=f"{res.name}: tooth stresses (z1 = {geo.pinion.teeth}, z2 = {geo.gear.teeth})",
-    )
+        geometry=geo, static=_static_doc(res.static), window_s=res.window_s,
+        f_z_Hz=f_z, cycles=cycles,
+        title=f"{res.name}: tooth stresses (z1 = {geo.pinion.teeth}, z2 = {geo.gear.teeth})")
     buf = io.BytesIO()
     fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=130)
     write_atomic(path, buf.getvalue())

@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["plot_speeds", "plot_force", "plot_mesh_cycles", "plot_dte", "plot_spectra",
-           "plot_modifications", "mesh_cycle_mean"]
+           "plot_modifications", "mesh_cycle_mean", "plot_lateral", "plot_drivetrain"]
 
 PINION, GEAR, KIN, FORCE = "#1f5fa8", "#d9771e", "#222222", "#4a4a4a"
 STATIC, PEAK = "#2e7d32", "#c62828"
@@ -437,3 +437,60 @@ def mesh_cycle_mean(t_s, values, samples_per_cycle: float) -> tuple[np.ndarray, 
         return t.copy(), v.copy()
     kernel = np.ones(n) / n
     return np.convolve(t, kernel, mode="valid"), np.convolve(v, kernel, mode="valid")
+
+
+def plot_lateral(t_s, columns: dict, window_s=None) -> Figure:
+    """Lateral-torsional model: centre displacements x, y of pinion and gear [µm] and their
+    bearing forces [kN] against time (columns ``x1_mm`` … ``bearing_force_y2_N``)."""
+    t = np.asarray(t_s, float)
+    fig, (ax_d, ax_f) = _figure(2)
+    for ax in (ax_d, ax_f):
+        _shade_window(ax, window_s)
+    for body, colour in (("1", PINION), ("2", GEAR)):
+        name = "pinion" if body == "1" else "gear"
+        for axis, style in (("x", "-"), ("y", "--")):
+            d = columns.get(f"{axis}{body}_mm")
+            if d is not None:
+                ax_d.plot(t, 1e3 * np.asarray(d, float), color=colour, ls=style, lw=0.8,
+                          label=f"{name} {axis}{body}")
+            f = columns.get(f"bearing_force_{axis}{body}_N")
+            if f is not None:
+                ax_f.plot(t, 1e-3 * np.asarray(f, float), color=colour, ls=style, lw=0.8,
+                          label=f"{name} bearing F_{axis}")
+    ax_d.set(xlabel="time [s]", ylabel="centre displacement [µm]", xlim=(t[0], t[-1]))
+    ax_f.set(xlabel="time [s]", ylabel="bearing force [kN]", xlim=(t[0], t[-1]))
+    for ax in (ax_d, ax_f):
+        ax.legend(fontsize=8, ncol=3, loc="best")
+    fig.suptitle("Shaft centres on their bearings (x along the line of centres)")
+    return fig
+
+
+def plot_drivetrain(t_s, columns: dict, window_s=None, units: str = "engineering") -> Figure:
+    """Drivetrain: motor, pinion, gear and load speeds (display ``units``) and the drive- and
+    load-shaft torques [N·m] against time."""
+    from gearcli.display_units import speed_from_rad_s, speed_label
+
+    t = np.asarray(t_s, float)
+    fig, (ax_w, ax_t) = _figure(2)
+    for ax in (ax_w, ax_t):
+        _shade_window(ax, window_s)
+    for key, label, colour, style in (("omega_motor_rad_s", "motor", STATIC, "-"),
+                                      ("omega1_rad_s", "pinion ω1", PINION, "-"),
+                                      ("omega2_rad_s", "gear ω2", GEAR, "-"),
+                                      ("omega_load_rad_s", "load", KIN, "--")):
+        if key in columns:
+            ax_w.plot(t, speed_from_rad_s(np.asarray(columns[key], float), units), color=colour,
+                      ls=style, lw=0.8, label=label)
+    for key, label, colour in (("drive_shaft_torque_Nmm", "drive shaft", PINION),
+                               ("load_shaft_torque_Nmm", "load shaft", GEAR),
+                               ("drive_torque_Nmm", "drive torque on the pinion", STATIC),
+                               ("load_torque_Nmm", "load torque", KIN)):
+        if key in columns:
+            ax_t.plot(t, 1e-3 * np.asarray(columns[key], float), color=colour, lw=0.8,
+                      label=label)
+    ax_w.set(xlabel="time [s]", ylabel=f"speed [{speed_label(units)}]", xlim=(t[0], t[-1]))
+    ax_t.set(xlabel="time [s]", ylabel="torque [N·m]", xlim=(t[0], t[-1]))
+    for ax in (ax_w, ax_t):
+        ax.legend(fontsize=8, ncol=2, loc="best")
+    fig.suptitle("Drivetrain speeds and shaft torques")
+    return fig

@@ -26,6 +26,7 @@ class ReportData:
     geometry: PairGeometry | None  #: None when the stored case's geometry cannot be rebuilt
     geometry_error: str = ""
     stress: dict | None = None  #: stress.json of gearcli stress, when it was run
+    stress_series: dict | None = None  #: stress.csv's columns, with stress.json
     #: zoom.csv: the solver's dense output around the force maximum and at the end of the run
     #: (pipeline/simulate.dense_zoom); empty for folders written without it
     zoom: dict = None  # type: ignore[assignment]
@@ -105,13 +106,16 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
         geometry, error = compute_pair_geometry(pair_spec(loaded.case)), ""
     except (GearcliError, KeyError, TypeError, ValueError) as exc:
         geometry, error = None, f"{type(exc).__name__}: {exc}"
-    stress = None
+    stress = stress_series = None
     if (run.folder / "stress.json").is_file():
         stress = read_json(run.folder / "stress.json", "run gearcli stress again")
+        if (run.folder / "stress.csv").is_file():
+            stress_series = read_columns(run.folder / "stress.csv", "t_s")
     zoom = {}
     if (run.folder / "zoom.csv").is_file():
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
-    return ReportData(run, analysis, spectrum, geometry, error, stress, zoom, units)
+    return ReportData(run, analysis, spectrum, geometry, error, stress, stress_series, zoom,
+                      units)
 
 
 #: Non-numeric entries of analysis.json's metrics, by kind; every other entry is a number or null.

@@ -116,12 +116,48 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                      lambda: plot_order_map(t, c["force_total_N"], omega1, teeth[0], elastic_Hz,
                                             label="mesh force", unit="N",
                                             units=data.units)))
+    if data.stress and data.stress_series and data.geometry is not None:
+        jobs.append(("stress", "Tooth stresses from the dynamic pair forces (gearcli stress): "
+                     "Hertz contact stress σ_H and ISO 6336-3 root stress σ_F per pair slot "
+                     "through the last mesh cycles of the window, and against the position on "
+                     "the path of contact, with the ISO static values and the single-pair "
+                     "quasi-static reference.", lambda: _stress(data)))
+    lateral = [k for k in ("x1_mm", "y1_mm", "x2_mm", "y2_mm") if k in c]
+    if lateral:
+        jobs.append(("lateral", "Lateral-torsional model: centre displacements of the pinion "
+                     "and the gear and their bearing forces over the run (shaded: the steady "
+                     "window).", lambda: plots.plot_lateral(t, c, window)))
+    if "omega_motor_rad_s" in c or "drive_shaft_torque_Nmm" in c:
+        jobs.append(("drivetrain", "Drivetrain: motor and load speeds and the torques in the "
+                     "drive and load shafts over the run.",
+                     lambda: plots.plot_drivetrain(t, c, window, data.units)))
     if data.has_errors_or_relief():
         jobs.append(("modifications", "What the case's manufacturing errors and profile "
                      "modifications change: the once-per-revolution DTE they add (mean over each "
                      "mesh cycle) and the relief along the path of contact.",
                      lambda: _modifications(data, period)))
     return [_save(name, caption, draw(), out_dir) for name, caption, draw in jobs]
+
+
+def _stress(data: ReportData):
+    """The figure of `gearcli stress --plot` from stress.csv, the slot columns of the time
+    series and stress.json's static values."""
+    from gearcli.plotting.stress import plot_stress_of_run
+
+    st, ss, c = data.stress, data.stress_series, data.run.columns
+    slots = sorted(int(k[len("sigma_H_slot"):-4]) for k in ss if k.startswith("sigma_H_slot"))
+
+    def stack(fmt: str, cols):
+        return np.column_stack([cols[fmt.format(j)] for j in slots])
+
+    geo = data.geometry
+    return plot_stress_of_run(
+        ss["t_s"], stack("x_slot{}_mm", c), stack("force_slot{}_N", c),
+        stack("sigma_H_slot{}_MPa", ss), stack("sigma_F_pinion_slot{}_MPa", ss),
+        stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st["static"],
+        window_s=tuple(st["window_s"]), f_z_Hz=data.f_z_Hz,
+        title=f"{st.get('case')}: tooth stresses (z1 = {geo.pinion.teeth}, "
+              f"z2 = {geo.gear.teeth})")
 
 
 def _zoom_of(zoom: dict, span, r_b2, column: str = "force_total_N"):

@@ -23,10 +23,13 @@ def test_run_drivetrain_report_is_readable(tmp_path):
     for raw in ("{'", "[{", "see name", "True}", "None,", ": None"):
         assert raw not in text, raw
     assert "no load speed 1000 rpm" in text  # engineering display units (the default)
+    assert "lateral.png" in text and "drivetrain.png" in text  # the lateral/drive figures
+    assert runner.invoke(app, ["stress", str(out), "-q"]).exit_code == 0
     si = runner.invoke(app, ["--units", "si", "report", str(out), "--format", "md", "-o",
-                             str(tmp_path / "si.md"), "-q"])
+                             str(tmp_path / "si.md"), "-q", "--force"])
     assert si.exit_code == 0, si.output
     si_text = (tmp_path / "si.md").read_text()
+    assert "stress.png" in si_text and "stress.png" not in text  # with gearcli stress only
     assert "no load speed 104.7 rad/s" in si_text and "rpm" not in si_text.split("```yaml")[0]
     assert "```yaml" in text and "reference_speed: 3000" in text  # the case as written
     assert "results computed (UTC)" in text
