@@ -31,13 +31,20 @@ def analyze(
     orders: Path | None = typer.Option(
         None, "--orders", help="Also draw the order map of the run (spectra of the mesh force "
         "against pinion speed and time, mesh orders and modes) to FILE (.png, .svg, .pdf)."),
+    spectra: Path | None = typer.Option(
+        None, "--spectra", help="Also draw the spectra of the window (gear speed, DTE, force; "
+        "mesh harmonics marked) to FILE (.png, .svg, .pdf)."),
+    order_axis: bool = typer.Option(False, "--order-axis", help="--spectra against the "
+                                    "order per pinion revolution instead of Hz."),
+    db: bool = typer.Option(False, "--db", help="--spectra in dB re each panel's largest "
+                            "amplitude instead of a log axis (the order map is in dB)."),
 ) -> None:
     """Check a run: speed ratio, mesh-frequency lines, aliasing, resonance margin, dynamic
     factor, contact loss, energy; writes analysis.json, spectrum.csv, harmonics.csv into DIR.
 
     Exit codes: 0 every check passed, 4 a check failed, 1 bad input.
 
-    Example: gearcli analyze out/seed --window 2 4 --force
+    Example: gearcli analyze out/seed --window 2 4 --force --spectra spectra.png --order-axis
     """
     import json
 
@@ -47,19 +54,22 @@ def analyze(
     from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
 
     check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
-    if orders is not None:
-        from gearcli.errors import OutputError
-        from gearcli.io.files import check_new_file
-
-        if orders.suffix.lower() not in (".png", ".svg", ".pdf"):
-            raise OutputError(f"--orders {orders}: expected a file name ending in .png, .svg "
-                              "or .pdf")
-        check_new_file(orders, force, "--orders")
+    for option, path in (("--orders", orders), ("--spectra", spectra)):
+        if path is not None:
+            _check_figure_path(option, path, force)
     analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
     result = analysis.result
     doc = write_analysis(result)
     if orders is not None:
         _save_order_map(result, orders, display_units())
+    if spectra is not None:
+        from gearcli.pipeline.analysis_io import spectrum_columns
+        from gearcli.report.figures import spectra_figure
+
+        harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
+                        .get("harmonics", 5))
+        _save(spectra_figure(spectrum_columns(result), doc, harmonics, order_axis, db),
+              spectra)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
@@ -69,10 +79,26 @@ def analyze(
         raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
 
 
-def _save_order_map(result, path: Path, units: str) -> None:
+def _check_figure_path(option: str, path: Path, force: bool) -> None:
+    from gearcli.errors import OutputError
+    from gearcli.io.files import check_new_file
+
+    if path.suffix.lower() not in (".png", ".svg", ".pdf"):
+        raise OutputError(f"{option} {path}: expected a file name ending in .png, .svg or .pdf")
+    check_new_file(path, force, option)
+
+
+def _save(fig, path: Path) -> None:
     import io
 
     from gearcli.io.files import write_atomic
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format=path.suffix.lower().lstrip("."), dpi=110)
+    write_atomic(path, buf.getvalue())
+
+
+def _save_order_map(result, path: Path, units: str) -> None:
     from gearcli.plotting.orders import plot_order_map
 
     c, s = result.run.columns, result.run.summary["scalars"]
@@ -81,9 +107,7 @@ def _save_order_map(result, path: Path, units: str) -> None:
              if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
     fig = plot_order_map(c["t_s"], c["force_total_N"], c["omega1_rad_s"], teeth, modes,
                          label="mesh force", unit="N", units=units)
-    buf = io.BytesIO()
-    fig.savefig(buf, format=path.suffix.lower().lstrip("."), dpi=110)
-    write_atomic(path, buf.getvalue())
+    _save(fig, path)
 
 
 #: The analysis table's metrics, in order (labels and units: gearcli/io/metrics.py).

@@ -274,15 +274,24 @@ def _folds(f_z: float, fs: float, x_max: float, first: int) -> np.ndarray:
 
 def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
                  lines: dict[str, dict[str, dict]], f_z_Hz: float, harmonics: int,
-                 sample_rate_Hz: float) -> Figure:
+                 sample_rate_Hz: float, *, order_Hz: float | None = None,
+                 db: bool = False) -> Figure:
     """Amplitude spectra (log scale), one panel per signal, with the mesh harmonics k·f_z and
     their shaft-frequency sidebands marked.
 
     ``spectra`` maps a signal key to (title, unit, amplitudes); ``lines`` maps the same key to
     analysis.json's lines ({label: {expected_Hz, measured_Hz, amplitude, resolvable}}).
     Harmonics above the Nyquist frequency are drawn where they fold to (aliases).
+    ``order_Hz``: draw against the order (frequency / ``order_Hz``, e.g. the pinion shaft
+    frequency: the mesh harmonics at k·z1) instead of the frequency; ``db``: amplitudes in dB
+    re each panel's largest line instead of a log axis.
     """
     from matplotlib.ticker import FuncFormatter, NullLocator
+
+    sx = 1.0 / order_Hz if order_Hz else 1.0  # x axis: frequency [Hz] or order [-]
+
+    def level(a):
+        return 20.0 * np.log10(np.maximum(np.asarray(a, float), 1e-300) / ref) if db else a
 
     freq = np.asarray(freq_Hz, float)
     nyq = 0.5 * sample_rate_Hz
@@ -294,11 +303,16 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
     for i, (key, (title, unit, amp)) in enumerate(spectra.items()):
         ax = axes[i]
         a = np.asarray(amp, float)[sel]
-        ax.semilogy(freq[sel], a, color=FORCE, lw=0.7)
         top = float(a.max(initial=0.0)) or 1.0
-        positive = a[a > 0]
-        bottom = max(float(positive.min()) if positive.size else top * 1e-8, top * 1e-7)
-        ax.set_ylim(bottom, top * 30.0)
+        ref = top
+        if db:
+            ax.plot(sx * freq[sel], level(a), color=FORCE, lw=0.7)
+            ax.set_ylim(-140.0, 10.0)
+        else:
+            ax.semilogy(sx * freq[sel], a, color=FORCE, lw=0.7)
+            positive = a[a > 0]
+            bottom = max(float(positive.min()) if positive.size else top * 1e-8, top * 1e-7)
+            ax.set_ylim(bottom, top * 30.0)
         for label, ln in lines.get(key, {}).items():
             f = ln.get("expected_Hz")
             if f is None:
@@ -306,10 +320,10 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
             side = "+" in label or "-" in label
             if f > nyq:
                 if not side:
-                    ax.axvline(_alias(f, sample_rate_Hz), color=ALIAS, ls="-.", lw=0.9)
+                    ax.axvline(sx * _alias(f, sample_rate_Hz), color=ALIAS, ls="-.", lw=0.9)
                     drawn.add("alias")
                     if i == 0:
-                        ax.text(_alias(f, sample_rate_Hz), 1.01,
+                        ax.text(sx * _alias(f, sample_rate_Hz), 1.01,
                                 label.replace("fz", " f_z") + " alias", color=ALIAS,
                                 fontsize=7, ha="center", va="bottom",
                                 transform=ax.get_xaxis_transform())
@@ -317,30 +331,33 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
             if f > x_max:
                 continue
             if side:
-                ax.axvline(f, color=SIDEBAND, ls=":", lw=0.6, zorder=1)
+                ax.axvline(sx * f, color=SIDEBAND, ls=":", lw=0.6, zorder=1)
                 drawn.add("side")
                 continue
-            ax.axvline(f, color=HARMONIC, ls="--", lw=0.8, alpha=0.7, zorder=1)
+            ax.axvline(sx * f, color=HARMONIC, ls="--", lw=0.8, alpha=0.7, zorder=1)
             drawn.add("harm")
             if i == 0:
-                ax.text(f, 1.01, label.replace("fz", " f_z"), color=HARMONIC, fontsize=8,
+                ax.text(sx * f, 1.01, label.replace("fz", " f_z"), color=HARMONIC, fontsize=8,
                         ha="center", va="bottom", transform=ax.get_xaxis_transform())
             if ln.get("resolvable") and ln.get("amplitude"):
-                ax.plot(ln["measured_Hz"], ln["amplitude"], "o", mfc="none", color=HARMONIC,
-                        ms=6)
+                ax.plot(sx * ln["measured_Hz"], level(ln["amplitude"]), "o", mfc="none",
+                        color=HARMONIC, ms=6)
                 drawn.add("meas")
         folds = _folds(f_z_Hz, sample_rate_Hz, x_max, harmonics + 1)
         if folds.size:
             drawn.add("fold")
-            ax.plot(folds, np.full(folds.size, 0.985), ls="", marker=7, ms=5, color=ALIAS,
+            ax.plot(sx * folds, np.full(folds.size, 0.985), ls="", marker=7, ms=5, color=ALIAS,
                     alpha=0.8, transform=ax.get_xaxis_transform(), clip_on=False)
-        ax.set_xlim(0.0, x_max)
-        ax.yaxis.set_minor_locator(NullLocator())  # log minor ticks: clutter and slow layout
-        ax.yaxis.set_major_formatter(FuncFormatter(_decade))  # plain text, no mathtext
-        ax.set_ylabel(f"amplitude [{unit}]")
+        ax.set_xlim(0.0, sx * x_max)
+        if db:
+            ax.set_ylabel("amplitude [dB re max]")
+        else:
+            ax.yaxis.set_minor_locator(NullLocator())  # log minor ticks: clutter, slow layout
+            ax.yaxis.set_major_formatter(FuncFormatter(_decade))  # plain text, no mathtext
+            ax.set_ylabel(f"amplitude [{unit}]")
         ax.text(0.995, 0.96, title, transform=ax.transAxes, ha="right", va="top", fontsize=9,
                 bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none"})
-    axes[-1].set_xlabel("frequency [Hz]")
+    axes[-1].set_xlabel("order (per pinion revolution) [-]" if order_Hz else "frequency [Hz]")
     from matplotlib.lines import Line2D
 
     legend = {

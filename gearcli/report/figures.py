@@ -205,13 +205,22 @@ def _cycle_start(t, pairs, window, period: float) -> float:
 
 
 def _spectra(data: ReportData):
-    spec = data.spectrum
-    panels = {key: (title, unit, spec[col]) for key, (title, col, unit) in SPECTRA.items()
-              if col in spec}
     harmonics = int((data.case.get("checks") or {}).get("harmonics") or 5)
-    rate = float(data.metrics.get("output_rate_Hz") or data.scalars["output_rate_Hz"])
-    return plots.plot_spectra(spec["frequency_Hz"], panels, data.analysis.get("lines", {}),
-                              data.f_z_Hz, harmonics, rate)
+    return spectra_figure(data.spectrum, data.analysis, harmonics)
+
+
+def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: bool = False,
+                   db: bool = False):
+    """The spectra figure from spectrum.csv's columns and analysis.json (dict): on a
+    frequency or (``order_axis``) pinion-order axis, log amplitudes or dB (``db``)."""
+    m = analysis["metrics"]
+    panels = {key: (title, unit, spectrum[col]) for key, (title, col, unit) in SPECTRA.items()
+              if col in spectrum}
+    return plots.plot_spectra(spectrum["frequency_Hz"], panels, analysis.get("lines", {}),
+                              float(m["gear_mesh_frequency_Hz"]), harmonics,
+                              float(m["output_rate_Hz"]),
+                              order_Hz=float(m["pinion_shaft_Hz"]) if order_axis else None,
+                              db=db)
 
 
 def _modifications(data: ReportData, period: float):

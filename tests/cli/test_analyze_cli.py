@@ -76,6 +76,10 @@ def test_window_option(seed_dir):
     result = _analyze(seed_dir, "--window", "2", "4")
     assert result.exit_code == 4  # the seed's dynamic factor and contact loss (above)
     assert json.loads(result.stdout)["window_s"] == [2.0, 4.0]
+    with_units = _analyze(seed_dir, "--window", "2 s", "4000 ms")
+    assert json.loads(with_units.stdout)["window_s"] == [2.0, 4.0]
+    bad = _analyze(seed_dir, "--window", "2 s", "4 mm")
+    assert bad.exit_code == 1 and "--window '4 mm'" in bad.stderr
 
 
 @pytest.mark.parametrize("window, fragment", [(("4", "9"), "outside the run"),
@@ -107,3 +111,25 @@ def test_bad_folders(tmp_path, seed_dir):
         result = _analyze(folder)
         assert result.exit_code == 1, what
         assert result.stderr.startswith("error: ") and "Traceback" not in result.output, what
+
+
+def test_spectra_figure_on_an_order_axis_in_db(seed_dir, tmp_path):
+    """--spectra FILE --order-axis --db: the mesh harmonics sit at orders k·z1 (17, 34, ..)
+    and the measured lines at their dB level re the panel's largest (issue 19)."""
+    from gearcli.pipeline.analysis_io import analysis_document, spectrum_columns
+    from gearcli.pipeline.analyze import analyze
+    from gearcli.report.figures import spectra_figure
+
+    res = runner.invoke(app, ["analyze", str(seed_dir), "--force", "-q", "--spectra",
+                              str(tmp_path / "s.png"), "--order-axis", "--db"])
+    assert res.exit_code == 4 and (tmp_path / "s.png").stat().st_size > 10_000
+    result = analyze(seed_dir)
+    fig = spectra_figure(spectrum_columns(result), analysis_document(result), 5, True, True)
+    ax = fig.axes[0]
+    dashed = sorted(round(line.get_xdata()[0], 6) for line in ax.lines
+                    if line.get_linestyle() == "--")
+    assert dashed == pytest.approx([17.0 * k for k in range(1, 6)], rel=1e-6)
+    assert ax.get_ylabel() == "amplitude [dB re max]" and ax.get_ylim()[1] <= 10.0
+    bad = runner.invoke(app, ["analyze", str(seed_dir), "--force", "--spectra",
+                              str(tmp_path / "s.txt")])
+    assert bad.exit_code == 1 and "--spectra" in bad.output
