@@ -19,13 +19,26 @@ import json
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from gearcli.results import SCHEMA_VERSION, AnalysisMetrics, GearStress, Mode, Summary
+if TYPE_CHECKING:
+    from gearcli.results import SCHEMA_VERSION, AnalysisMetrics, GearStress, Mode, Summary
 
 __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
            "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Summary",
            "AnalysisMetrics", "GearStress", "Mode", "SCHEMA_VERSION"]
+
+#: The typed documents live in gearcli/results.py, imported on first use (building their
+#: dataclasses costs ~15 ms that `gearcli geometry` does not need).
+_RESULTS = ("SCHEMA_VERSION", "AnalysisMetrics", "GearStress", "Mode", "Summary")
+
+
+def __getattr__(name: str):
+    if name in _RESULTS:
+        from gearcli import results
+
+        return getattr(results, name)
+    raise AttributeError(f"module 'gearcli.api' has no attribute {name!r}")
 
 
 def _overrides(set_) -> list[str]:
@@ -130,6 +143,8 @@ class Simulation:
 
     def __init__(self, result) -> None:
         self.result = result
+        from gearcli.results import Summary
+
         self.summary = Summary.from_scalars(result.summary, result.status, result.invalid_reason)
         self.modes = list(result.summary.get("modes", []))
         self.warnings = list(result.warnings)
@@ -258,6 +273,8 @@ class Analysis:
 
     def __init__(self, result) -> None:
         self.result = result
+        from gearcli.results import AnalysisMetrics
+
         self.metrics = AnalysisMetrics.from_metrics(result.metrics)
         self.checks = list(result.checks)
         self.passed = result.passed
@@ -333,6 +350,8 @@ class Modal:
 
         self.result = result
         self._doc = modal_document(result)
+        from gearcli.results import Mode
+
         self.modes = [Mode.from_document(m) for m in self._doc["modes"]]
         self.checks = list(result.checks)
         self.passed = result.passed
@@ -395,6 +414,8 @@ class Stress:
 
         self.result = result
         self._doc = stress_document(result)
+        from gearcli.results import GearStress
+
         self.pinion = GearStress.from_document(self._doc, "pinion")
         self.gear = GearStress.from_document(self._doc, "gear")
         self.warnings = list(result.warnings)
