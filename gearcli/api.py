@@ -192,7 +192,7 @@ class Simulation:
                                     self.summary.force_max_N, self.summary.force_max_t_s, window,
                                     None, f_z)
         if what == "dte":
-            return plots.plot_dte(t, c["delta_mm"], window, None, f_z)
+            return plots.plot_dte(t, c["delta_mm"], window, None, f_z, units=units)
         if what == "speeds":
             g = self.result.geometry.geometry
             return plots.plot_speeds(t, c["omega1_rad_s"], c["omega2_rad_s"],
@@ -288,14 +288,14 @@ class Analysis:
         return self._spectra
 
     def document(self) -> dict:
-        """analysis.json as a dict (what :meth:`save` writes)."""
+        """analysis.json as a dict (what `gearcli analyze` writes)."""
         from gearcli.pipeline.analysis_io import analysis_document
 
         return analysis_document(self.result)
 
     def __repr__(self) -> str:
         failed = [c.name for c in self.checks if not c.passed]
-        return (f"<Analysis {self.result.run.name}: "
+        return (f"<Analysis {self.result.run.summary.get('case', self.result.run.folder.name)}: "
                 f"{'passed' if self.passed else 'failed: ' + ', '.join(failed)}>")
 
 
@@ -360,11 +360,12 @@ class Modal:
         """What `gearcli modal --json` prints."""
         return self._doc
 
-    def plot(self):
-        """The Campbell diagram and mode shapes (a ``matplotlib.figure.Figure``)."""
+    def plot(self, units: str = "engineering"):
+        """The Campbell diagram and mode shapes (a ``matplotlib.figure.Figure``); the speed
+        axis in the display ``units`` ("engineering": rpm, "si": rad/s)."""
         from gearcli.pipeline.modal import campbell_figure
 
-        return campbell_figure(self.result)
+        return campbell_figure(self.result, units)
 
     def __repr__(self) -> str:
         f = [round(m.natural_frequency_Hz, 1) for m in self.modes if not m.rigid_body
@@ -425,8 +426,11 @@ class Stress:
         return self._doc
 
     def __repr__(self) -> str:
-        return (f"<Stress {self.result.name}: σ_H peak {self.pinion.sigma_H_peak_MPa:.4g} MPa, "
-                f"σ_F peak pinion {self.pinion.sigma_F_peak_MPa:.4g} MPa>")
+        def mpa(value):
+            return "–" if value is None else f"{value:.4g} MPa"
+
+        return (f"<Stress {self.result.name}: σ_H peak {mpa(self.pinion.sigma_H_peak_MPa)}, "
+                f"σ_F peak pinion {mpa(self.pinion.sigma_F_peak_MPa)}>")
 
 
 def stress(run, window: tuple[float, float] | None = None, require_limits: bool = False):

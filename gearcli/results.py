@@ -189,6 +189,13 @@ def rows(document, names: Iterable[str] | None = None,
             for k in keys if k in values]
 
 
+def _finite(value) -> bool:
+    """False for a float NaN/inf or a list/tuple holding one."""
+    if isinstance(value, list | tuple):
+        return all(_finite(v) for v in value)
+    return not isinstance(value, float) or math.isfinite(value)
+
+
 #: The documents ``gearcli schema --results KIND`` describes.
 KINDS = ("summary", "analysis", "stress", "modal")
 
@@ -206,6 +213,9 @@ def json_schema(kind: str = "summary") -> dict:
         schema = TypeAdapter(cls).json_schema()
         for name in drop:
             schema["properties"].pop(name, None)
+        for prop in schema["properties"].values():  # NaN is not JSON: no such defaults
+            if not _finite(prop.get("default", 0.0)):
+                del prop["default"]
         for f in dataclasses.fields(cls):
             if f.name in schema["properties"]:
                 unit = f.metadata.get("unit")

@@ -53,6 +53,11 @@ def analyze(
     from gearcli.io.files import check_no_earlier
     from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
 
+    if (order_axis or db) and spectra is None:
+        from gearcli.errors import OutputError
+
+        raise OutputError("--order-axis and --db shape the --spectra figure; give --spectra "
+                          "FILE too")
     check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
     for option, path in (("--orders", orders), ("--spectra", spectra)):
         if path is not None:
@@ -68,8 +73,8 @@ def analyze(
 
         harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
                         .get("harmonics", 5))
-        _save(spectra_figure(spectrum_columns(result), doc, harmonics, order_axis, db),
-              spectra)
+        _save(spectra_figure(spectrum_columns(result), doc, harmonics, order_axis, db,
+                             display_units()), spectra)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:

@@ -55,9 +55,9 @@ def mesh(
     res = api.mesh(case, set_, load_N=load, harris=harris)
     doc = mesh_document(res)
     if out is not None:
-        write_mesh(res, out, force, set_)
+        write_mesh(res, out, force, set_, display_units())
     if plot is not None:
-        save_mesh_plot(res, plot)
+        save_mesh_plot(res, plot, display_units())
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return
@@ -108,11 +108,13 @@ def _print(doc: dict, units: str) -> None:
     if "harris" in doc:
         from rich.table import Table
 
+        from gearcli.display_units import convert
+
+        ptp, unit = convert(doc["harris"]["ste_peak_to_peak_um"], "µm", units)
         h = Table(title="Harris map", title_justify="left")
         h.add_column("force [N]")
-        h.add_column("STE peak-to-peak [µm]")
-        for f, p in zip(doc["harris"]["force_N"], doc["harris"]["ste_peak_to_peak_um"],
-                        strict=True):
+        h.add_column(f"STE peak-to-peak [{unit}]")
+        for f, p in zip(doc["harris"]["force_N"], ptp, strict=True):
             h.add_row(format_value(f), format_value(p))
         console.print(h)
     for note in doc["notes"]:

@@ -157,22 +157,28 @@ def mesh_table(res: MeshAnalysis):
     return cols
 
 
-def save_mesh_plot(res: MeshAnalysis, path: str | Path) -> None:
-    """The figure of :func:`gearcli.plotting.mesh.plot_mesh`, written atomically."""
+def save_mesh_plot(res: MeshAnalysis, path: str | Path, units: str = "engineering") -> None:
+    """The figure of :func:`gearcli.plotting.mesh.plot_mesh` in the display ``units``
+    (gearcli/display_units.py), written atomically."""
     import io
 
+    from gearcli.display_units import unit_and_factor
     from gearcli.io.files import write_atomic
     from gearcli.plotting.mesh import plot_mesh
 
     lm, doc = res.loaded, mesh_document(res)
     st = doc["stiffness"]
-    harris = None if res.harris is None else (res.harris[0], 1e3 * res.harris[1])
-    fig = plot_mesh(lm.roll_mm, 1e3 * lm.ste_mm, 1e3 * lm.unloaded_te_mm, lm.pair_force_N,
-                    lm.mesh_stiffness_N_mm, force_N=lm.force_N,
-                    iso_single_N_mm=st["iso6336_single_pair_c_prime_b_N_mm"],
-                    iso_mean_N_mm=st["iso6336_mean_c_gamma_alpha_b_N_mm"],
+    te_unit, k_te = unit_and_factor("mm", units, fine=True)
+    k_unit, k_k = unit_and_factor("N/mm", units)
+    harris = None if res.harris is None else (res.harris[0], k_te * res.harris[1])
+    fig = plot_mesh(lm.roll_mm, k_te * lm.ste_mm, k_te * lm.unloaded_te_mm, lm.pair_force_N,
+                    k_k * lm.mesh_stiffness_N_mm, force_N=lm.force_N,
+                    iso_single=k_k * st["iso6336_single_pair_c_prime_b_N_mm"],
+                    iso_mean=k_k * st["iso6336_mean_c_gamma_alpha_b_N_mm"],
+                    te_unit=te_unit, stiffness_unit=k_unit,
                     title=f"{res.name}: loaded contact at {lm.force_N:.0f} N ({res.law}); "
-                          f"STE {doc['ste']['peak_to_peak_um']:.2f} µm peak-to-peak",
+                          f"STE {doc['ste']['peak_to_peak_um'] * k_te / 1e3:.3g} {te_unit} "
+                          "peak-to-peak",
                     harris=harris)
     buf = io.BytesIO()
     fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=150)
@@ -180,9 +186,9 @@ def save_mesh_plot(res: MeshAnalysis, path: str | Path) -> None:
 
 
 def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
-               overrides: list[str] | None = None) -> Path:
-    """mesh.json, mesh.csv, mesh.png and manifest.json in ``folder``, all or nothing
-    (io.outdir.atomic_dir)."""
+               overrides: list[str] | None = None, units: str = "engineering") -> Path:
+    """mesh.json, mesh.csv, mesh.png (in the display ``units``) and manifest.json in
+    ``folder``, all or nothing (io.outdir.atomic_dir)."""
     import json
 
     from gearcli.io.manifest import manifest
@@ -193,7 +199,7 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
     with atomic_dir(folder, force) as tmp:
         (tmp / "mesh.json").write_text(json.dumps(mesh_document(res), indent=2) + "\n")
         (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
-        save_mesh_plot(res, tmp / "mesh.png")
+        save_mesh_plot(res, tmp / "mesh.png", units)
         doc = manifest(res.source.source, case_json, overrides)
         (tmp / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
     return Path(folder)

@@ -14,21 +14,23 @@ if TYPE_CHECKING:
 __all__ = ["plot_mesh"]
 
 
-def plot_mesh(roll_mm, ste_um, unloaded_um, pair_force_N, mesh_stiffness_N_mm, *,
-              force_N: float, iso_single_N_mm: float, iso_mean_N_mm: float, title: str,
-              harris: tuple[np.ndarray, np.ndarray] | None = None) -> Figure:
-    """Panels against the pinion roll [mm]: loaded STE and unloaded TE [µm]; force per pair
-    slot [N] with the static force; mesh stiffness [N/mm] with ISO 6336-1 c′b and c_γα b; and
-    the Harris map (STE peak-to-peak [µm] against load [N]) if given."""
+def plot_mesh(roll_mm, ste, unloaded, pair_force_N, mesh_stiffness, *,
+              force_N: float, iso_single: float, iso_mean: float, title: str,
+              harris: tuple[np.ndarray, np.ndarray] | None = None, te_unit: str = "µm",
+              stiffness_unit: str = "N/mm") -> Figure:
+    """Panels against the pinion roll [mm]: loaded STE and unloaded TE [``te_unit``]; force
+    per pair slot [N] with the static force; mesh stiffness [``stiffness_unit``] with ISO
+    6336-1 c′b and c_γα b; and the Harris map (STE peak-to-peak [``te_unit``] against load
+    [N]) if given."""
     from matplotlib.figure import Figure
 
     rows = 4 if harris is not None else 3
     fig = Figure(figsize=(8.0, 2.4 * rows), layout="constrained")
     axes = fig.subplots(rows, 1)
     ax = axes[0]
-    ax.plot(roll_mm, ste_um, color="#1f5fa8", label="loaded STE")
-    ax.plot(roll_mm, unloaded_um, color="#888888", ls="--", label="unloaded TE")
-    ax.set_ylabel("TE [µm]")
+    ax.plot(roll_mm, ste, color="#1f5fa8", label="loaded STE")
+    ax.plot(roll_mm, unloaded, color="#888888", ls="--", label="unloaded TE")
+    ax.set_ylabel(f"TE [{te_unit}]")
     ax.legend(loc="upper right", fontsize=8)
     ax = axes[1]
     for j in range(pair_force_N.shape[1]):
@@ -39,10 +41,10 @@ def plot_mesh(roll_mm, ste_um, unloaded_um, pair_force_N, mesh_stiffness_N_mm, *
     ax.set_ylabel("pair force [N]")
     ax.legend(loc="upper right", fontsize=8, ncol=4)
     ax = axes[2]
-    ax.plot(roll_mm, mesh_stiffness_N_mm, color="#2e7d32", label="mesh stiffness")
-    ax.axhline(iso_single_N_mm, color="#7b2d8e", lw=0.8, ls=":", label="ISO 6336-1 c′b")
-    ax.axhline(iso_mean_N_mm, color="#8c564b", lw=0.8, ls="--", label="ISO 6336-1 c_γα b")
-    ax.set_ylabel("stiffness [N/mm]")
+    ax.plot(roll_mm, mesh_stiffness, color="#2e7d32", label="mesh stiffness")
+    ax.axhline(iso_single, color="#7b2d8e", lw=0.8, ls=":", label="ISO 6336-1 c′b")
+    ax.axhline(iso_mean, color="#8c564b", lw=0.8, ls="--", label="ISO 6336-1 c_γα b")
+    ax.set_ylabel(f"stiffness [{stiffness_unit}]")
     ax.set_xlabel("pinion roll r_b1 θ1 [mm]")
     ax.legend(loc="upper right", fontsize=8)
     for a in axes[:3]:
@@ -50,11 +52,11 @@ def plot_mesh(roll_mm, ste_um, unloaded_um, pair_force_N, mesh_stiffness_N_mm, *
         a.set_xlim(roll_mm[0], roll_mm[-1])
     if harris is not None:
         ax = axes[3]
-        loads, ptp_um = harris
-        ax.plot(loads, ptp_um, "o-", color="#1f5fa8", ms=3)
+        loads, ptp = harris
+        ax.plot(loads, ptp, "o-", color="#1f5fa8", ms=3)
         ax.axvline(force_N, color="#c62828", lw=0.8, ls=":")
         ax.set_xlabel("static normal force [N]")
-        ax.set_ylabel("STE peak-to-peak [µm]")
+        ax.set_ylabel(f"STE peak-to-peak [{te_unit}]")
         ax.set_title("Harris map", fontsize=9, loc="left")
         ax.grid(alpha=0.3)
     fig.suptitle(title, fontsize=10)

@@ -213,11 +213,14 @@ def plot_mesh_cycles(t_s, force_N, slot_forces: dict[str, np.ndarray], pairs, zo
 
 
 def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = None,
-             zoom_data=None) -> Figure:
-    """Dynamic transmission error δ [µm] over the run (mean of the steady window marked) and
-    zoomed on a few mesh cycles ``zoom_s``; ``zoom_data`` = (t [s], δ [mm], unused): the
-    solver's dense output for the zoom (else the output samples)."""
-    t, d = np.asarray(t_s, float), np.asarray(dte_mm, float) * 1e3
+             zoom_data=None, units: str = "engineering") -> Figure:
+    """Dynamic transmission error δ (µm, or m with ``units="si"``) over the run (mean of the
+    steady window marked) and zoomed on a few mesh cycles ``zoom_s``; ``zoom_data`` = (t [s],
+    δ [mm], unused): the solver's dense output for the zoom (else the output samples)."""
+    from gearcli.display_units import unit_and_factor
+
+    u, k = unit_and_factor("mm", units, fine=True)
+    t, d = np.asarray(t_s, float), np.asarray(dte_mm, float) * k
     fig, (ax, zx) = _figure(2)
     _shade_window(ax, window_s)
     ax.plot(t, d, color=PINION, lw=0.4, label="DTE δ (output samples)")
@@ -225,12 +228,12 @@ def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = Non
     mean, pp = float(np.mean(d[sel])), float(np.ptp(d[sel]))
     if window_s is not None:
         ax.hlines(mean, window_s[0], window_s[1], color=KIN, ls="--", lw=1.0,
-                  label=f"mean {mean:.1f} µm")
-    ax.set(xlabel="time [s]", ylabel="DTE δ [µm]", xlim=(t[0], t[-1]))
+                  label=f"mean {mean:.3g} {u}")
+    ax.set(xlabel="time [s]", ylabel=f"DTE δ [{u}]", xlim=(t[0], t[-1]))
     ax.legend(loc="lower right", fontsize=8)
     if zoom_s is not None:
         if zoom_data is not None:
-            zt, zd = np.asarray(zoom_data[0], float), np.asarray(zoom_data[1], float) * 1e3
+            zt, zd = np.asarray(zoom_data[0], float), np.asarray(zoom_data[1], float) * k
             zx.plot((zt - zoom_s[0]) * 1e3, zd, color=PINION, lw=1.0,
                     label=f"solver dense output ({_per_period(zt, f_z_Hz)} points per mesh "
                           "period)")
@@ -242,12 +245,12 @@ def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = Non
             n_zoom = int(z.sum())
         zx.axhline(mean, color=KIN, ls="--", lw=1.0)
         _zoom_axis(zx, zoom_s[0])
-        zx.set_ylabel("DTE δ [µm]")
+        zx.set_ylabel(f"DTE δ [{u}]")
         _title_zoom(zx, n_zoom, zoom_s, f_z_Hz)
     else:
         zx.set_visible(False)
-    fig.suptitle(f"DTE settles at a mean of {mean:.1f} µm (mesh deflection) and swings "
-                 f"{pp:.1f} µm peak to peak in the steady window")
+    fig.suptitle(f"DTE settles at a mean of {mean:.3g} {u} (mesh deflection) and swings "
+                 f"{pp:.3g} {u} peak to peak in the steady window")
     return fig
 
 
@@ -456,9 +459,13 @@ def mesh_cycle_mean(t_s, values, samples_per_cycle: float) -> tuple[np.ndarray, 
     return np.convolve(t, kernel, mode="valid"), np.convolve(v, kernel, mode="valid")
 
 
-def plot_lateral(t_s, columns: dict, window_s=None) -> Figure:
-    """Lateral-torsional model: centre displacements x, y of pinion and gear [µm] and their
-    bearing forces [kN] against time (columns ``x1_mm`` … ``bearing_force_y2_N``)."""
+def plot_lateral(t_s, columns: dict, window_s=None, units: str = "engineering") -> Figure:
+    """Lateral-torsional model: centre displacements x, y of pinion and gear (µm, or m with
+    ``units="si"``) and their bearing forces [kN] against time (columns ``x1_mm`` …
+    ``bearing_force_y2_N``)."""
+    from gearcli.display_units import unit_and_factor
+
+    u, k = unit_and_factor("mm", units, fine=True)
     t = np.asarray(t_s, float)
     fig, (ax_d, ax_f) = _figure(2)
     for ax in (ax_d, ax_f):
@@ -468,13 +475,13 @@ def plot_lateral(t_s, columns: dict, window_s=None) -> Figure:
         for axis, style in (("x", "-"), ("y", "--")):
             d = columns.get(f"{axis}{body}_mm")
             if d is not None:
-                ax_d.plot(t, 1e3 * np.asarray(d, float), color=colour, ls=style, lw=0.8,
+                ax_d.plot(t, k * np.asarray(d, float), color=colour, ls=style, lw=0.8,
                           label=f"{name} {axis}{body}")
             f = columns.get(f"bearing_force_{axis}{body}_N")
             if f is not None:
                 ax_f.plot(t, 1e-3 * np.asarray(f, float), color=colour, ls=style, lw=0.8,
                           label=f"{name} bearing F_{axis}")
-    ax_d.set(xlabel="time [s]", ylabel="centre displacement [µm]", xlim=(t[0], t[-1]))
+    ax_d.set(xlabel="time [s]", ylabel=f"centre displacement [{u}]", xlim=(t[0], t[-1]))
     ax_f.set(xlabel="time [s]", ylabel="bearing force [kN]", xlim=(t[0], t[-1]))
     for ax in (ax_d, ax_f):
         ax.legend(fontsize=8, ncol=3, loc="best")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from gearcli.io.metrics import display
 from gearcli.report import tables as tb
 from gearcli.report.data import ReportData
 from gearcli.report.figures import FigureFile
@@ -85,14 +86,15 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
                else Paragraph(f"Analysis FAILED: {len(failed)} of {done} checks fail "
                               f"({', '.join(map(str, failed))}).{not_checked}", "fail"))
     m = data.metrics
-    headline = [f"{label}: {tb.fmt(m[key] * scale)} {unit}".rstrip()
-                for key, label, unit, scale in (
-                    ("gear_mesh_frequency_Hz", "gear-mesh frequency f_z", "Hz", 1.0),
-                    ("force_max_N", "maximum normal force", "N", 1.0),
-                    ("dynamic_factor", "dynamic factor", "", 1.0),
-                    ("dte_peak_to_peak_mm", "DTE peak to peak", "µm", 1e3),
-                    ("mesh_efficiency", "mesh efficiency", "", 1.0))
-                if isinstance(m.get(key), int | float)]
+    headline = []
+    for key, label in (("gear_mesh_frequency_Hz", "gear-mesh frequency f_z"),
+                       ("force_max_N", "maximum normal force"), ("dynamic_factor",
+                                                                 "dynamic factor"),
+                       ("dte_peak_to_peak_mm", "DTE peak to peak"),
+                       ("mesh_efficiency", "mesh efficiency")):
+        if isinstance(m.get(key), int | float):
+            _, value, unit = display(key, m[key], data.units)
+            headline.append(f"{label}: {tb.fmt(value)} {unit if unit != '–' else ''}".rstrip())
     warnings = data.warnings
     overrides = [str(o) for o in data.run.manifest.get("overrides") or []]
     summary = [verdict]

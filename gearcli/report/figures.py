@@ -81,7 +81,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                                         dense["pairs_in_contact"], mesh_zoom, f_z)),
         ("dte", "Dynamic transmission error δ = r_b1·θ1 − r_b2·θ2 (deflection of the mesh "
          f"along the line of action) over the run and over {ZOOM_CYCLES} mesh cycles.",
-         lambda: plots.plot_dte(t, c["delta_mm"], window, mesh_zoom, f_z,
+         lambda: plots.plot_dte(t, c["delta_mm"], window, mesh_zoom, f_z, units=data.units,
                                 zoom_data=_zoom_of(zc, mesh_zoom, None, "delta_mm"))),
         ("spectra", "Hann-windowed amplitude spectra of the steady window (spectrum.csv): mesh "
          "harmonics k·f_z (dashed, measured amplitude circled) and shaft sidebands (dotted). "
@@ -126,7 +126,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
     if lateral:
         jobs.append(("lateral", "Lateral-torsional model: centre displacements of the pinion "
                      "and the gear and their bearing forces over the run (shaded: the steady "
-                     "window).", lambda: plots.plot_lateral(t, c, window)))
+                     "window).", lambda: plots.plot_lateral(t, c, window, data.units)))
     if "omega_motor_rad_s" in c or "drive_shaft_torque_Nmm" in c:
         jobs.append(("drivetrain", "Drivetrain: motor and load speeds and the torques in the "
                      "drive and load shafts over the run.",
@@ -155,7 +155,8 @@ def _stress(data: ReportData):
         ss["t_s"], stack("x_slot{}_mm", c), stack("force_slot{}_N", c),
         stack("sigma_H_slot{}_MPa", ss), stack("sigma_F_pinion_slot{}_MPa", ss),
         stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st["static"],
-        window_s=tuple(st["window_s"]), f_z_Hz=data.f_z_Hz,
+        window_s=tuple(st["window_s"]),
+        f_z_Hz=data.scalars.get("gear_mesh_frequency_Hz") or 0.0,  # as `gearcli stress --plot`
         title=f"{st.get('case')}: tooth stresses (z1 = {geo.pinion.teeth}, "
               f"z2 = {geo.gear.teeth})")
 
@@ -206,17 +207,27 @@ def _cycle_start(t, pairs, window, period: float) -> float:
 
 def _spectra(data: ReportData):
     harmonics = int((data.case.get("checks") or {}).get("harmonics") or 5)
-    return spectra_figure(data.spectrum, data.analysis, harmonics)
+    return spectra_figure(data.spectrum, data.analysis, harmonics, units=data.units)
 
 
 def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: bool = False,
-                   db: bool = False):
+                   db: bool = False, units: str = "engineering"):
     """The spectra figure from spectrum.csv's columns and analysis.json (dict): on a
-    frequency or (``order_axis``) pinion-order axis, log amplitudes or dB (``db``)."""
+    frequency or (``order_axis``) pinion-order axis, log amplitudes or dB (``db``), amplitudes
+    in the display ``units`` (gear speed in rpm or rad/s, DTE in µm or m)."""
+    from gearcli.display_units import unit_and_factor
+
     m = analysis["metrics"]
-    panels = {key: (title, unit, spectrum[col]) for key, (title, col, unit) in SPECTRA.items()
-              if col in spectrum}
-    return plots.plot_spectra(spectrum["frequency_Hz"], panels, analysis.get("lines", {}),
+    panels, lines = {}, {}
+    for key, (title, col, unit) in SPECTRA.items():
+        if col not in spectrum:
+            continue
+        shown, k = unit_and_factor(unit, units, fine=key == "dte")
+        panels[key] = (title, shown, spectrum[col] * k)
+        lines[key] = {label: {**ln, "amplitude": None if ln.get("amplitude") is None
+                              else ln["amplitude"] * k}
+                      for label, ln in (analysis.get("lines") or {}).get(key, {}).items()}
+    return plots.plot_spectra(spectrum["frequency_Hz"], panels, lines,
                               float(m["gear_mesh_frequency_Hz"]), harmonics,
                               float(m["output_rate_Hz"]),
                               order_Hz=float(m["pinion_shaft_Hz"]) if order_axis else None,

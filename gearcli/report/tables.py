@@ -6,7 +6,7 @@ import math
 import shlex
 from dataclasses import dataclass, field
 
-from gearcli.display_units import DEFAULT, convert
+from gearcli.display_units import DEFAULT, convert, unit_and_factor
 from gearcli.io.metrics import display
 from gearcli.report.data import ReportData, number, unit_of
 
@@ -108,18 +108,18 @@ def _inertia(gear: dict, u: str) -> str:
 
 def geometry_table(data: ReportData) -> Table | None:
     """Derived pair geometry (gearcli.model.geometry from the stored case)."""
-    geo = data.geometry
+    geo, u = data.geometry, data.units
     if geo is None:
         return None
     rows = [
         ("gear ratio i = z2/z1", fmt(geo.ratio), "–"),
-        ("operating centre distance a_w", fmt(geo.a_w_mm), "mm"),
+        ("operating centre distance a_w", *_cells(f"{geo.a_w_mm} mm", u)),
         ("operating pressure angle α_w", fmt(math.degrees(geo.alpha_w_rad)), "deg"),
-        ("base pitch p_b", fmt(geo.p_b_mm), "mm"),
-        ("path of contact g_α", fmt(geo.g_alpha_mm), "mm"),
+        ("base pitch p_b", *_cells(f"{geo.p_b_mm} mm", u)),
+        ("path of contact g_α", *_cells(f"{geo.g_alpha_mm} mm", u)),
         ("transverse contact ratio ε_α", fmt(geo.eps_alpha), "–"),
         ("time with one pair in contact", fmt(100.0 * geo.single_contact_fraction), "%"),
-        ("normal backlash j_n", fmt(geo.j_n_mm), "mm"),
+        ("normal backlash j_n", *_cells(f"{geo.j_n_mm} mm", u)),
     ]
     note = "; ".join(f.message for f in geo.findings)
     return Table("Pair geometry (derived)", ("quantity", "value", "unit"), rows, note)
@@ -248,7 +248,9 @@ def results_table(data: ReportData) -> Table:
 def lines_table(data: ReportData) -> Table | None:
     """Amplitude of the mesh harmonics k·f_z in each spectrum (sidebands: harmonics.csv)."""
     lines = data.analysis.get("lines") or {}
-    signals = [(s, u) for s, u in (("gear_speed", "rad/s"), ("dte", "mm"), ("force", "N"))
+    # (signal, stored unit, a deflection?) -> the display unit and factor of its amplitudes
+    signals = [(s, *unit_and_factor(u, data.units, fine)) for s, u, fine in
+               (("gear_speed", "rad/s", False), ("dte", "mm", True), ("force", "N", False))
                if s in lines]
     if not signals:
         return None
@@ -258,14 +260,15 @@ def lines_table(data: ReportData) -> Table | None:
         if "+" in label or "-" in label:
             continue
         cells = [label.replace("fz", " f_z"), fmt(ln.get("expected_Hz"))]
-        for sig, _ in signals:
+        for sig, _, factor in signals:
             other = lines[sig].get(label) or {}
-            cells.append(fmt(other.get("amplitude")) if other.get("resolvable") else
-                         "not resolvable")
+            amp = other.get("amplitude")
+            cells.append(fmt(None if amp is None else amp * factor)
+                         if other.get("resolvable") else "not resolvable")
         rows.append(tuple(cells))
     names = {"gear_speed": "gear speed", "dte": "DTE", "force": "force"}
     headers = ("line", "frequency [Hz]") + tuple(
-        f"{names[s]} amplitude [{u}]" for s, u in signals)
+        f"{names[s]} amplitude [{u}]" for s, u, _ in signals)
     return Table("Mesh lines in the spectra", headers, rows,
                  "sidebands k·f_z ± n1, n2 are in harmonics.csv")
 

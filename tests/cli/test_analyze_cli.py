@@ -133,3 +133,5 @@ def test_spectra_figure_on_an_order_axis_in_db(seed_dir, tmp_path):
     bad = runner.invoke(app, ["analyze", str(seed_dir), "--force", "--spectra",
                               str(tmp_path / "s.txt")])
     assert bad.exit_code == 1 and "--spectra" in bad.output
+    alone = runner.invoke(app, ["analyze", str(seed_dir), "--force", "--db"])
+    assert alone.exit_code == 1 and "give --spectra FILE" in alone.output

@@ -30,6 +30,12 @@ def test_run_drivetrain_report_is_readable(tmp_path):
     assert si.exit_code == 0, si.output
     si_text = (tmp_path / "si.md").read_text()
     assert "stress.png" in si_text and "stress.png" not in text  # with gearcli stress only
+    # Markdown escapes _ and [ ]
+    assert r"| operating centre distance a\_w | 0.21 | m |" in si_text
+    assert r"| operating centre distance a\_w | 210 | mm |" in text
+    assert r"DTE amplitude \[m\]" in si_text and r"DTE amplitude \[µm\]" in text
+    assert r"gear speed amplitude \[rad/s\]" in si_text
+    assert r"gear speed amplitude \[rpm\]" in text
     assert "no load speed 104.7 rad/s" in si_text and "rpm" not in si_text.split("```yaml")[0]
     assert "```yaml" in text and "reference_speed: 3000" in text  # the case as written
     assert "results computed (UTC)" in text

@@ -82,12 +82,14 @@ def test_analyze_a_simulation_equals_analyze_of_the_cli_folder(tmp_path):
     spectra = gearcli.spectra_frame(from_api)
     assert spectra.index.name == "frequency_Hz" and len(spectra.columns) >= 2
     assert from_api.spectra.equals(spectra)
+    assert repr(from_api).startswith("<Analysis seed: ")
     # stress: typed per-gear peaks equal stress.json's
     st = gearcli.stress(tmp_path / "run")
     doc = st.document()
     assert st.pinion.teeth == 17 and st.gear.teeth == 25
     assert st.pinion.sigma_H_peak_MPa == doc["pinion"]["peak_sigma_H"]["MPa"]
     assert st.gear.sigma_F_peak_MPa == doc["gear"]["peak_sigma_F"]["MPa"]
+    assert repr(st).startswith("<Stress seed: σ_H peak ")
 
 
 def test_modal_returns_typed_modes_equal_to_the_cli_json():
@@ -142,15 +144,20 @@ def test_documents_carry_the_schema_version_and_the_results_schema_validates_one
     assert analysis["schema_version"] == 1
     res = runner.invoke(app, ["schema", "--results"])
     assert res.exit_code == 0
-    schema = json.loads(res.output)
+
+    def strict(text):  # JSON as other parsers read it: no NaN or Infinity
+        return json.loads(text, parse_constant=lambda c: pytest.fail(f"{c} in the schema"))
+
+    schema = strict(res.output)
     res = runner.invoke(app, ["schema", "--results", "--kind", "analysis"])
     assert res.exit_code == 0
-    a_schema = json.loads(res.output)
+    a_schema = strict(res.output)
     assert set(a_schema["required"]) <= set(analysis)
     for key in a_schema["properties"]["metrics"]["properties"]:
         assert key in analysis["metrics"], key
     for kind in ("stress", "modal"):
-        assert runner.invoke(app, ["schema", "--results", "--kind", kind]).exit_code == 0
+        res = runner.invoke(app, ["schema", "--results", "--kind", kind])
+        assert res.exit_code == 0 and strict(res.output)["title"]
     bad = runner.invoke(app, ["schema", "--results", "--kind", "spectra"])
     assert bad.exit_code == 1 and "--kind spectra" in bad.output
     from pydantic import TypeAdapter  # noqa: F401  (pydantic is a dependency; jsonschema is not)
