@@ -172,12 +172,22 @@ def drive_table(data: ReportData) -> Table:
         ("end time", qty(r.get("end_time"), u)),
         ("output", f"{fmt(data.scalars.get('output_rate_Hz'))} Hz "
                    f"({data.run.summary.get('rows', '?')} rows)"),
-        ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / {qty(r.get('atol'), u)}"),
+        ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / " + (
+            qty(r.get("atol"), u) if r.get("atol") is not None
+            else "default (1e-5 of the static deflection, at most 1 µm)")),
     ]
-    for key in ("shaft", "motor_curve", "reference_speed"):
+    for key in ("shaft", "motor_curve", "motor_inertia", "reference_speed"):
         if d.get(key) is not None:
             rows.append((f"drive {key.replace('_', ' ')}", _setting(d[key], u)))
-    return Table("Drive, load and run", ("item", "setting"), rows)
+    for key in ("shaft", "inertia"):
+        if ld.get(key) is not None:
+            rows.append((f"load {key}", _setting(ld[key], u)))
+    rows.insert(0, ("model", str(case.get("model", "torsional"))))
+    for gear in ("pinion", "gear"):  # the lateral model's bearings (beyond the damping above)
+        lateral = {k: v for k, v in (b.get(gear) or {}).items() if k != "damping"}
+        if lateral:
+            rows.append((f"bearings {gear}", _setting(lateral, u)))
+    return Table("Model, drive, load and run", ("item", "setting"), rows)
 
 
 def _setting(value, u: str) -> str:

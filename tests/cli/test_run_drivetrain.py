@@ -23,6 +23,10 @@ def test_run_drivetrain_report_is_readable(tmp_path):
     for raw in ("{'", "[{", "see name", "True}", "None,", ": None"):
         assert raw not in text, raw
     assert "no load speed 1000 rpm" in text  # engineering display units (the default)
+    # every model part in the tables: the model, inertias, shafts, the lateral bearings
+    for row in ("| model | lateral-torsional |", "| drive motor inertia | 0.1 kg·m² |",
+                "| load inertia | 0.5 kg·m² |", "| bearings pinion | stiffness x 2000 N/µm"):
+        assert row in text, row
     assert "lateral.png" in text and "drivetrain.png" in text  # the lateral/drive figures
     assert runner.invoke(app, ["stress", str(out), "-q"]).exit_code == 0
     si = runner.invoke(app, ["--units", "si", "report", str(out), "--format", "md", "-o",
