@@ -7,7 +7,7 @@ Checked, in this order (the first that fails is the reason):
 1. **Penetration** — the largest pair penetration (true extremum over the whole run) against
    ``min(PENETRATION_PER_STATIC × δ_s, PENETRATION_PER_THICKNESS × s)``, δ_s the static deflection
    of the case's law and load, s = π m/2 the reference tooth thickness. A linear (or power-law)
-   tooth is meaningless at penetrations far beyond the static deflection (model.md §10): the
+   tooth is meaningless at penetrations far beyond the static deflection (docs/theory.md §10.2): the
    penetration ratio is the dynamic factor of a linear contact, and ten times the static
    deflection is several times the largest dynamic factors of ISO 6336-1 Method B (K_v of at
    most about 2-3 at the main resonance, docs/theory.md §10.4), i.e. a vibro-impact state of an
