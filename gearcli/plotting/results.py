@@ -459,6 +459,21 @@ def mesh_cycle_mean(t_s, values, samples_per_cycle: float) -> tuple[np.ndarray, 
     return np.convolve(t, kernel, mode="valid"), np.convolve(v, kernel, mode="valid")
 
 
+def _time_panels(t_s, window_s, panels, title: str, ncol: int) -> Figure:
+    """One panel per (y label, curves) of ``panels`` against time [s], the steady window
+    shaded; curves are (values, label, colour, line style)."""
+    t = np.asarray(t_s, float)
+    fig, axes = _figure(len(panels))
+    for ax, (ylabel, curves) in zip(axes, panels, strict=True):
+        _shade_window(ax, window_s)
+        for values, label, colour, style in curves:
+            ax.plot(t, values, color=colour, ls=style, lw=0.8, label=label)
+        ax.set(xlabel="time [s]", ylabel=ylabel, xlim=(t[0], t[-1]))
+        ax.legend(fontsize=8, ncol=ncol, loc="best")
+    fig.suptitle(title)
+    return fig
+
+
 def plot_lateral(t_s, columns: dict, window_s=None, units: str = "engineering") -> Figure:
     """Lateral-torsional model: centre displacements x, y of pinion and gear (µm, or m with
     ``units="si"``) and their bearing forces [kN] against time (columns ``x1_mm`` …
@@ -466,27 +481,20 @@ def plot_lateral(t_s, columns: dict, window_s=None, units: str = "engineering") 
     from gearcli.display_units import unit_and_factor
 
     u, k = unit_and_factor("mm", units, fine=True)
-    t = np.asarray(t_s, float)
-    fig, (ax_d, ax_f) = _figure(2)
-    for ax in (ax_d, ax_f):
-        _shade_window(ax, window_s)
+    moves, forces = [], []
     for body, colour in (("1", PINION), ("2", GEAR)):
         name = "pinion" if body == "1" else "gear"
         for axis, style in (("x", "-"), ("y", "--")):
             d = columns.get(f"{axis}{body}_mm")
             if d is not None:
-                ax_d.plot(t, k * np.asarray(d, float), color=colour, ls=style, lw=0.8,
-                          label=f"{name} {axis}{body}")
+                moves.append((k * np.asarray(d, float), f"{name} {axis}{body}", colour, style))
             f = columns.get(f"bearing_force_{axis}{body}_N")
             if f is not None:
-                ax_f.plot(t, 1e-3 * np.asarray(f, float), color=colour, ls=style, lw=0.8,
-                          label=f"{name} bearing F_{axis}")
-    ax_d.set(xlabel="time [s]", ylabel=f"centre displacement [{u}]", xlim=(t[0], t[-1]))
-    ax_f.set(xlabel="time [s]", ylabel="bearing force [kN]", xlim=(t[0], t[-1]))
-    for ax in (ax_d, ax_f):
-        ax.legend(fontsize=8, ncol=3, loc="best")
-    fig.suptitle("Shaft centres on their bearings (x along the line of centres)")
-    return fig
+                forces.append((1e-3 * np.asarray(f, float), f"{name} bearing F_{axis}", colour,
+                               style))
+    return _time_panels(t_s, window_s, [(f"centre displacement [{u}]", moves),
+                                        ("bearing force [kN]", forces)],
+                        "Shaft centres on their bearings (x along the line of centres)", 3)
 
 
 def plot_drivetrain(t_s, columns: dict, window_s=None, units: str = "engineering") -> Figure:
@@ -494,27 +502,19 @@ def plot_drivetrain(t_s, columns: dict, window_s=None, units: str = "engineering
     load-shaft torques [N·m] against time."""
     from gearcli.display_units import speed_from_rad_s, speed_label
 
-    t = np.asarray(t_s, float)
-    fig, (ax_w, ax_t) = _figure(2)
-    for ax in (ax_w, ax_t):
-        _shade_window(ax, window_s)
-    for key, label, colour, style in (("omega_motor_rad_s", "motor", STATIC, "-"),
-                                      ("omega1_rad_s", "pinion ω1", PINION, "-"),
-                                      ("omega2_rad_s", "gear ω2", GEAR, "-"),
-                                      ("omega_load_rad_s", "load", KIN, "--")):
-        if key in columns:
-            ax_w.plot(t, speed_from_rad_s(np.asarray(columns[key], float), units), color=colour,
-                      ls=style, lw=0.8, label=label)
-    for key, label, colour in (("drive_shaft_torque_Nmm", "drive shaft", PINION),
-                               ("load_shaft_torque_Nmm", "load shaft", GEAR),
-                               ("drive_torque_Nmm", "drive torque on the pinion", STATIC),
-                               ("load_torque_Nmm", "load torque", KIN)):
-        if key in columns:
-            ax_t.plot(t, 1e-3 * np.asarray(columns[key], float), color=colour, lw=0.8,
-                      label=label)
-    ax_w.set(xlabel="time [s]", ylabel=f"speed [{speed_label(units)}]", xlim=(t[0], t[-1]))
-    ax_t.set(xlabel="time [s]", ylabel="torque [N·m]", xlim=(t[0], t[-1]))
-    for ax in (ax_w, ax_t):
-        ax.legend(fontsize=8, ncol=2, loc="best")
-    fig.suptitle("Drivetrain speeds and shaft torques")
-    return fig
+    speeds = [(speed_from_rad_s(np.asarray(columns[key], float), units), label, colour, style)
+              for key, label, colour, style in (("omega_motor_rad_s", "motor", STATIC, "-"),
+                                                ("omega1_rad_s", "pinion ω1", PINION, "-"),
+                                                ("omega2_rad_s", "gear ω2", GEAR, "-"),
+                                                ("omega_load_rad_s", "load", KIN, "--"))
+              if key in columns]
+    torques = [(1e-3 * np.asarray(columns[key], float), label, colour, "-")
+               for key, label, colour in (("drive_shaft_torque_Nmm", "drive shaft", PINION),
+                                          ("load_shaft_torque_Nmm", "load shaft", GEAR),
+                                          ("drive_torque_Nmm", "drive torque on the pinion",
+                                           STATIC),
+                                          ("load_torque_Nmm", "load torque", KIN))
+               if key in columns]
+    return _time_panels(t_s, window_s, [(f"speed [{speed_label(units)}]", speeds),
+                                        ("torque [N·m]", torques)],
+                        "Drivetrain speeds and shaft torques", 2)
