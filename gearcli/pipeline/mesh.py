@@ -90,18 +90,16 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
 
 def _iso_resonance(res: MeshAnalysis) -> dict:
     """ISO 6336-1 Method B resonance speed n_E1 and the case's resonance ratio N = n1/n_E1
-    with its K_v (B_p = B_f = 0, B_k = 1; gearcli/model/iso_kv.py)."""
+    with its K_v (the case's deviations: mesh_input.iso_deviations; gearcli/model/iso_kv.py)."""
     from gearcli.model.iso_kv import dynamic_factor
-    from gearcli.pipeline.mesh_input import iso_dynamic
+    from gearcli.pipeline.mesh_input import KV_KEYS, iso_dynamic
 
     iso = iso_dynamic(res.source.case, res.geometry)
     speed = res.geometry.pinion_speed_rad_s
     if speed:
         n1 = abs(speed) * 30.0 / math.pi
         ratio = n1 / iso["resonance_speed_rpm"]
-        kv = dynamic_factor(ratio, eps_gamma=iso["eps_gamma"],
-                            c_prime_N_mm_um=iso["c_prime_N_mm_um"],
-                            line_load_N_mm=iso["line_load_N_mm"])
+        kv = dynamic_factor(ratio, **{k: iso[k] for k in KV_KEYS})
         iso.update(pinion_speed_rpm=n1, resonance_ratio=ratio, k_v=float(kv.k_v),
                    speed_range=str(kv.range_name))
     return iso

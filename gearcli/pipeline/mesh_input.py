@@ -90,9 +90,10 @@ def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
 def iso_dynamic(case: Case, geo: GeometryResult):
     """ISO 6336-1 Method B resonance data of the case's pair (gearcli/model/iso_kv.py): the
     reduced mass (solid gears, or the given bores), n_E1 [min⁻¹], the line load F_t/b [N/mm]
-    (K_A = 1) and c′ [N/(mm·µm)] at the case's load; K_v as a function of N via
-    :func:`gearcli.model.iso_kv.dynamic_factor` with B_k = 1 (no deviations or relief known
-    to Method B here). Returns a dict (internal units where not stated)."""
+    (K_A = 1), c′ [N/(mm·µm)] at the case's load, and the case's deviations as Method B takes
+    them (:func:`iso_deviations`). Returns a dict (internal units where not stated); the
+    keyword arguments of :func:`gearcli.model.iso_kv.dynamic_factor` are
+    :data:`KV_KEYS`."""
     from gearcli.model.iso_kv import reduced_mass_kg_mm, resonance_speed_rpm
 
     g, gears = geo.geometry, case.gears
@@ -105,7 +106,49 @@ def iso_dynamic(case: Case, geo: GeometryResult):
     m_red = reduced_mass_kg_mm(d_m1, g.pinion.d_b_mm, rho, rho, g.ratio, q1, q2)
     width = min(g.pinion.face_width_mm, g.gear.face_width_mm)
     line_load = static_force_N(case, geo) * math.cos(g.pressure_angle_rad) / width
-    return {"reduced_mass_kg_mm": m_red, "c_prime_N_mm_um": iso.c_prime,
-            "c_gamma_alpha_N_mm_um": iso.c_gamma_alpha, "line_load_N_mm": line_load,
-            "eps_gamma": g.eps_alpha,
-            "resonance_speed_rpm": resonance_speed_rpm(g.pinion.teeth, iso.c_gamma_alpha, m_red)}
+    out = {"reduced_mass_kg_mm": m_red, "c_prime_N_mm_um": iso.c_prime,
+           "c_gamma_alpha_N_mm_um": iso.c_gamma_alpha, "line_load_N_mm": line_load,
+           "eps_gamma": g.eps_alpha,
+           "resonance_speed_rpm": resonance_speed_rpm(g.pinion.teeth, iso.c_gamma_alpha, m_red)}
+    out.update(iso_deviations(case, geo, iso.c_prime, line_load))
+    return out
+
+
+#: The entries of :func:`iso_dynamic` that :func:`gearcli.model.iso_kv.dynamic_factor` takes.
+KV_KEYS = ("eps_gamma", "c_prime_N_mm_um", "line_load_N_mm", "f_pb_eff_um", "f_f_eff_um",
+           "tip_relief_um")
+
+
+def iso_deviations(case: Case, geo: GeometryResult, c_prime: float, line_load: float) -> dict:
+    """The case's deviations in ISO 6336-1 Method B's terms (docs/theory.md §10.4):
+
+    * f_pb,eff [µm]: the larger of the two gears' single pitch deviations, f_pt (ISO 6336-1
+      uses the base pitch deviation f_pb; ISO 1328-1:2013 tolerances only f_pt, so f_pt stands
+      for it): the largest |f_pt,i| of given values, or the tolerance f_pT of an ISO 1328-1
+      grade (model/errors.py); 0 without pitch deviations. No running-in allowance y_p is
+      credited (y_p = 0: it needs the material class and σ_Hlim), which is conservative.
+    * f_f,eff = 0: case files have no profile form deviation.
+    * C_a [µm]: the designed tip relief; where pinion and gear differ, the amount that gives
+      the larger B_k = |1 − c′ C_a / (F_t K_A / b)| (the conservative choice); None without
+      tip relief (B_k = 1).
+    """
+    from gearcli.model.errors import iso1328_single_pitch_tolerance_um
+
+    g = geo.geometry
+    f_pb = 0.0
+    for dev, gear in ((case.errors.pitch_deviation.pinion, g.pinion),
+                      (case.errors.pitch_deviation.gear, g.gear)):
+        if dev is None:
+            continue
+        if dev.values is not None:
+            f_pt = 1e3 * max(abs(v) for v in dev.values)
+        else:
+            f_pt = iso1328_single_pitch_tolerance_um(dev.iso1328_grade, gear.d_mm,
+                                                     case.gears.module)
+        f_pb = max(f_pb, f_pt)
+    reliefs = [1e3 * r.amount for r in (case.modifications.tip_relief.pinion,
+                                        case.modifications.tip_relief.gear) if r is not None]
+    c_a = max(reliefs, key=lambda c: abs(1.0 - c_prime * c / line_load)) if reliefs else None
+    return {"f_pb_eff_um": f_pb, "f_f_eff_um": 0.0, "tip_relief_um": c_a,
+            "B_p": c_prime * f_pb / line_load, "B_f": 0.0,
+            "B_k": 1.0 if c_a is None else abs(1.0 - c_prime * c_a / line_load)}

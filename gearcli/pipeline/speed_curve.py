@@ -218,13 +218,13 @@ def iso_curve(curve: SpeedCurve, points: int = 400):
     """(N = f_z/f_n [-], K_v [-], ISO ranges) of ISO 6336-1 Method B over the curve's speeds,
     on the figure's axis (the ISO resonance ratio n1/n_E1 mapped through f_z)."""
     from gearcli.model.iso_kv import dynamic_factor
+    from gearcli.pipeline.mesh_input import KV_KEYS
 
     iso = curve.iso
     f_z = np.linspace(min(r["mesh_frequency [Hz]"] for r in curve.rows),
                       max(r["mesh_frequency [Hz]"] for r in curve.rows), points)
     n_iso = f_z / curve.pinion_teeth * 60.0 / iso["resonance_speed_rpm"]
-    kv = dynamic_factor(n_iso, eps_gamma=iso["eps_gamma"], c_prime_N_mm_um=iso["c_prime_N_mm_um"],
-                        line_load_N_mm=iso["line_load_N_mm"])
+    kv = dynamic_factor(n_iso, **{k: iso[k] for k in KV_KEYS})
     return f_z / curve.f_n_Hz, kv.k_v, n_iso
 
 
@@ -256,5 +256,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
                       "resolved_case": json.loads(curve.base_case_json)}
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
         fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name,
-                               iso=iso_curve(curve) if curve.iso else None)
+                               iso=iso_curve(curve) if curve.iso else None,
+                               iso_factors=tuple((curve.iso or {}).get(k, d) for k, d in
+                                                 (("B_p", 0.0), ("B_f", 0.0), ("B_k", 1.0))))
         fig.savefig(tmp / "speed_curve.png", dpi=110)

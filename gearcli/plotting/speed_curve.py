@@ -13,12 +13,14 @@ __all__ = ["plot_speed_curve"]
 _STYLE = {"up": ("#1565c0", "^", "run-up"), "down": ("#c62828", "v", "run-down")}
 
 
-def plot_speed_curve(rows: list[dict], f_n_Hz: float, title: str = "", iso=None) -> Figure:
+def plot_speed_curve(rows: list[dict], f_n_Hz: float, title: str = "", iso=None,
+                     iso_factors: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> Figure:
     """Dynamic factor [-] against N = f_z / f_n [-] (f_n the case's mesh mode) for the run-up
     and the run-down of gearcli/pipeline/speed_curve.py; points outside the model's validity
     are marked with a grey cross at the top of the axes, not plotted as values; dotted lines
     at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO) arrays: ISO 6336-1 Method B's K_v on the
-    same axis (its own resonance ratio n1/n_E1 on a secondary axis)."""
+    same axis (its own resonance ratio n1/n_E1 on a secondary axis), computed with
+    ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend states."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(8.0, 4.8))
@@ -36,7 +38,8 @@ def plot_speed_curve(rows: list[dict], f_n_Hz: float, title: str = "", iso=None)
     if iso is not None:
         x_iso, k_v, n_iso = iso
         ax.plot(x_iso, k_v, color="0.25", lw=1.6, ls="--",
-                label="ISO 6336-1 Method B K_v (B_p = B_f = 0, B_k = 1)")
+                label="ISO 6336-1 Method B K_v (B_p = {:.3g}, B_f = {:.3g}, B_k = {:.3g})"
+                .format(*iso_factors))
         ratio = x_iso[-1] / n_iso[-1] if n_iso[-1] else 1.0
         top = ax.secondary_xaxis("top", functions=(lambda x: x / ratio, lambda x: x * ratio))
         top.set_xlabel("ISO resonance ratio N = n1 / n_E1", fontsize=8)

@@ -134,3 +134,34 @@ def test_kissoft_printouts_of_the_nrel_5mw_gearbox(row):
     # K_V as printed, to its printed decimals (half a unit of the last digit) plus the effect of
     # N printed to 3 decimals (±0.0005 · K ≤ 0.0003 here)
     assert float(kv.k_v) == pytest.approx(kv_printed, abs=0.5 * 10.0 ** -decimals + 3e-4)
+
+
+def test_the_case_deviations_enter_b_p_and_b_k():
+    """B_p from the larger single pitch deviation (an ISO 1328-1:2013 grade's f_pT, or the
+    largest given |f_pt,i|), B_k from the tip relief giving the larger B_k, no running-in
+    allowance; no deviations: B_p = B_f = 0, B_k = 1 (pipeline/mesh_input.iso_deviations)."""
+    from gearcli.case.load import load_case
+    from gearcli.model.errors import iso1328_single_pitch_tolerance_um
+    from gearcli.pipeline.geometry import run_geometry
+    from gearcli.pipeline.mesh_input import iso_dynamic
+
+    def iso(*overrides):
+        loaded = load_case("cases/seed.yaml", list(overrides))
+        return iso_dynamic(loaded.case, run_geometry(loaded))
+
+    plain = iso()
+    assert (plain["B_p"], plain["B_f"], plain["B_k"]) == (0.0, 0.0, 1.0)
+    assert plain["tip_relief_um"] is None
+    graded = iso("errors.pitch_deviation.gear={iso1328_grade: 7}",
+                 "errors.pitch_deviation.pinion={values: [0.004, -0.009, 0.005"
+                 + ", 0.0" * 14 + "]}",
+                 "modifications.tip_relief.pinion={amount: 0.005, length: 5}",
+                 "modifications.tip_relief.gear={amount: 0.02, length: 5}")
+    # gear: f_pT = (0.001 d + 0.4 m + 5) √2^(7-5), d = 250 mm, m = 10 mm -> 19.5 µm > 9 µm
+    f_pt = (0.001 * 250.0 + 0.4 * 10.0 + 5.0) * 2.0
+    assert iso1328_single_pitch_tolerance_um(7, 250.0, 10.0) == pytest.approx(f_pt)
+    assert graded["f_pb_eff_um"] == pytest.approx(f_pt)
+    c, w = graded["c_prime_N_mm_um"], graded["line_load_N_mm"]
+    assert graded["B_p"] == pytest.approx(c * f_pt / w)
+    assert graded["B_k"] == pytest.approx(max(abs(1 - c * 5.0 / w), abs(1 - c * 20.0 / w)))
+    assert plain["c_prime_N_mm_um"] == pytest.approx(c)  # the deviations leave c′ alone
