@@ -459,38 +459,64 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
 
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,
-          scheduler: str | None = None, force: bool = False):
-    """Run a study file (`gearcli sweep`) and return its summary as a DataFrame (one row per
+          scheduler: str | None = None, force: bool = False, keep_timeseries: bool = False,
+          timeseries_format: str = "csv", progress=None, allow_large: bool = False):
+    """Run a study (`gearcli sweep`) and return its summary as a DataFrame (one row per
     point; a ``design: speed_curve`` study: one row per speed and direction).
 
     Parameters
     ----------
-    study : str or Path
-        Study file [YAML].
+    study : str, Path or gearcli.pipeline.sweep_study.Study
+        Study file [YAML], or a study loaded by ``load_study``.
     out : str or Path, optional
-        Output folder (summary.csv, trends, plots); default a temporary folder, removed after.
+        Output folder (summary.csv, trends, plots; resumable: points already in its
+        summary.csv are not run again); default a temporary folder, removed after.
     jobs : int, optional
         Worker processes (default: all cores); ``scheduler``: Dask ("local" or an address).
     force : bool
         Start over in ``out`` (discard its summary.csv).
+    keep_timeseries, timeseries_format : bool, str
+        Also write each point's results folder, its time series as "csv" or "parquet".
+    progress : callable(done, failed, total), optional
+        Called as points finish.
+    allow_large : bool
+        Accept studies of more than 1000 points (the command line's ``--yes``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``attrs`` holds the outcome: ``kind`` ("sweep" or "speed_curve"), for a sweep
+        ``total``, ``ran``, ``skipped``, ``failed``, ``wall_time_s``; for a speed curve
+        ``errors`` (a direction whose solver failed).
     """
     import contextlib
 
     import pandas as pd
 
     from gearcli.pipeline.sweep_run import rows_as_table, run_study, summary_columns
-    from gearcli.pipeline.sweep_study import load_study
+    from gearcli.pipeline.sweep_study import Study, load_study
 
-    spec = load_study(study)
+    spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
     with contextlib.ExitStack() as stack:
         if out is None:
             out = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="gearcli-"))) / "s"
         if spec.design == "speed_curve":
+            from gearcli.io.outdir import check_target
             from gearcli.pipeline.speed_curve import COLUMNS, run_speed_curve, write_speed_curve
 
+            check_target(out, force)  # before the runs, not after
             curve = run_speed_curve(spec, jobs, scheduler)
             write_speed_curve(curve, out, force)
-            return pd.DataFrame(curve.rows, columns=list(COLUMNS))
-        outcome = run_study(spec, Path(out), jobs, scheduler, False, force, None)
-        return rows_as_table(outcome.rows, summary_columns(spec))
+            df = pd.DataFrame(curve.rows, columns=list(COLUMNS))
+            df.attrs.update(kind="speed_curve", errors=list(curve.errors))
+            return df
+        from gearcli.pipeline.sweep_trends import write_trends
 
+        outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
+                            timeseries_format=timeseries_format)
+        write_trends(Path(out), spec, outcome.rows)
+        df = rows_as_table(outcome.rows, summary_columns(spec))
+        df.attrs.update(kind="sweep", total=outcome.total, ran=outcome.ran,
+                        skipped=outcome.skipped, failed=outcome.failed,
+                        wall_time_s=outcome.wall_time_s)
+        return df

@@ -60,44 +60,35 @@ def sweep(
 
     Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2
     """
+    from gearcli import api
     from gearcli.errors import OutputError
-    from gearcli.pipeline.sweep_run import run_study
     from gearcli.pipeline.sweep_study import load_study
-    from gearcli.pipeline.sweep_trends import write_trends
 
     if fmt not in ("csv", "parquet"):
         raise OutputError(f"--format {fmt}: expected csv or parquet")
     spec = load_study(study, allow_large=yes)
     if spec.design == "speed_curve":
-        _speed_curve(spec, out, jobs or None, scheduler, force, quiet)
+        if not quiet:
+            typer.echo(f"speed curve: {len(spec.points)} speeds, run up and down (2 runs)",
+                       err=True)
+        df = api.sweep(spec, out, jobs or None, scheduler, force)
+        if not quiet:
+            invalid = int((df["status"] == "invalid").sum())
+            failed = int((df["status"] == "failed").sum())
+            typer.echo(f"{len(df)} points, {invalid} outside the model's validity, "
+                       f"{failed} failed; results in {out}/ (summary.csv, speed_curve.png)")
+        for e in df.attrs["errors"]:
+            typer.echo(f"warning: a direction failed: {e}", err=True)
         return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
-        outcome = run_study(spec, out, jobs or None, scheduler, keep_timeseries, force,
-                            progress, timeseries_format=fmt)
-    write_trends(out, spec, outcome.rows)
+        df = api.sweep(spec, out, jobs or None, scheduler, force, keep_timeseries, fmt,
+                       progress)
     if not quiet:
-        invalid = sum(1 for r in outcome.rows if r.get("status") == "invalid")
-        typer.echo(f"{outcome.total} points: {outcome.ran} run, {outcome.skipped} already done, "
-                   f"{outcome.failed} failed, {invalid} outside the model's validity "
-                   f"({outcome.wall_time_s:.1f} s); results in {out}/ (summary.csv, trends.md)")
-
-
-def _speed_curve(spec, out: Path, jobs, scheduler, force: bool, quiet: bool) -> None:
-    from gearcli.io.outdir import check_target
-    from gearcli.pipeline.speed_curve import run_speed_curve, write_speed_curve
-
-    check_target(out, force)  # before the runs, not after
-    if not quiet:
-        typer.echo(f"speed curve: {len(spec.points)} speeds, run up and down (2 runs)", err=True)
-    curve = run_speed_curve(spec, jobs, scheduler)
-    write_speed_curve(curve, out, force)
-    if not quiet:
-        invalid = sum(r["status"] == "invalid" for r in curve.rows)
-        failed = sum(r["status"] == "failed" for r in curve.rows)
-        typer.echo(f"{len(curve.rows)} points, {invalid} outside the model's validity, "
-                   f"{failed} failed; results in {out}/ (summary.csv, speed_curve.png)")
-    for e in curve.errors:
-        typer.echo(f"warning: a direction failed: {e}", err=True)
+        a = df.attrs
+        invalid = int((df["status"] == "invalid").sum())
+        typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
+                   f"{a['failed']} failed, {invalid} outside the model's validity "
+                   f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
 
 
 def _sweep_columns():

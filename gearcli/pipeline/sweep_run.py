@@ -454,5 +454,8 @@ def rows_as_table(rows: Iterable[dict], columns: list[str]):
     df = pd.DataFrame([{c: r.get(c) for c in columns} for r in rows], columns=columns)
     for c in df.columns:
         if c not in ("status", "error", "warnings", "case_hash", "checks"):
-            df[c] = pd.to_numeric(df[c].replace("", None), errors="ignore")
+            try:  # pandas 3 dropped errors="ignore": a column of text stays text
+                df[c] = pd.to_numeric(df[c].replace("", None))
+            except (ValueError, TypeError):
+                pass
     return df

@@ -66,3 +66,22 @@ def test_resume_after_sigkill(tmp_path):
     lines = summary.read_text().splitlines()
     assert len(lines) == 13 and [ln.split(",")[0] for ln in lines[1:]] == \
         [str(i) for i in range(12)]
+
+
+def test_api_sweep_returns_the_cli_summary_as_numbers(tmp_path):
+    """gearcli.sweep: the rows the command line writes, numeric columns as numbers, the
+    outcome in ``attrs`` (the command line's summary line is made from it); the study's
+    trends are written as by the command line (issue 17)."""
+    import csv
+
+    import gearcli
+
+    study = write_study(tmp_path, "parameters:\n  mesh_frequency: [\"100 Hz\", \"200 Hz\"]\n")
+    df = gearcli.sweep(study, tmp_path / "api", jobs=1)
+    assert df.attrs["kind"] == "sweep" and df.attrs["ran"] == 2 and df.attrs["failed"] == 0
+    assert (tmp_path / "api" / "trends.md").is_file()
+    with open(tmp_path / "api" / SUMMARY, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(df) == len(rows) == 2
+    assert df["dynamic_factor"].dtype.kind == "f"
+    assert list(df["dynamic_factor"]) == [float(r["dynamic_factor"]) for r in rows]
