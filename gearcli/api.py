@@ -22,15 +22,23 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from gearcli.results import SCHEMA_VERSION, AnalysisMetrics, GearStress, Mode, Summary
+    from gearcli.results import (
+        SCHEMA_VERSION,
+        AnalysisMetrics,
+        GearStress,
+        MeshSummary,
+        Mode,
+        Summary,
+    )
 
 __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
-           "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Summary",
-           "AnalysisMetrics", "GearStress", "Mode", "SCHEMA_VERSION"]
+           "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
+           "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
 
 #: The typed documents live in gearcli/results.py, imported on first use (building their
 #: dataclasses costs ~15 ms that `gearcli geometry` does not need).
-_RESULTS = ("SCHEMA_VERSION", "AnalysisMetrics", "GearStress", "Mode", "Summary")
+_RESULTS = ("SCHEMA_VERSION", "AnalysisMetrics", "GearStress", "Mode", "MeshSummary",
+            "Summary")
 
 
 def __getattr__(name: str):
@@ -390,13 +398,78 @@ def modal(case, set=None,  # noqa: A002
     return Modal(run_modal(load_case(case, set), speed_range_deg_s=speed_range_deg_s))
 
 
-def mesh(case, set=None, **options):  # noqa: A002
+class Mesh:
+    """Quasi-static loaded tooth contact of a pair (`gearcli mesh`).
+
+    Attributes
+    ----------
+    summary : MeshSummary
+        STE [µm], mesh stiffness [N/mm] against ISO 6336-1 c′b and c_γα b, n_E1 and K_v.
+    table : pandas.DataFrame
+        Per pinion roll position ``roll_mm``: STE, unloaded TE [µm], mesh stiffness [N/mm],
+        pairs in contact, each pair's position [mm] and force [N] (mesh.csv).
+    notes : list of str
+        What the analysis leaves out.
+    result : gearcli.pipeline.mesh.MeshAnalysis
+    """
+
+    def __init__(self, result) -> None:
+        from gearcli.pipeline.mesh import mesh_document
+        from gearcli.results import MeshSummary
+
+        self.result = result
+        self._doc = mesh_document(result)
+        self.summary = MeshSummary.from_document(self._doc)
+        self.notes = list(self._doc["notes"])
+
+    @property
+    def table(self):
+        import pandas as pd
+
+        from gearcli.pipeline.mesh import mesh_table
+
+        columns = mesh_table(self.result)
+        x = columns.pop("roll_mm")
+        return pd.DataFrame(columns, index=pd.Index(x, name="roll_mm"))
+
+    def document(self) -> dict:
+        """What `gearcli mesh --json` prints."""
+        return self._doc
+
+    def save_plot(self, path: str | Path, units: str = "engineering") -> None:
+        """The figure of `gearcli mesh --plot` [.png, .svg, .pdf], in the display ``units``."""
+        from gearcli.pipeline.mesh import save_mesh_plot
+
+        save_mesh_plot(self.result, path, units)
+
+    def __repr__(self) -> str:
+        return (f"<Mesh {self.result.name}: STE {self.summary.ste_peak_to_peak_um:.3g} µm peak "
+                f"to peak, mean stiffness {self.summary.mesh_mean_N_mm:.4g} N/mm>")
+
+
+def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # noqa: A002
+         **options) -> Mesh:
     """Quasi-static loaded tooth contact: static transmission error, load sharing, mesh
-    stiffness against ISO 6336-1 (`gearcli mesh`); ``options`` as
-    :func:`gearcli.pipeline.mesh.run_mesh` takes them (``load_N``, ``harris``, ...)."""
+    stiffness against ISO 6336-1 (`gearcli mesh`).
+
+    Parameters
+    ----------
+    case : str, Path, mapping or LoadedCase
+    set : overrides as in :func:`load_case`
+    load_N : float, optional
+        Static normal force [N] (default: the case's load torque / r_b2).
+    harris : bool
+        Also the Harris map (STE peak-to-peak against 0.1 .. 2 x the load).
+    options
+        ``cycles``, ``points_per_cycle`` of :func:`gearcli.pipeline.mesh.run_mesh`.
+
+    Returns
+    -------
+    Mesh
+    """
     from gearcli.pipeline.mesh import run_mesh
 
-    return run_mesh(load_case(case, set), **options)
+    return Mesh(run_mesh(load_case(case, set), load_N=load_N, harris=harris, **options))
 
 
 class Stress:

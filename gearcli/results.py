@@ -21,8 +21,8 @@ from gearcli.display_units import DEFAULT
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.io.metrics import METRICS, display
 
-__all__ = ["SCHEMA_VERSION", "Summary", "AnalysisMetrics", "GearStress", "Mode", "rows",
-           "json_schema", "KINDS"]
+__all__ = ["SCHEMA_VERSION", "Summary", "AnalysisMetrics", "GearStress", "Mode",
+           "MeshSummary", "rows", "json_schema", "KINDS"]
 
 
 def _field(key: str, default: Any = math.nan):
@@ -179,6 +179,33 @@ class Mode(_Document):
         return cls(**_pick(cls, mode))
 
 
+@dataclasses.dataclass(frozen=True)
+class MeshSummary(_Document):
+    """The scalars of a quasi-static loaded contact analysis (`gearcli mesh --json`: its
+    ``ste`` entries prefixed ``ste_``, its ``stiffness`` and ``iso6336_method_b`` entries)."""
+
+    force_N: float = _field("force_N")
+    ste_mean_um: float = _field("ste_mean_um")
+    ste_peak_to_peak_um: float = _field("ste_peak_to_peak_um")
+    ste_peak_to_peak_arcsec: float = _field("ste_peak_to_peak_arcsec")
+    unloaded_te_peak_to_peak_um: float = _field("unloaded_te_peak_to_peak_um")
+    mesh_mean_N_mm: float = _field("mesh_mean_N_mm")
+    single_pair_zone_N_mm: float | None = _field("single_pair_zone_N_mm", None)
+    double_pair_zone_N_mm: float | None = _field("double_pair_zone_N_mm", None)
+    iso6336_single_pair_c_prime_b_N_mm: float = _field("iso6336_single_pair_c_prime_b_N_mm")
+    iso6336_mean_c_gamma_alpha_b_N_mm: float = _field("iso6336_mean_c_gamma_alpha_b_N_mm")
+    resonance_speed_rpm: float = _field("resonance_speed_rpm")
+    resonance_ratio: float | None = _field("resonance_ratio", None)
+    k_v: float | None = _field("k_v", None)
+
+    @classmethod
+    def from_document(cls, doc: Mapping[str, Any]) -> MeshSummary:
+        ste = {k if k.startswith("unloaded") else f"ste_{k}": v for k, v in doc["ste"].items()}
+        flat = {"force_N": doc["force_N"], **ste, **doc["stiffness"],
+                **doc.get("iso6336_method_b", {})}
+        return cls(**_pick(cls, flat))
+
+
 def rows(document, names: Iterable[str] | None = None,
          system: str = DEFAULT) -> list[tuple[str, Any, str]]:
     """(label, value in the display unit, display unit) of the fields ``names`` (default all
@@ -197,13 +224,13 @@ def _finite(value) -> bool:
 
 
 #: The documents ``gearcli schema --results KIND`` describes.
-KINDS = ("summary", "analysis", "stress", "modal")
+KINDS = ("summary", "analysis", "stress", "modal", "mesh")
 
 
 def json_schema(kind: str = "summary") -> dict:
     """JSON Schema (draft 2020-12) of a result document: ``summary`` (summary.json),
-    ``analysis`` (analysis.json), ``stress`` (stress.json) or ``modal`` (gearcli modal
-    --json): the typed fields as above, the rest as open objects."""
+    ``analysis`` (analysis.json), ``stress`` (stress.json), ``modal`` (gearcli modal --json)
+    or ``mesh`` (gearcli mesh --json): the typed fields as above, the rest as open objects."""
     from pydantic import TypeAdapter
 
     if kind not in KINDS:
@@ -261,6 +288,18 @@ def json_schema(kind: str = "summary") -> dict:
                  "warnings": {"type": "array"}}
         return {**base, "title": "gearcli stress.json", "properties": props,
                 "required": ["schema_version", "case", "static", "pinion", "gear"]}
+    if kind == "mesh":
+        flat = typed(MeshSummary)["properties"]
+        groups = {"ste": [k for k in flat if k.startswith(("ste_", "unloaded_"))],
+                  "stiffness": [k for k in flat if k.endswith("_N_mm")],
+                  "iso6336_method_b": ["resonance_speed_rpm", "resonance_ratio", "k_v"]}
+        props = {"schema_version": version, "case": {"type": "string"},
+                 "force_N": flat["force_N"], "notes": {"type": "array"},
+                 **{g: {"type": "object", "additionalProperties": True,
+                        "properties": {k.removeprefix("ste_") if g == "ste" else k: flat[k]
+                                       for k in keys}} for g, keys in groups.items()}}
+        return {**base, "title": "gearcli mesh --json", "properties": props,
+                "required": ["schema_version", "case", "force_N", "ste", "stiffness"]}
     props = {"schema_version": version, "case": {"type": "string"},
              "model": {"type": "string"}, "modes": {"type": "array", "items": typed(Mode)},
              "linearisation": obj, "crossings": {"type": "array"}, "checks": checks,

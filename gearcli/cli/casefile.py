@@ -16,9 +16,9 @@ def schema(
     results: bool = typer.Option(False, "--results",
                                  help="The JSON Schema of a result document instead of the "
                                       "case's (--kind)."),
-    kind: str = typer.Option("summary", "--kind", metavar="summary|analysis|stress|modal",
-                             help="With --results: summary.json, analysis.json, stress.json "
-                                  "or gearcli modal --json."),
+    kind: str = typer.Option("summary", "--kind", metavar="summary|analysis|stress|modal|mesh",
+                             help="With --results: summary.json, analysis.json, stress.json, "
+                                  "gearcli modal --json or gearcli mesh --json."),
     study: bool = typer.Option(False, "--study",
                                help="The JSON Schema of a study file (gearcli sweep)."),
 ) -> None:

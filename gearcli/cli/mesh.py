@@ -52,7 +52,7 @@ def mesh(
     check_new_file(plot, force, "--plot")
     if out is not None:
         check_target(out, force)  # before the work, not after
-    res = api.mesh(case, set_, load_N=load, harris=harris)
+    res = api.mesh(case, set_, load_N=load, harris=harris).result
     doc = mesh_document(res)
     if out is not None:
         write_mesh(res, out, force, set_, display_units())
