@@ -68,6 +68,9 @@ def sweep(
         raise OutputError(f"--format {fmt}: expected csv or parquet")
     spec = load_study(study, allow_large=yes)
     if spec.design == "speed_curve":
+        from gearcli.io.outdir import check_target
+
+        check_target(out, force)  # before the message and the runs
         if not quiet:
             typer.echo(f"speed curve: {len(spec.points)} speeds, run up and down (2 runs)",
                        err=True)

@@ -106,8 +106,8 @@ def dynamic_factor(ratio_N, *, eps_gamma: float, c_prime_N_mm_um: float,
     c_prime_N_mm_um : single stiffness c′ [N/(mm·µm)]
     line_load_N_mm : F_t K_A / b [N/mm] (F_t at the reference circle)
     f_pb_eff_um, f_f_eff_um : effective base pitch and profile form deviations [µm]
-    tip_relief_um : C_a [µm]; None: B_k = 1 (the standard's value for accuracy grades 6 and
-        coarser and where no relief is known)
+    tip_relief_um : C_a [µm] (designed tip relief, or the running-in amount C_ay); None or
+        0: B_k = 1, the formula at C_a = 0
     """
     w = float(line_load_N_mm)
     cv = coefficients(eps_gamma)

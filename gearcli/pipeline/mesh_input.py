@@ -89,11 +89,12 @@ def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
 
 def iso_dynamic(case: Case, geo: GeometryResult):
     """ISO 6336-1 Method B resonance data of the case's pair (gearcli/model/iso_kv.py): the
-    reduced mass (solid gears, or the given bores), n_E1 [min⁻¹], the line load F_t/b [N/mm]
-    (K_A = 1), c′ [N/(mm·µm)] at the case's load, and the case's deviations as Method B takes
-    them (:func:`iso_deviations`). Returns a dict (internal units where not stated); the
-    keyword arguments of :func:`gearcli.model.iso_kv.dynamic_factor` are
-    :data:`KV_KEYS`."""
+    reduced mass (solid gears, or the given bores), the line load F_t/b [N/mm] (K_A = 1), c′
+    and c_γα [N/(mm·µm)] with the standard's low-load factor (the rating values: below
+    100 N/mm ISO 6336-1 §9.3 reduces c′ by (F_t K_A/b/100)^0.25, and n_E1 and B_p, B_f, B_k
+    are computed from that c′), n_E1 [min⁻¹], and the case's deviations as Method B takes them
+    (:func:`iso_deviations`). Returns a dict (internal units where not stated); the keyword
+    arguments of :func:`gearcli.model.iso_kv.dynamic_factor` are :data:`KV_KEYS`."""
     from gearcli.model.iso_kv import reduced_mass_kg_mm, resonance_speed_rpm
 
     g, gears = geo.geometry, case.gears
@@ -106,11 +107,13 @@ def iso_dynamic(case: Case, geo: GeometryResult):
     m_red = reduced_mass_kg_mm(d_m1, g.pinion.d_b_mm, rho, rho, g.ratio, q1, q2)
     width = min(g.pinion.face_width_mm, g.gear.face_width_mm)
     line_load = static_force_N(case, geo) * math.cos(g.pressure_angle_rad) / width
-    out = {"reduced_mass_kg_mm": m_red, "c_prime_N_mm_um": iso.c_prime,
-           "c_gamma_alpha_N_mm_um": iso.c_gamma_alpha, "line_load_N_mm": line_load,
-           "eps_gamma": g.eps_alpha,
-           "resonance_speed_rpm": resonance_speed_rpm(g.pinion.teeth, iso.c_gamma_alpha, m_red)}
-    out.update(iso_deviations(case, geo, iso.c_prime, line_load))
+    c_prime = iso.c_prime_rating
+    c_gamma_alpha = iso.c_gamma_alpha * iso.load_factor
+    out = {"reduced_mass_kg_mm": m_red, "low_load_factor": iso.load_factor,
+           "c_prime_N_mm_um": c_prime, "c_gamma_alpha_N_mm_um": c_gamma_alpha,
+           "line_load_N_mm": line_load, "eps_gamma": g.eps_alpha,
+           "resonance_speed_rpm": resonance_speed_rpm(g.pinion.teeth, c_gamma_alpha, m_red)}
+    out.update(iso_deviations(case, geo, c_prime, line_load))
     return out
 
 
@@ -119,36 +122,62 @@ KV_KEYS = ("eps_gamma", "c_prime_N_mm_um", "line_load_N_mm", "f_pb_eff_um", "f_f
            "tip_relief_um")
 
 
-def iso_deviations(case: Case, geo: GeometryResult, c_prime: float, line_load: float) -> dict:
-    """The case's deviations in ISO 6336-1 Method B's terms (docs/theory.md §10.4):
+def running_in_tip_relief_um(sigma_hlim_MPa: float) -> float:
+    """ISO 6336-1 running-in amount C_ay [µm] of a gear without designed tip relief, from its
+    contact fatigue limit σ_Hlim [MPa]: C_ay = (σ_Hlim/97 − 18.45)²/18 + 1.5."""
+    return (sigma_hlim_MPa / 97.0 - 18.45) ** 2 / 18.0 + 1.5
 
-    * f_pb,eff [µm]: the larger of the two gears' single pitch deviations, f_pt (ISO 6336-1
-      uses the base pitch deviation f_pb; ISO 1328-1:2013 tolerances only f_pt, so f_pt stands
-      for it): the largest |f_pt,i| of given values, or the tolerance f_pT of an ISO 1328-1
-      grade (model/errors.py); 0 without pitch deviations. No running-in allowance y_p is
-      credited (y_p = 0: it needs the material class and σ_Hlim), which is conservative.
+
+def iso_deviations(case: Case, geo: GeometryResult, c_prime: float, line_load: float) -> dict:
+    """The case's deviations in ISO 6336-1 Method B's terms (docs/theory.md §10.4), with c′
+    [N/(mm·µm)] and the line load F_t K_A/b [N/mm] of B_p, B_f, B_k:
+
+    * f_pb,eff [µm]: the larger of the two gears' base pitch deviations f_pb = f_pt cos α
+      (ISO 1328-1:2013 tolerances f_pt only; the KISSsoft printouts of the K_v test list
+      f_pbT = f_ptT cos α): f_pt the largest |f_pt,i| of given values after their mean is
+      removed (as the simulation uses them, model/errors.py), or the tolerance f_pT of an ISO
+      1328-1 grade; 0 without pitch deviations. No running-in allowance y_p is credited
+      (y_p = 0: it needs the material class), which is conservative.
     * f_f,eff = 0: case files have no profile form deviation.
-    * C_a [µm]: the designed tip relief; where pinion and gear differ, the amount that gives
-      the larger B_k = |1 − c′ C_a / (F_t K_A / b)| (the conservative choice); None without
-      tip relief (B_k = 1).
+    * C_a [µm]: per gear, its designed tip relief; without one, the running-in amount C_ay
+      (:func:`running_in_tip_relief_um`, the mean of both gears') when both materials give
+      σ_Hlim (``contact_fatigue_limit``), else 0 (B_k = 1, the formula at C_a = 0). Of the two
+      gears', the C_a with the larger B_k = |1 − c′ C_a / (F_t K_A / b)| (conservative).
     """
+    import numpy as np
+
     from gearcli.model.errors import iso1328_single_pitch_tolerance_um
 
     g = geo.geometry
-    f_pb = 0.0
+    f_pt = 0.0
     for dev, gear in ((case.errors.pitch_deviation.pinion, g.pinion),
                       (case.errors.pitch_deviation.gear, g.gear)):
         if dev is None:
             continue
         if dev.values is not None:
-            f_pt = 1e3 * max(abs(v) for v in dev.values)
+            values = np.asarray(dev.values, float)
+            f_pt = max(f_pt, 1e3 * float(np.max(np.abs(values - values.mean()))))
         else:
-            f_pt = iso1328_single_pitch_tolerance_um(dev.iso1328_grade, gear.d_mm,
-                                                     case.gears.module)
-        f_pb = max(f_pb, f_pt)
-    reliefs = [1e3 * r.amount for r in (case.modifications.tip_relief.pinion,
-                                        case.modifications.tip_relief.gear) if r is not None]
-    c_a = max(reliefs, key=lambda c: abs(1.0 - c_prime * c / line_load)) if reliefs else None
+            f_pt = max(f_pt, iso1328_single_pitch_tolerance_um(dev.iso1328_grade, gear.d_mm,
+                                                               case.gears.module))
+    f_pb = f_pt * math.cos(g.pressure_angle_rad)
+    limits = [(m or case.material).contact_fatigue_limit
+              for m in (case.gears.pinion.material, case.gears.gear.material)]
+    c_ay = (0.5 * sum(running_in_tip_relief_um(s) for s in limits)
+            if all(s is not None for s in limits) else None)
+    candidates = []
+    for relief in (case.modifications.tip_relief.pinion, case.modifications.tip_relief.gear):
+        if relief is not None:
+            candidates.append((1e3 * relief.amount, "designed tip relief"))
+        elif c_ay is not None:
+            candidates.append((c_ay, "running-in amount C_ay"))
+        else:
+            candidates.append((0.0, "none (no tip relief, no sigma_Hlim for C_ay)"))
+
+    def b_k(c_a: float) -> float:
+        return abs(1.0 - c_prime * c_a / line_load)
+
+    c_a, source = max(candidates, key=lambda c: b_k(c[0]))
     return {"f_pb_eff_um": f_pb, "f_f_eff_um": 0.0, "tip_relief_um": c_a,
-            "B_p": c_prime * f_pb / line_load, "B_f": 0.0,
-            "B_k": 1.0 if c_a is None else abs(1.0 - c_prime * c_a / line_load)}
+            "tip_relief_source": source, "B_p": c_prime * f_pb / line_load, "B_f": 0.0,
+            "B_k": b_k(c_a)}

@@ -137,9 +137,10 @@ def test_kissoft_printouts_of_the_nrel_5mw_gearbox(row):
 
 
 def test_the_case_deviations_enter_b_p_and_b_k():
-    """B_p from the larger single pitch deviation (an ISO 1328-1:2013 grade's f_pT, or the
-    largest given |f_pt,i|), B_k from the tip relief giving the larger B_k, no running-in
-    allowance; no deviations: B_p = B_f = 0, B_k = 1 (pipeline/mesh_input.iso_deviations)."""
+    """B_p from the larger base pitch deviation f_pt cos α (an ISO 1328-1:2013 grade's f_pT,
+    or the largest given |f_pt,i| after removing their mean), B_k from the C_a giving the
+    larger B_k (designed relief, else the running-in C_ay from σ_Hlim, else 0), c′ with the
+    low-load factor; no deviations: B_p = B_f = 0, B_k = 1 (pipeline/mesh_input)."""
     from gearcli.case.load import load_case
     from gearcli.model.errors import iso1328_single_pitch_tolerance_um
     from gearcli.pipeline.geometry import run_geometry
@@ -151,17 +152,44 @@ def test_the_case_deviations_enter_b_p_and_b_k():
 
     plain = iso()
     assert (plain["B_p"], plain["B_f"], plain["B_k"]) == (0.0, 0.0, 1.0)
-    assert plain["tip_relief_um"] is None
+    assert plain["tip_relief_um"] == 0.0
+    # seed: F_t/b = 3600 N / 100 mm = 36 N/mm < 100: c′ (rating) = c′ (36/100)^0.25
+    assert plain["line_load_N_mm"] == pytest.approx(36.0, rel=1e-9)
+    assert plain["low_load_factor"] == pytest.approx(0.36 ** 0.25, rel=1e-12)
     graded = iso("errors.pitch_deviation.gear={iso1328_grade: 7}",
-                 "errors.pitch_deviation.pinion={values: [0.004, -0.009, 0.005"
+                 "errors.pitch_deviation.pinion={values: [0.005, -0.008, 0.006"
                  + ", 0.0" * 14 + "]}",
                  "modifications.tip_relief.pinion={amount: 0.005, length: 5}",
                  "modifications.tip_relief.gear={amount: 0.02, length: 5}")
-    # gear: f_pT = (0.001 d + 0.4 m + 5) √2^(7-5), d = 250 mm, m = 10 mm -> 19.5 µm > 9 µm
+    # gear: f_pT = (0.001 d + 0.4 m + 5) √2^(7-5), d = 250 mm, m = 10 mm -> 19.5 µm; the
+    # pinion's values have mean 0.003/17 mm: largest |f_pt - mean| = 8.18 µm < 19.5 µm
     f_pt = (0.001 * 250.0 + 0.4 * 10.0 + 5.0) * 2.0
     assert iso1328_single_pitch_tolerance_um(7, 250.0, 10.0) == pytest.approx(f_pt)
-    assert graded["f_pb_eff_um"] == pytest.approx(f_pt)
+    assert graded["f_pb_eff_um"] == pytest.approx(f_pt * math.cos(math.radians(20.0)))
     c, w = graded["c_prime_N_mm_um"], graded["line_load_N_mm"]
-    assert graded["B_p"] == pytest.approx(c * f_pt / w)
+    assert graded["B_p"] == pytest.approx(c * graded["f_pb_eff_um"] / w)
     assert graded["B_k"] == pytest.approx(max(abs(1 - c * 5.0 / w), abs(1 - c * 20.0 / w)))
     assert plain["c_prime_N_mm_um"] == pytest.approx(c)  # the deviations leave c′ alone
+    only_pinion = iso("errors.pitch_deviation.pinion={values: [0.005, -0.008, 0.006"
+                      + ", 0.0" * 14 + "]}",
+                      "modifications.tip_relief.pinion={amount: 0.003, length: 5}")
+    mean = (0.005 - 0.008 + 0.006) / 17
+    assert only_pinion["f_pb_eff_um"] == pytest.approx(
+        1e3 * (0.008 + mean) * math.cos(math.radians(20.0)))
+    # the unrelieved gear competes with B_k = 1 (C_a = 0): the larger B_k wins
+    assert only_pinion["B_k"] == pytest.approx(max(1.0, abs(1 - c * 3.0 / w)))
+
+
+def test_running_in_amount_of_the_kissoft_printout():
+    """C_ay = (σ_Hlim/97 − 18.45)²/18 + 1.5 µm: at σ_Hlim = 1500 MPa (case-hardened steel)
+    1.995 µm, the C_a = 2.00 µm the NREL stage 2 printout uses with no modification recorded
+    ("running-in only"); a case with σ_Hlim and no tip relief takes it for B_k."""
+    from gearcli.case.load import load_case
+    from gearcli.pipeline.geometry import run_geometry
+    from gearcli.pipeline.mesh_input import iso_dynamic, running_in_tip_relief_um
+
+    assert running_in_tip_relief_um(1500.0) == pytest.approx(1.995, abs=5e-4)
+    loaded = load_case("cases/seed.yaml", ["material.contact_fatigue_limit=1500 MPa"])
+    d = iso_dynamic(loaded.case, run_geometry(loaded))
+    assert d["tip_relief_um"] == pytest.approx(running_in_tip_relief_um(1500.0))
+    assert d["tip_relief_source"] == "running-in amount C_ay"
