@@ -23,8 +23,11 @@ with C_v1 … C_v7 of the standard's table as functions of the total contact rat
 ε_γ = ε_α). The coefficients are not reproduced from the standard here (not at hand): they were
 cross-checked digit by digit in three independent public implementations that cite ISO
 6336-1:2006 (a C# "Iso6336DynamicFactor" citing eqs. 13-22 and its Table 4; two Python gear
-rating modules) and against each other; the reduced-mass formula and N_S likewise. K_v is
-reported as computed (no clamp at 1 in the super-critical range).
+rating modules) and against each other; the reduced-mass formula and N_S likewise. The chain
+n_E1 → K_v reproduces KISSsoft's Method B printouts of the NREL 5 MW gearbox
+(tests/unit/test_iso_kv.py). c′ and c_γα are the rating values, with ISO's low-load factor
+below 100 N/mm (the caller's: pipeline/mesh_input.iso_dynamic). K_v is reported as computed
+(no clamp at 1 in the super-critical range).
 """
 
 from __future__ import annotations
