@@ -87,7 +87,9 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
     result.metrics.update(gear_mesh_frequency_Hz=f_z_measured, pinion_shaft_Hz=n1,
                           gear_shaft_Hz=n2, output_rate_Hz=rate,
                           frequency_resolution_Hz=spectra["force"][0][1])
-    result.checks = _checks(result, case, s)
+    n1_window = np.abs(run.column("omega1_rad_s")[sel]) / (2.0 * np.pi)  # [rev/s]
+    band = (geo.pinion.teeth * float(n1_window.min()), geo.pinion.teeth * float(n1_window.max()))
+    result.checks = _checks(result, case, s, band)
     result.warnings = list(run.summary.get("warnings", []))
     if strict:
         result.checks.append(Check("no_warnings", len(result.warnings), "0 (--strict)",
@@ -169,8 +171,19 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
     }
 
 
-def resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
+#: Above this spread of the mesh frequency over the window, (max - min)/mean, the window is not
+#: steady (a run-up): the resonance margins are taken over the swept band, not at the mean.
+SWEPT_BAND = 0.05
+
+
+def resonance_check(m: dict, s: dict, f_z: float, ck,
+                    f_z_band: tuple[float, float] | None = None) -> Check:
     """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (docs/theory.md §7; issue 5).
+
+    ``f_z_band`` = (lowest, highest) mesh frequency in the window [Hz]: when it spreads by more
+    than :data:`SWEPT_BAND` of ``f_z`` (a run-up or run-down), each harmonic sweeps the band
+    k f_lo .. k f_hi and its margin to a mode is 0 where the band contains the mode, else the
+    distance of the nearer band end (a resonance crossed in the window fails the check).
 
     summary["modes"] (gearcli.pipeline.modal.modes_summary: every mode of the linearised model,
     the same as `gearcli modal`) when the run has it, else the mesh mode of older results
@@ -187,8 +200,18 @@ def resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
     if not modes:
         m["resonance_margins_percent"] = []
         return Check("resonance_margin_percent", None, limit, True, "no elastic mode")
+    lo, hi = f_z_band if f_z_band is not None else (f_z, f_z)
+    swept = f_z > 0.0 and (hi - lo) / f_z > SWEPT_BAND
+
+    def margin(k: int, f_n: float) -> float:
+        if not swept:
+            return abs(k * f_z - f_n) / f_n * 100.0
+        if k * lo <= f_n <= k * hi:
+            return 0.0
+        return min(abs(k * lo - f_n), abs(k * hi - f_n)) / f_n * 100.0
+
     rows = sorted(({"harmonic": k, "mode": num, "excitation_Hz": k * f_z, "mode_Hz": f_n,
-                    "margin_percent": abs(k * f_z - f_n) / f_n * 100.0,
+                    "margin_percent": margin(k, f_n),
                     "resonant_peak": has_resonant_peak(zeta)}
                    for num, f_n, zeta in modes for k in range(1, ck.harmonics + 1)),
                   key=lambda r: r["margin_percent"])
@@ -201,6 +224,9 @@ def resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
     name = "mesh mode" if near["mode"] is None else f"mode {near['mode']}"
     note = (f"nearest: {near['harmonic']} x f_z = {near['excitation_Hz']:.1f} Hz vs {name} "
             f"{near['mode_Hz']:.1f} Hz")
+    if swept:
+        note = (f"the window is not steady: f_z sweeps {lo:.1f}-{hi:.1f} Hz, so each k x f_z "
+                f"sweeps a band and a mode inside it is crossed (margin 0); " + note)
     # A mode with zeta >= 1/sqrt(2) has no resonant peak (one rule: gearcli.model.modal).
     no_peak = [(num, zeta) for num, _, zeta in modes if not has_resonant_peak(zeta)]
     if no_peak and near["mode"] is None:
@@ -221,7 +247,7 @@ def resonance_check(m: dict, s: dict, f_z: float, ck) -> Check:
     return Check("resonance_margin_percent", peaked[0]["margin_percent"], limit, ok, note)
 
 
-def _checks(res: Analysis, case, s) -> list[Check]:
+def _checks(res: Analysis, case, s, f_z_band: tuple[float, float]) -> list[Check]:
     m, ck = res.metrics, case.checks
     f_z, rate = m["gear_mesh_frequency_Hz"], m["output_rate_Hz"]
     out = [
@@ -251,7 +277,7 @@ def _checks(res: Analysis, case, s) -> list[Check]:
     out.append(Check("gmf_line_present", gmf.measured_Hz if gmf.resolvable else None,
                      f"line at f_z = {f_z:.3f} Hz +- 1 bin, > {LINE_PROMINENCE:g} x floor",
                      bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"))
-    out.append(resonance_check(m, s, f_z, ck))
+    out.append(resonance_check(m, s, f_z, ck, f_z_band))
     if m["dynamic_factor"] is not None:
         out.append(Check("dynamic_factor", m["dynamic_factor"], f"<= {ck.dynamic_factor_max:g}",
                          m["dynamic_factor"] <= ck.dynamic_factor_max,

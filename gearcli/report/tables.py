@@ -59,6 +59,14 @@ def _cells(value, system: str) -> tuple[str, str]:
     return fmt(x), u
 
 
+def _is_number(value) -> bool:
+    """Whether a stored case value is a number (or "number unit"), not a word like "derived"."""
+    try:
+        return math.isfinite(number(value))
+    except (TypeError, ValueError):
+        return False
+
+
 def _deg(value) -> str:
     return "–" if value is None else f"{math.degrees(number(value)):.4g} deg"
 
@@ -129,16 +137,30 @@ def contact_table(data: ReportData) -> Table:
     """Table 3-style: contact law and friction parameters."""
     c = data.case.get("contact") or {}
     f = data.case.get("friction") or {}
-    e = number(c.get("exponent", 1.0))
-    rows = [
-        ("contact law", str(c.get("law", "")), ""),
-        ("engagement model", str(c.get("engagement", "")), ""),
-        ("stiffness K", fmt(number(c.get("stiffness"))), f"N/mm^{e:g}"),
-        ("force exponent e", fmt(e), "–"),
-        ("maximum damping c_max", *_cells(c.get("max_damping"), data.units)),
-        ("damping ramp depth d_max", *_cells(c.get("penetration_depth"), data.units)),
-        ("friction", "on" if f.get("enabled") else "off", ""),
-    ]
+    rows = [("contact law", str(c.get("law", "")), ""),
+            ("engagement model", str(c.get("engagement", "")), "")]
+    if c.get("law") == "tooth":  # docs/theory.md §4b, §4c: no IMPACT parameters
+        rows.append(("mesh damping ratio ζ", fmt(c.get("damping_ratio")), "–"))
+        for gear in ("pinion", "gear"):
+            bore = ((data.case.get("gears") or {}).get(gear) or {}).get("bore_diameter")
+            rows.append((f"{gear} bore (gear-body compliance)",
+                         *(_cells(bore, data.units) if bore is not None
+                           else ("default (docs/theory.md §4b)", ""))))
+        k = data.scalars.get("mesh_stiffness_N_mm")
+        if isinstance(k, int | float):
+            rows.append(("mesh stiffness, linearised at the static load",
+                         *_cells(f"{k} N/mm", data.units)))
+    else:
+        e = number(c.get("exponent", 1.0))
+        stiffness = c.get("stiffness")
+        rows += [
+            ("stiffness K", fmt(number(stiffness)) if _is_number(stiffness)
+             else str(stiffness), f"N/mm^{e:g}"),
+            ("force exponent e", fmt(e), "–"),
+            ("maximum damping c_max", *_cells(c.get("max_damping"), data.units)),
+            ("damping ramp depth d_max", *_cells(c.get("penetration_depth"), data.units)),
+        ]
+    rows.append(("friction", "on" if f.get("enabled") else "off", ""))
     if f.get("enabled"):
         rows += [
             ("static coefficient μ_s", fmt(f.get("static_coefficient")), "–"),

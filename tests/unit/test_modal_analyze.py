@@ -64,3 +64,20 @@ def test_summary_from_modal_result_feeds_the_check():
     result = run_modal(SEED, ["contact.max_damping=1"]).result  # 281.2 Hz, lightly damped
     check = resonance_check({}, {"modes": modes_summary(result)}, F_Z, CHECKS)
     assert not check.passed and "2 x f_z" in check.note and "mode 1" in check.note
+
+
+def test_a_run_up_window_that_crosses_a_mode_fails_the_margin():
+    """A window whose mesh frequency sweeps 100-300 Hz (a run-up): 2 x f_z sweeps 200-600 Hz
+    and crosses the 437.8 Hz mode (margin 0, fail) although 2 x the mean 200 Hz is 8.6 % away;
+    a steady window (spread <= 5 %) keeps the margin at the mean f_z."""
+    modes = [mode(1, 437.8, 0.02)]
+    swept = resonance_check({}, {"modes": modes}, 200.0, CHECKS, (100.0, 300.0))
+    assert not swept.passed and swept.value == 0.0
+    assert "not steady" in swept.note and "100.0-300.0 Hz" in swept.note
+    steady = resonance_check({}, {"modes": modes}, 200.0, CHECKS, (198.0, 202.0))
+    assert steady.value == pytest.approx(abs(2 * 200.0 - 437.8) / 437.8 * 100)
+    # a band that misses the mode: the margin is the distance of the nearer band end
+    # (bands k x 100-110 Hz, k = 1..5: the nearest end is 5 x 110 = 550 Hz, 21.4 % below 700)
+    miss = resonance_check({}, {"modes": [mode(1, 700.0, 0.02)]}, 105.0, CHECKS,
+                           (100.0, 110.0))
+    assert miss.passed and miss.value == pytest.approx((700.0 - 550.0) / 700.0 * 100)
