@@ -58,6 +58,8 @@ def sweep(
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
     failed points are recorded, never abort the study.
 
+    Exit codes: 0 ok, 4 a point failed the study's checks, 1 bad input.
+
     Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2
     """
     from gearcli import api
@@ -86,12 +88,20 @@ def sweep(
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         df = api.sweep(spec, out, jobs or None, scheduler, force, keep_timeseries, fmt,
                        progress)
+    checks_failed = int(df["checks"].astype(str).str.startswith("fail").sum()) \
+        if "checks" in df.columns else 0
     if not quiet:
         a = df.attrs
         invalid = int((df["status"] == "invalid").sum())
+        checked = f", {checks_failed} failed the study's checks" if "checks" in df.columns else ""
         typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
-                   f"{a['failed']} failed, {invalid} outside the model's validity "
+                   f"{a['failed']} failed, {invalid} outside the model's validity{checked} "
                    f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
+    if checks_failed:
+        from gearcli.errors import CheckFailed
+
+        raise CheckFailed(f"{out}: {checks_failed} of {len(df)} points failed the study's "
+                          "checks (column 'checks' of summary.csv)")
 
 
 def _sweep_columns():

@@ -85,3 +85,15 @@ def test_api_sweep_returns_the_cli_summary_as_numbers(tmp_path):
     assert len(df) == len(rows) == 2
     assert df["dynamic_factor"].dtype.kind == "f"
     assert list(df["dynamic_factor"]) == [float(r["dynamic_factor"]) for r in rows]
+
+
+def test_points_failing_the_study_checks_give_exit_4(tmp_path):
+    """A study whose every point fails its check (a dynamic factor is >= 1 > 0.5) exits 4 and
+    says how many failed; the rows are written all the same."""
+    study = write_study(tmp_path, "parameters:\n  mesh_frequency: [\"100 Hz\", \"200 Hz\"]\n"
+                        "checks: [{metric: dynamic_factor, max: 0.5}]\n")
+    res = runner.invoke(app, ["sweep", str(study), "-o", str(tmp_path / "o"), "--jobs", "1"])
+    assert res.exit_code == 4, res.output
+    assert "2 failed the study's checks" in res.output
+    assert "2 of 2 points failed the study's checks" in res.output
+    assert (tmp_path / "o" / SUMMARY).is_file()
