@@ -230,20 +230,22 @@ def format_value(value) -> str:
 def print_quantity_table(title: str, rows) -> None:
     """A (quantity, value, unit) table on the terminal (rich)."""
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
-    t = Table(title=title, title_justify="left")
+    t = Table(title=escape(title), title_justify="left")
     t.add_column("quantity")
     t.add_column("value", justify="right")
     t.add_column("unit")
-    for label, value, unit in rows:
-        t.add_row(label, format_value(value), unit)
+    for label, value, unit in rows:  # escaped: rich reads "[m]" or "[rpm]" as markup
+        t.add_row(escape(label), escape(format_value(value)), escape(unit))
     Console().print(t)
 
 
 def print_checks_table(checks: list[dict]) -> None:
     """The Checks table (name, value, limit, pass/FAIL, note) of analyze and modal."""
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     c = Table(title="Checks", title_justify="left")
@@ -252,5 +254,6 @@ def print_checks_table(checks: list[dict]) -> None:
     for ck in checks:
         verdict = ("[yellow]not checked[/yellow]" if not ck.get("checked", True)
                    else "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]")
-        c.add_row(ck["name"], format_value(ck["value"]), ck["limit"], verdict, ck["note"])
+        c.add_row(escape(ck["name"]), escape(format_value(ck["value"])), escape(ck["limit"]),
+                  verdict, escape(ck["note"]))
     Console().print(c)

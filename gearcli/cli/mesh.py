@@ -102,18 +102,33 @@ def _print(doc: dict, units: str) -> None:
         ("mean over the cycle", st["mesh_mean_N_mm"], "N/mm"),
         ("single-pair zone (mean)", st["single_pair_zone_N_mm"], "N/mm"),
         ("double-pair zone (mean)", st["double_pair_zone_N_mm"], "N/mm"),
-        ("ISO 6336-1 c′b (single pair)", st["iso6336_single_pair_c_prime_b_N_mm"], "N/mm"),
-        ("ISO 6336-1 c_γα b (mean)", st["iso6336_mean_c_gamma_alpha_b_N_mm"], "N/mm"),
+        ("ISO 6336-1 c′b (single pair; no low-load factor)",
+         st["iso6336_single_pair_c_prime_b_N_mm"], "N/mm"),
+        ("ISO 6336-1 c_γα b (mean; no low-load factor)",
+         st["iso6336_mean_c_gamma_alpha_b_N_mm"], "N/mm"),
     ], units))
+    kv = doc.get("iso6336_method_b") or {}
+    if kv:
+        rows = [("low-load factor L_f (rating only)", kv["low_load_factor"], "–"),
+                ("c′ with L_f", kv["c_prime_N_mm_um"], "N/(mm·µm)"),
+                ("c_γα with L_f", kv["c_gamma_alpha_N_mm_um"], "N/(mm·µm)"),
+                ("reduced mass m_red", kv["reduced_mass_kg_mm"], "kg/mm"),
+                ("resonance speed n_E1 (both gears free)", kv["resonance_speed_rpm"], "rpm"),
+                ("B_p / B_f / B_k", f"{kv['B_p']:.4g} / {kv['B_f']:.4g} / {kv['B_k']:.4g}", "–")]
+        if "k_v" in kv:
+            rows += [("resonance ratio N = n1/n_E1", kv["resonance_ratio"], "–"),
+                     (f"K_v ({kv['speed_range']})", kv["k_v"], "–")]
+        console.print(_table("ISO 6336-1 Method B dynamic factor (K_A = 1)", rows, units))
     if "harris" in doc:
+        from rich.markup import escape
         from rich.table import Table
 
         from gearcli.display_units import convert
 
         ptp, unit = convert(doc["harris"]["ste_peak_to_peak_um"], "µm", units)
         h = Table(title="Harris map", title_justify="left")
-        h.add_column("force [N]")
-        h.add_column(f"STE peak-to-peak [{unit}]")
+        h.add_column(escape("force [N]"))
+        h.add_column(escape(f"STE peak-to-peak [{unit}]"))  # rich reads "[m]" as markup
         for f, p in zip(doc["harris"]["force_N"], ptp, strict=True):
             h.add_row(format_value(f), format_value(p))
         console.print(h)

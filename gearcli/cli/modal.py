@@ -69,6 +69,7 @@ def modal(
 
 def _print(doc: dict, units: str) -> None:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     from gearcli.display_units import convert
@@ -91,7 +92,7 @@ def _print(doc: dict, units: str) -> None:
     for col in ("mode", "f [Hz]", "zeta", "description",
                 "shape as lengths, rotations as r_b θ (largest = 1): "
                 + ", ".join(d.rsplit("_", 1)[0] for d in doc["dofs"])):
-        t.add_column(col)
+        t.add_column(escape(col))
     for m in doc["modes"]:
         f = "rigid body" if m["rigid_body"] else format_value(m["natural_frequency_Hz"])
         zeta = m["damping_ratio"]
@@ -103,7 +104,7 @@ def _print(doc: dict, units: str) -> None:
     (lo, hi), unit = convert(doc["speed_range_deg_s"], "deg/s", units)
     c = Table(title=f"Crossings (pinion speed, {lo:.4g}-{hi:.4g} {unit})", title_justify="left")
     for col in ("order", "mode", "f [Hz]", f"pinion speed [{unit}]"):
-        c.add_column(col)
+        c.add_column(escape(col))  # rich would read "[rpm]" as markup and drop it
     for x in doc["crossings"]:
         if x["in_range"]:
             c.add_row(x["order"], str(x["mode"]), format_value(x["frequency_Hz"]),

@@ -94,7 +94,9 @@ def _print_summary(doc: dict, out: str, units: str) -> None:
         ("solver steps / RHS evaluations",
          f"{sv['accepted_steps']} (+{sv['rejected_steps']} rejected) / "
          f"{sv['rhs_evaluations']}", ""),
-        ("solver wall time", sv["wall_time_s"], "s"),
+        ("solver wall time" + (" (including the one-off compilation)"
+                               if sv.get("wall_time_includes_compilation") else ""),
+         sv["wall_time_s"], "s"),
     ]
     print_quantity_table(f"{doc['case']}: steady window {w0:.3f}-{w1:.3f} s", rows)
     typer.echo(f"results written to {out}/")

@@ -31,6 +31,7 @@ def summary_document(res: SimulationResult) -> dict:
             "message": k.message,
             **k.counters,
             "wall_time_s": res.wall_time_s,
+            "wall_time_includes_compilation": res.compiled,
             "engagement": res.loaded.case.contact.engagement,
             "drive": res.loaded.case.drive.type,
         },

@@ -45,6 +45,8 @@ class SimulationResult:
     #: the solver's dense output on a fine grid around the force maximum and over the last
     #: mesh cycles (:func:`dense_zoom`); empty when not made
     zoom: dict = field(default_factory=dict)
+    #: whether ``wall_time_s`` includes compiling the solver (the first run after install)
+    compiled: bool = False
 
     @property
     def name(self) -> str:
@@ -181,7 +183,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
             f"({kr.counters['accepted_steps']} steps); nothing was written. Check the contact "
             "stiffness/damping, the load and the run tolerances"
         )
-    result = SimulationResult(loaded, geo, ki, kr, wall, window, modes)
+    result = SimulationResult(loaded, geo, ki, kr, wall, window, modes, compiled=compiling)
     result.summary = summarize(result)
     result.warnings = collect_warnings(result)
     result.status, result.invalid_reason = validity_of(result)
@@ -412,8 +414,15 @@ def collect_warnings(res: SimulationResult) -> list[str]:
                    f"{100 * s['contact_loss_fraction']:.2f} % of the steady window "
                    "(tooth separation)")
     if s["coast_force_max_N"] > 0.0:
-        out.append(f"coast-flank impacts: coast force up to {s['coast_force_max_N']:.0f} N "
-                   "in the steady window")
+        text = (f"coast-flank impacts: coast force up to {s['coast_force_max_N']:.0f} N "
+                "in the steady window")
+        j_n = res.geometry.geometry.j_n_mm
+        if j_n <= 1e-9:
+            text += ("; the backlash is zero (the default: no thickness allowance, zero-backlash "
+                     "centre distance), so pitch errors, runout or vibration close the coast "
+                     "flanks: give gears.<gear>.thickness_allowance or gears.centre_distance "
+                     "for a real backlash")
+        out.append(text)
     f_z, rate = ki.gear_mesh_frequency_Hz, ki.output_rate_Hz
     if f_z:
         harmonics = res.loaded.case.checks.harmonics

@@ -27,6 +27,7 @@ def test_simulate_writes_results(tmp_path):
         assert col in header
     summary = json.loads((out / "summary.json").read_text())
     assert summary["status"] == "ok" and summary["solver"]["accepted_steps"] > 0
+    assert isinstance(summary["solver"]["wall_time_includes_compilation"], bool)
     manifest = json.loads((out / "manifest.json").read_text())
     assert len(manifest["case_sha256"]) == 64
     assert manifest["resolved_case"]["run"]["end_time"] == "0.6 s"

@@ -66,3 +66,12 @@ def test_options_take_quantities_with_units():
     assert a.exit_code in (0, 4) and a.output == b.output  # 6000 rpm = 36000 deg/s
     bad = runner.invoke(app, ["modal", "cases/seed.yaml", "--speed-range", "0", "6000 Hz"])
     assert bad.exit_code == 1 and "--speed-range '6000 Hz'" in bad.output
+
+
+def test_table_headers_keep_their_bracketed_units():
+    """rich reads "[m]", "[rpm]" or "[rad/s]" as markup and drops it: the CLI escapes them."""
+    modal = runner.invoke(app, ["--units", "si", "modal", "cases/seed.yaml"])
+    assert "pinion speed [rad/s]" in modal.output
+    mesh = runner.invoke(app, ["--units", "si", "mesh", "cases/iso_pair.yaml", "--harris"])
+    assert mesh.exit_code == 0 and "STE peak-to-peak [m]" in mesh.output
+    assert "resonance speed n_E1 (both gears free)" in mesh.output
