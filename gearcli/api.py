@@ -581,7 +581,8 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
             curve = run_speed_curve(spec, jobs, scheduler)
             write_speed_curve(curve, out, force)
             df = pd.DataFrame(curve.rows, columns=list(COLUMNS))
-            df.attrs.update(kind="speed_curve", errors=list(curve.errors))
+            df.attrs.update(kind="speed_curve", errors=list(curve.errors),
+                            notes=list(curve.notes))
             return df
         from gearcli.pipeline.sweep_trends import write_trends
 

@@ -84,6 +84,8 @@ def sweep(
                        f"{failed} failed; results in {out}/ (summary.csv, speed_curve.png)")
         for e in df.attrs["errors"]:
             typer.echo(f"warning: a direction failed: {e}", err=True)
+        for note in df.attrs["notes"]:
+            typer.echo(f"note: {note}", err=True)
         return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         df = api.sweep(spec, out, jobs or None, scheduler, force, keep_timeseries, fmt,

@@ -24,7 +24,7 @@ from __future__ import annotations
 import json
 import math
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -195,6 +195,7 @@ class SpeedCurve:
     base_case_json: str = "{}"
     iso: dict | None = None  #: ISO 6336-1 Method B data of the base case (mesh_input.iso_dynamic)
     pinion_teeth: int = 0
+    notes: list[str] = field(default_factory=list)  #: what limits the reading of the curve
 
 
 def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None) -> SpeedCurve:
@@ -211,7 +212,26 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
     for r in rows:
         r["iso_resonance_ratio"] = r["pinion_speed [rpm]"] / iso["resonance_speed_rpm"]
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
-                      str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth)
+                      str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
+                      _notes(base.case))
+
+
+def _notes(case) -> list[str]:
+    """With pitch deviations or runout the mesh force repeats only after the hunting period
+    lcm(z1, z2) mesh cycles; a level shorter than that sees other tooth combinations going up
+    than going down, so part of an up/down difference is that sampling, not a jump."""
+    e = case.errors
+    if not any(x is not None for x in (e.pitch_deviation.pinion, e.pitch_deviation.gear,
+                                        e.runout.pinion, e.runout.gear)):
+        return []
+    hunting = math.lcm(case.gears.pinion.teeth, case.gears.gear.teeth)
+    measured = MEASURE_FRACTION * DWELL_CYCLES
+    if measured >= hunting:
+        return []
+    return [f"the case has pitch deviations or runout: the pattern repeats every {hunting} mesh "
+            f"cycles (hunting period) but each speed measures {measured:g}, so run-up and "
+            "run-down see different tooth combinations and part of their difference is that, "
+            "not a nonlinear jump"]
 
 
 def iso_curve(curve: SpeedCurve, points: int = 400):
@@ -249,7 +269,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
-               "iso6336_method_b": curve.iso, "errors": curve.errors}
+               "iso6336_method_b": curve.iso, "errors": curve.errors, "notes": curve.notes}
         (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,

@@ -43,6 +43,9 @@ def plot_speed_curve(rows: list[dict], f_n_Hz: float, title: str = "", iso=None,
         ratio = x_iso[-1] / n_iso[-1] if n_iso[-1] else 1.0
         top = ax.secondary_xaxis("top", functions=(lambda x: x / ratio, lambda x: x * ratio))
         top.set_xlabel("ISO resonance ratio N = n1 / n_E1", fontsize=8)
+        fig.text(0.01, 0.005, "bottom axis: f_z over the case's mesh mode f_n (with a speed "
+                 "drive the pinion is held); top axis: ISO's n_E1 has both gears free "
+                 "(docs/theory.md §10.4)", fontsize=6.5, color="0.35", va="bottom")
     for n, text in ((0.5, "f_n/2"), (1.0, "f_n"), (2.0, "2 f_n")):
         ax.axvline(n, color="0.6", ls=":", lw=1)
         ax.text(n, 1.0, f" {text}", transform=ax.get_xaxis_transform(), va="top", ha="left",
