@@ -54,11 +54,15 @@ def spectrum_columns(res: Analysis) -> dict[str, np.ndarray]:
 
 
 def harmonics_csv(res: Analysis) -> str:
-    rows = ["signal,line,expected_Hz,measured_Hz,amplitude,bin_error,resolvable"]
+    """harmonics.csv: every expected line of every signal; ``amplitude`` is in the signal's
+    own unit, named in ``amplitude_unit`` (rad/s, mm or N: analyze.SIGNALS)."""
+    units = {name: unit for name, _, unit in SIGNALS}
+    rows = ["signal,line,expected_Hz,measured_Hz,amplitude,amplitude_unit,bin_error,resolvable"]
     for sig, lines in res.lines.items():
         for label, ln in lines:
             rows.append(f"{sig},{label},{ln.expected_Hz:.10g},{ln.measured_Hz:.10g},"
-                        f"{ln.amplitude:.10g},{ln.bin_error:.6g},{int(ln.resolvable)}")
+                        f"{ln.amplitude:.10g},{units.get(sig, '')},{ln.bin_error:.6g},"
+                        f"{int(ln.resolvable)}")
     return "\n".join(rows) + "\n"
 
 

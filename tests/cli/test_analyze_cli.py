@@ -49,6 +49,10 @@ def test_seed_fails_its_dynamic_factor_and_contact_loss_and_says_what_was_not_ch
     assert not doc["passed"]
     for name in ("spectrum.csv", "harmonics.csv", "analysis.json"):
         assert (seed_dir / name).is_file()
+    lines = (seed_dir / "harmonics.csv").read_text().splitlines()
+    assert lines[0].split(",")[5] == "amplitude_unit"
+    units = {row.split(",")[0]: row.split(",")[5] for row in lines[1:]}
+    assert units == {"gear_speed": "rad/s", "dte": "mm", "force": "N"}
 
 
 def test_analysis_is_deterministic(seed_dir):
