@@ -96,6 +96,22 @@ def mesh_mode(
     )
 
 
+def with_mesh_stiffness(mode: MeshMode, k_mean_N_mm: float, k_single_N_mm: float,
+                        k_double_N_mm: float) -> MeshMode:
+    """``mode`` linearised with another mesh stiffness [N/mm] (the loaded contact's, docs/
+    theory.md §4b): the same modal mass and damping ratio, so c_m = 2 ζ sqrt(k m), the static
+    deflection F / k and f_n = sqrt(k/m)/(2π) follow it."""
+    import dataclasses
+
+    m = mode.modal_mass_t
+    return dataclasses.replace(
+        mode, mesh_stiffness_N_mm=k_mean_N_mm, single_pair_stiffness_N_mm=k_single_N_mm,
+        double_pair_stiffness_N_mm=k_double_N_mm,
+        static_deflection_mm=mode.static_force_N / k_mean_N_mm,
+        mesh_damping_Ns_mm=2.0 * mode.damping_ratio * math.sqrt(k_mean_N_mm * m),
+        natural_frequency_Hz=math.sqrt(k_mean_N_mm / m) / (2.0 * math.pi))
+
+
 def tooth_mesh_mode(static_force_N: float, x_mm, k_N_mm, g_alpha_mm: float, p_b_mm: float,
                     damping_ratio: float, r_b1_mm: float, r_b2_mm: float, J1_t_mm2: float,
                     J2_t_mm2: float, pinion_free: bool) -> MeshMode:

@@ -166,6 +166,43 @@ def _contact_arrays(case: Case, geo: GeometryResult, tables: GapTables) -> dict:
     return {"pair_stiffness": np.stack([family] * layout.N_FAMILIES)}
 
 
+#: Roll positions per mesh cycle of the loaded contact that linearises the tooth law.
+LINEARISATION_POINTS = 100
+
+
+def linearised_mesh(case: Case, geo: GeometryResult,
+                    tables: GapTables | None = None) -> MeshMode:
+    """The mesh linearised at the static load (the one `simulate`, `modal` and the checks use).
+
+    IMPACT law: :func:`gearcli.pipeline.mesh_input.case_mesh` (closed form, docs/theory.md §4).
+    Tooth law: the mean over a mesh cycle of the loaded contact's tangent stiffness, the single-
+    and double-pair zone values from the same solution (model/ltca.py, what `gearcli mesh`
+    reports), at LINEARISATION_POINTS positions: it has the case's profile modifications and
+    the corner contact of extended engagement, which the sum of the pair stiffness over the
+    geometric path of contact (``case_mesh``) leaves out (docs/theory.md §4b). Without a load,
+    or when the teeth cannot carry it, the geometric value. ``tables``: the case's gap tables
+    when the caller has them (:func:`case_gap_tables`)."""
+    from gearcli.model.ltca import loaded_mesh, tooth_law
+    from gearcli.model.mesh import with_mesh_stiffness
+
+    mesh = case_mesh(case, geo)
+    if case.contact.law != "tooth" or not mesh.static_force_N > 0.0:
+        return mesh
+    g = geo.geometry
+    if tables is None:
+        tables, _ = case_gap_tables(case, geo, mesh)
+    ps = tooth_stiffness(case, geo, tables.x_mm)
+    law = tooth_law(np.stack([ps.k_N_mm, ps.dk_dx_N_mm2]), tables.x_lo, tables.x_hi)
+    slots = int(slot_layout(g, tables)["n_slots"])
+    try:
+        lm = loaded_mesh(tables.tables, tables.x_lo, tables.x_hi, g.p_b_mm, slots, law,
+                         mesh.static_force_N, cycles=1, points_per_cycle=LINEARISATION_POINTS)
+    except ValueError:  # no static equilibrium: the run itself will say so
+        return mesh
+    return with_mesh_stiffness(mesh, float(lm.mesh_stiffness_N_mm.mean()),
+                               lm.zone_stiffness_N_mm(1), lm.zone_stiffness_N_mm(2))
+
+
 def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     """Assemble the kernel's inputs from a validated case and its checked geometry."""
     g = geo.geometry
@@ -174,8 +211,8 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     fr, dr = case.friction, case.drive
     mode = {"speed": layout.DRIVE_SPEED, "shaft": layout.DRIVE_SHAFT,
             "torque": layout.DRIVE_TORQUE}[dr.type]
-    mesh = case_mesh(case, geo)
-    tables, cap = case_gap_tables(case, geo, mesh)
+    tables, cap = case_gap_tables(case, geo, case_mesh(case, geo))
+    mesh = linearised_mesh(case, geo, tables)
 
     speed = geo.pinion_speed_rad_s
     f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None

@@ -2,8 +2,8 @@
 
 The model is the one the kernel integrates: bodies, shafts and supports from
 gearcli.pipeline.structure.build_structure (the same Structure core/rhs.py gets), the mesh
-linearised at the static load (gearcli.pipeline.mesh_input.case_mesh, the one simulate uses),
-friction off; torsional or lateral-torsional (case key ``model``). See gearcli.model.modal.
+linearised at the static load (gearcli.pipeline.kernel_input.linearised_mesh, the one simulate
+uses), friction off; torsional or lateral-torsional (case key ``model``). See gearcli.model.modal.
 :func:`case_modes` and :func:`modes_summary` give `simulate` the same modes for its summary.
 """
 
@@ -31,7 +31,7 @@ from gearcli.model.modal import (
     margins,
 )
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
-from gearcli.pipeline.mesh_input import case_mesh
+from gearcli.pipeline.kernel_input import linearised_mesh
 from gearcli.pipeline.structure import build_structure, refuse_unsupported
 
 DEG = 180.0 / math.pi
@@ -128,7 +128,7 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     refuse_unsupported(loaded)
     geo = run_geometry(loaded)
     g = geo.geometry
-    mesh = case_mesh(case, geo)
+    mesh = linearised_mesh(case, geo)
     speed = geo.pinion_speed_rad_s
     system = linear_system(case, geo, mesh, speed)
     result = _solve(system, loaded.source.file)

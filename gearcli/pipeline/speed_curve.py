@@ -206,11 +206,18 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
 
     results = list(execute(run_direction, plan(study), jobs, scheduler))
     rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r["point"])
-    f_n = next((res["f_n_Hz"] for res in results if not res["error"]), math.nan)
     base = case_from_json(study.base_case_json, study.name)
-    iso = iso_dynamic(base.case, run_geometry(base))
+    geo = run_geometry(base)
+    f_n = next((res["f_n_Hz"] for res in results if not res["error"]), math.nan)
+    if not math.isfinite(f_n):  # both directions failed: the base case's mesh mode
+        from gearcli.pipeline.kernel_input import linearised_mesh
+
+        f_n = linearised_mesh(base.case, geo).natural_frequency_Hz
+    iso = iso_dynamic(base.case, geo)
     for r in rows:
         r["iso_resonance_ratio"] = r["pinion_speed [rpm]"] / iso["resonance_speed_rpm"]
+        if not math.isfinite(r["resonance_ratio"]):  # a failed row: still placed on the axis
+            r["resonance_ratio"] = r["mesh_frequency [Hz]"] / f_n
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
                       _notes(base.case))
