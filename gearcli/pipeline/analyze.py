@@ -286,9 +286,12 @@ def _checks(res: Analysis, case, s, f_z_band: tuple[float, float]) -> list[Check
         out.append(Check("dynamic_factor", None, f"<= {ck.dynamic_factor_max:g}", True,
                          "not checked: no load (static force 0)", checked=False))
     loss = m["contact_loss_fraction"]
-    out.append(Check("contact_loss_fraction", loss, f"<= {ck.contact_loss_fraction_max:g}",
+    out.append(Check("contact_loss_fraction", loss,
+                     f"<= {ck.contact_loss_fraction_max:g} "
+                     f"({100.0 * ck.contact_loss_fraction_max:g} %)",
                      loss <= ck.contact_loss_fraction_max,
-                     "share of the window without drive-flank contact (tooth separation)"))
+                     f"{100.0 * loss:.3g} % of the window without drive-flank contact (tooth "
+                     "separation); value and limit as fractions"))
     if ck.dte_peak_to_peak_max is not None:
         out.append(Check("dte_peak_to_peak_mm", m["dte_peak_to_peak_mm"],
                          f"<= {ck.dte_peak_to_peak_max:g} mm",
