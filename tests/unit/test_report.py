@@ -277,3 +277,14 @@ def test_force_figure_marks_the_true_maximum_and_the_static_line():
     assert "1.50 kN" in title and "1.50 × the static 1.00 kN" in title
     stars = [ln for ax in fig.axes for ln in ax.lines if ln.get_marker() == "*"]
     assert len(stars) == 2 and all(ln.get_ydata()[0] == pytest.approx(1.5) for ln in stars)
+
+
+def test_no_order_map_for_a_start_up_transient(tmp_path):
+    """A speed that reaches its final value within 2 % of the run is a start-up, not a run-up:
+    the report has no order map (docs: report/figures.py)."""
+    run = write_run(tmp_path / "run", ["drive.speed=STEP(time, 0, 0, 0.01, 3000)",
+                                       "load.torque=STEP(time, 0, 0, 0.01, 4.5e5)",
+                                       "run.end_time=0.5"], analysed=True)
+    build_report(run, fmt="md")
+    names = {p.stem for p in (run / "figures").glob("*.png")}
+    assert "orders" not in names and {"speeds", "force", "spectra"} <= names
