@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import (
+    check_figure_path,
     display_units,
     handle_errors,
     option_quantities,
@@ -50,7 +51,7 @@ def analyze(
 
     from gearcli import api
     from gearcli.errors import CheckFailed
-    from gearcli.io.files import check_no_earlier
+    from gearcli.io.files import check_no_earlier, save_figure
     from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
 
     if (order_axis or db) and spectra is None:
@@ -59,9 +60,8 @@ def analyze(
         raise OutputError("--order-axis and --db shape the --spectra figure; give --spectra "
                           "FILE too")
     check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
-    for option, path in (("--orders", orders), ("--spectra", spectra)):
-        if path is not None:
-            _check_figure_path(option, path, force)
+    check_figure_path("--orders", orders, force)
+    check_figure_path("--spectra", spectra, force)
     analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
     result = analysis.result
     doc = write_analysis(result)
@@ -73,8 +73,8 @@ def analyze(
 
         harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
                         .get("harmonics", 5))
-        _save(spectra_figure(spectrum_columns(result), doc, harmonics, order_axis, db,
-                             display_units()), spectra)
+        save_figure(spectra_figure(spectrum_columns(result), doc, harmonics, order_axis, db,
+                                   display_units()), spectra, 110)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
@@ -84,26 +84,8 @@ def analyze(
         raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
 
 
-def _check_figure_path(option: str, path: Path, force: bool) -> None:
-    from gearcli.errors import OutputError
-    from gearcli.io.files import check_new_file
-
-    if path.suffix.lower() not in (".png", ".svg", ".pdf"):
-        raise OutputError(f"{option} {path}: expected a file name ending in .png, .svg or .pdf")
-    check_new_file(path, force, option)
-
-
-def _save(fig, path: Path) -> None:
-    import io
-
-    from gearcli.io.files import write_atomic
-
-    buf = io.BytesIO()
-    fig.savefig(buf, format=path.suffix.lower().lstrip("."), dpi=110)
-    write_atomic(path, buf.getvalue())
-
-
 def _save_order_map(result, path: Path, units: str) -> None:
+    from gearcli.io.files import save_figure
     from gearcli.plotting.orders import plot_order_map
 
     c, s = result.run.columns, result.run.summary["scalars"]
@@ -112,7 +94,7 @@ def _save_order_map(result, path: Path, units: str) -> None:
              if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
     fig = plot_order_map(c["t_s"], c["force_total_N"], c["omega1_rad_s"], teeth, modes,
                          label="mesh force", unit="N", units=units)
-    _save(fig, path)
+    save_figure(fig, path, 110)
 
 
 #: The analysis table's metrics, in order (labels and units: gearcli/io/metrics.py).

@@ -155,6 +155,19 @@ def option_quantities(texts, dim_name: str, option: str) -> tuple[float, ...] | 
     return tuple(out)
 
 
+def check_figure_path(option: str, path: Path | None, force: bool) -> None:
+    """A figure file an option names (``--plot``, ``--orders``, ``--spectra``): a .png, .svg or
+    .pdf name that is new (or ``force``), in an existing folder; checked before the work."""
+    if path is None:
+        return
+    from gearcli.errors import OutputError
+    from gearcli.io.files import check_new_file
+
+    if path.suffix.lower() not in (".png", ".svg", ".pdf"):
+        raise OutputError(f"{option} {path}: expected a file name ending in .png, .svg or .pdf")
+    check_new_file(path, force, option)
+
+
 def is_terminal() -> bool:
     return sys.stdout.isatty()
 

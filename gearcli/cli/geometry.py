@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import display_units, format_value, handle_errors
+from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
 
 # (label, json key, stored unit) rows of the per-gear and per-pair tables (shown in the display
 # units, gearcli/display_units.py).
@@ -76,13 +76,7 @@ def geometry(
     from gearcli import api
     from gearcli.pipeline.geometry import geometry_dict
 
-    if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
-        from gearcli.errors import OutputError
-
-        raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
-    from gearcli.io.files import check_new_file
-
-    check_new_file(plot, force, "--plot")
+    check_figure_path("--plot", plot, force)
     result = api.geometry(case, set_)
     data = geometry_dict(result)
     if plot is not None:

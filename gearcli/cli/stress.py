@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import handle_errors, option_quantities
+from gearcli.cli.common import check_figure_path, handle_errors, option_quantities
 
 
 @app.command()
@@ -39,15 +39,11 @@ def stress(
     import json
 
     from gearcli import api
-    from gearcli.errors import OutputError
+    from gearcli.io.files import check_no_earlier
     from gearcli.pipeline.stress import save_stress_plot, write_stress
 
-    if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
-        raise OutputError(f"--plot {plot}: expected a file name ending in .png, .svg or .pdf")
-    from gearcli.io.files import check_new_file, check_no_earlier
-
+    check_figure_path("--plot", plot, force)
     check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
-    check_new_file(plot, force, "--plot")
     result = api.stress(folder, option_quantities(window, "TIME", "--window"),
                         require_limits=safety).result
     doc = write_stress(result)

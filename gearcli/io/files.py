@@ -52,6 +52,16 @@ def check_new_file(path: str | Path | None, force: bool, option: str) -> None:
                           "existing folder")
 
 
+def save_figure(fig, path: str | Path, dpi: int) -> None:
+    """Write a matplotlib figure atomically in the format of the path's suffix (.png, .svg,
+    .pdf; none: png) at ``dpi``."""
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=dpi)
+    write_atomic(path, buf.getvalue())
+
+
 def write_atomic(path: str | Path, data: bytes | str) -> None:
     """Write ``data`` to ``path`` via a temp file in the same folder and an atomic rename."""
     p = Path(path)

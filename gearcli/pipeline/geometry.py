@@ -209,12 +209,7 @@ def geometry_dict(result: GeometryResult) -> dict:
 
 def save_geometry_plot(result: GeometryResult, path: str | Path) -> None:
     """Draw the pair in mesh and write it atomically (.png, .svg or .pdf)."""
-    import io
-
-    from gearcli.io.files import write_atomic
+    from gearcli.io.files import save_figure
     from gearcli.plotting.geometry import plot_pair
 
-    fig = plot_pair(result.geometry, title=f"{result.name}: spur pair in mesh")
-    buf = io.BytesIO()
-    fig.savefig(buf, format=Path(path).suffix.lower().lstrip("."), dpi=150)
-    write_atomic(path, buf.getvalue())
+    save_figure(plot_pair(result.geometry, title=f"{result.name}: spur pair in mesh"), path, 150)

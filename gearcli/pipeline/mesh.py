@@ -158,10 +158,8 @@ def mesh_table(res: MeshAnalysis):
 def save_mesh_plot(res: MeshAnalysis, path: str | Path, units: str = "engineering") -> None:
     """The figure of :func:`gearcli.plotting.mesh.plot_mesh` in the display ``units``
     (gearcli/display_units.py), written atomically."""
-    import io
-
     from gearcli.display_units import unit_and_factor
-    from gearcli.io.files import write_atomic
+    from gearcli.io.files import save_figure
     from gearcli.plotting.mesh import plot_mesh
 
     lm, doc = res.loaded, mesh_document(res)
@@ -178,9 +176,7 @@ def save_mesh_plot(res: MeshAnalysis, path: str | Path, units: str = "engineerin
                           f"STE {doc['ste']['peak_to_peak_um'] * k_te / 1e3:.3g} {te_unit} "
                           "peak-to-peak",
                     harris=harris)
-    buf = io.BytesIO()
-    fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=150)
-    write_atomic(path, buf.getvalue())
+    save_figure(fig, path, 150)
 
 
 def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,

@@ -252,11 +252,6 @@ def campbell_figure(res: ModalAnalysis, units: str = "engineering"):
 
 def save_campbell_plot(res: ModalAnalysis, path: str | Path, units: str = "engineering") -> None:
     """Campbell diagram + mode shapes, written atomically (.png, .svg or .pdf)."""
-    import io
+    from gearcli.io.files import save_figure
 
-    from gearcli.io.files import write_atomic
-
-    fig = campbell_figure(res, units)
-    buf = io.BytesIO()
-    fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=150)
-    write_atomic(path, buf.getvalue())
+    save_figure(campbell_figure(res, units), path, 150)

@@ -365,9 +365,7 @@ def write_stress(res: StressResult) -> dict:
 
 def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -> None:
     """σ_H and σ_F through the last ``cycles`` mesh cycles of the window and along the path."""
-    import io
-
-    from gearcli.io.files import write_atomic
+    from gearcli.io.files import save_figure
     from gearcli.plotting.stress import plot_stress_of_run
 
     geo = res.geometry
@@ -377,6 +375,4 @@ def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -
         geometry=geo, static=_static_doc(res.static), window_s=res.window_s,
         f_z_Hz=f_z, cycles=cycles,
         title=f"{res.name}: tooth stresses (z1 = {geo.pinion.teeth}, z2 = {geo.gear.teeth})")
-    buf = io.BytesIO()
-    fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=130)
-    write_atomic(path, buf.getvalue())
+    save_figure(fig, path, 130)
