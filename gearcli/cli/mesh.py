@@ -42,7 +42,7 @@ def mesh(
 
     from gearcli import api
     from gearcli.errors import CaseError
-    from gearcli.pipeline.mesh import mesh_document, save_mesh_plot, write_mesh
+    from gearcli.pipeline.mesh import save_mesh_plot, write_mesh
 
     if load is not None and not load > 0.0:
         raise CaseError(f"--load must be a force > 0 N, got {load}")
@@ -52,18 +52,18 @@ def mesh(
     check_new_file(plot, force, "--plot")
     if out is not None:
         check_target(out, force)  # before the work, not after
-    res = api.mesh(case, set_, load_N=load, harris=harris).result
-    doc = mesh_document(res)
+    analysis = api.mesh(case, set_, load_N=load, harris=harris)
+    res, doc, units = analysis.result, analysis.document(), display_units()
     if out is not None:
-        write_mesh(res, out, force, set_, display_units())
+        write_mesh(res, out, force, set_, units, doc)
     if plot is not None:
-        save_mesh_plot(res, plot, display_units())
+        save_mesh_plot(res, plot, units)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return
     if quiet:
         return
-    _print(doc, display_units())
+    _print(doc, units)
     for path in (out, plot):
         if path is not None:
             typer.echo(f"wrote {path}")

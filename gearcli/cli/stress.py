@@ -44,9 +44,10 @@ def stress(
 
     check_figure_path("--plot", plot, force)
     check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
-    result = api.stress(folder, option_quantities(window, "TIME", "--window"),
-                        require_limits=safety).result
-    doc = write_stress(result)
+    rating = api.stress(folder, option_quantities(window, "TIME", "--window"),
+                        require_limits=safety)
+    result = rating.result
+    doc = write_stress(result, rating.document())
     if plot is not None:
         save_stress_plot(result, plot)
     if as_json:

@@ -170,7 +170,7 @@ def _contact_arrays(case: Case, geo: GeometryResult, tables: GapTables) -> dict:
 LINEARISATION_POINTS = 100
 
 
-def linearised_mesh(case: Case, geo: GeometryResult,
+def linearised_mesh(case: Case, geo: GeometryResult, geometric: MeshMode | None = None,
                     tables: GapTables | None = None) -> MeshMode:
     """The mesh linearised at the static load (the one `simulate`, `modal` and the checks use).
 
@@ -180,12 +180,12 @@ def linearised_mesh(case: Case, geo: GeometryResult,
     reports), at LINEARISATION_POINTS positions: it has the case's profile modifications and
     the corner contact of extended engagement, which the sum of the pair stiffness over the
     geometric path of contact (``case_mesh``) leaves out (docs/theory.md §4b). Without a load,
-    or when the teeth cannot carry it, the geometric value. ``tables``: the case's gap tables
-    when the caller has them (:func:`case_gap_tables`)."""
+    or when the teeth cannot carry it, the geometric value. ``geometric`` and ``tables``: the
+    case's ``case_mesh`` and :func:`case_gap_tables` when the caller has them."""
     from gearcli.model.ltca import loaded_mesh, tooth_law
     from gearcli.model.mesh import with_mesh_stiffness
 
-    mesh = case_mesh(case, geo)
+    mesh = geometric if geometric is not None else case_mesh(case, geo)
     if case.contact.law != "tooth" or not mesh.static_force_N > 0.0:
         return mesh
     g = geo.geometry
@@ -211,8 +211,9 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     fr, dr = case.friction, case.drive
     mode = {"speed": layout.DRIVE_SPEED, "shaft": layout.DRIVE_SHAFT,
             "torque": layout.DRIVE_TORQUE}[dr.type]
-    tables, cap = case_gap_tables(case, geo, case_mesh(case, geo))
-    mesh = linearised_mesh(case, geo, tables)
+    geometric = case_mesh(case, geo)
+    tables, cap = case_gap_tables(case, geo, geometric)
+    mesh = linearised_mesh(case, geo, geometric, tables)
 
     speed = geo.pinion_speed_rad_s
     f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None

@@ -162,27 +162,28 @@ def save_mesh_plot(res: MeshAnalysis, path: str | Path, units: str = "engineerin
     from gearcli.io.files import save_figure
     from gearcli.plotting.mesh import plot_mesh
 
-    lm, doc = res.loaded, mesh_document(res)
-    st = doc["stiffness"]
+    lm = res.loaded
     te_unit, k_te = unit_and_factor("mm", units, fine=True)
     k_unit, k_k = unit_and_factor("N/mm", units)
     harris = None if res.harris is None else (res.harris[0], k_te * res.harris[1])
     fig = plot_mesh(lm.roll_mm, k_te * lm.ste_mm, k_te * lm.unloaded_te_mm, lm.pair_force_N,
                     k_k * lm.mesh_stiffness_N_mm, force_N=lm.force_N,
-                    iso_single=k_k * st["iso6336_single_pair_c_prime_b_N_mm"],
-                    iso_mean=k_k * st["iso6336_mean_c_gamma_alpha_b_N_mm"],
+                    iso_single=k_k * res.iso.pair_stiffness_N_mm,
+                    iso_mean=k_k * res.iso.mesh_stiffness_N_mm,
                     te_unit=te_unit, stiffness_unit=k_unit,
                     title=f"{res.name}: loaded contact at {lm.force_N:.0f} N ({res.law}); "
-                          f"STE {doc['ste']['peak_to_peak_um'] * k_te / 1e3:.3g} {te_unit} "
+                          f"STE {lm.ste_peak_to_peak_mm * k_te:.3g} {te_unit} "
                           "peak-to-peak",
                     harris=harris)
     save_figure(fig, path, 150)
 
 
 def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
-               overrides: list[str] | None = None, units: str = "engineering") -> Path:
-    """mesh.json, mesh.csv, mesh.png (in the display ``units``) and manifest.json in
-    ``folder``, all or nothing (io.outdir.atomic_dir)."""
+               overrides: list[str] | None = None, units: str = "engineering",
+               doc: dict | None = None) -> Path:
+    """mesh.json (``doc``, the caller's :func:`mesh_document` when it has it), mesh.csv,
+    mesh.png (in the display ``units``) and manifest.json in ``folder``, all or nothing
+    (io.outdir.atomic_dir)."""
     import json
 
     from gearcli.io.manifest import manifest
@@ -191,9 +192,9 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
 
     case_json = json.loads(res.source.case.model_dump_json())
     with atomic_dir(folder, force) as tmp:
-        (tmp / "mesh.json").write_text(json.dumps(mesh_document(res), indent=2) + "\n")
+        (tmp / "mesh.json").write_text(json.dumps(doc or mesh_document(res), indent=2) + "\n")
         (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
         save_mesh_plot(res, tmp / "mesh.png", units)
-        doc = manifest(res.source.source, case_json, overrides)
-        (tmp / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
+        provenance = manifest(res.source.source, case_json, overrides)
+        (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
     return Path(folder)

@@ -351,12 +351,13 @@ def stress_columns(res: StressResult) -> dict[str, np.ndarray]:
     return cols
 
 
-def write_stress(res: StressResult) -> dict:
-    """Write stress.csv and stress.json into the results folder atomically; return the doc."""
+def write_stress(res: StressResult, doc: dict | None = None) -> dict:
+    """Write stress.csv and stress.json (``doc``, the caller's :func:`stress_document` when it
+    has it) into the results folder atomically; return the doc."""
     from gearcli.io.files import write_atomic
     from gearcli.io.tables import columns_to_csv
 
-    doc = stress_document(res)
+    doc = doc or stress_document(res)
     folder = res.run.folder
     write_atomic(folder / "stress.csv", columns_to_csv(stress_columns(res)))
     write_atomic(folder / "stress.json", json.dumps(doc, indent=2) + "\n")
