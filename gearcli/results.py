@@ -4,25 +4,24 @@ stress peaks of a gear and the modes of the linearised model, as frozen dataclas
 Each field's name is its key in the JSON document (summary.json ``scalars``, analysis.json
 ``metrics``, stress.json per gear, the modal JSON's ``modes``) and carries its unit in the name
 or is dimensionless; ``metadata`` holds the label and stored unit from the one metric registry
-(gearcli/io/metrics.py). :func:`rows` turns a document into the (label, value, unit) rows the
-command line and the report print, in the chosen display units (gearcli/display_units.py);
-:func:`json_schema` derives the documents' JSON Schemas (``gearcli schema --results``). The
-documents' version is :data:`SCHEMA_VERSION` (raised when a key is renamed or removed).
+(gearcli/io/metrics.py), the registry the command line's and the report's tables print from
+(gearcli/io/metrics.rows, in the chosen display units). :func:`json_schema` derives the
+documents' JSON Schemas (``gearcli schema --results``). The documents' version is
+:data:`SCHEMA_VERSION` (raised when a key is renamed or removed).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Mapping
 from typing import Any
 
-from gearcli.display_units import DEFAULT
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
-from gearcli.io.metrics import METRICS, display
+from gearcli.io.metrics import METRICS
 
 __all__ = ["SCHEMA_VERSION", "Summary", "AnalysisMetrics", "GearStress", "Mode",
-           "MeshSummary", "rows", "json_schema", "KINDS"]
+           "MeshSummary", "json_schema", "KINDS"]
 
 
 def _field(key: str, default: Any = math.nan):
@@ -204,16 +203,6 @@ class MeshSummary(_Document):
         flat = {"force_N": doc["force_N"], **ste, **doc["stiffness"],
                 **doc.get("iso6336_method_b", {})}
         return cls(**_pick(cls, flat))
-
-
-def rows(document, names: Iterable[str] | None = None,
-         system: str = DEFAULT) -> list[tuple[str, Any, str]]:
-    """(label, value in the display unit, display unit) of the fields ``names`` (default all
-    with a registered metric) of a typed document, or of the keys of a plain mapping."""
-    values = document if isinstance(document, Mapping) else dataclasses.asdict(document)
-    keys = names if names is not None else [k for k in values if k in METRICS]
-    return [display(k, values[k], system) if k in METRICS else (k, values[k], "")
-            for k in keys if k in values]
 
 
 def _finite(value) -> bool:

@@ -107,11 +107,10 @@ ANALYZE_KEYS = ("gear_speed_mean_deg_s", "speed_ratio_error_percent",
 
 def print_checks(doc: dict, units: str = "engineering") -> None:
     """The analysis table (metrics in the display ``units``) and the checks table."""
-    from gearcli.results import AnalysisMetrics
-    from gearcli.results import rows as metric_rows
+    from gearcli.io.metrics import rows as metric_rows
 
     m = doc["metrics"]
-    rows = metric_rows(AnalysisMetrics.from_metrics(m), ANALYZE_KEYS, units)
+    rows = metric_rows(m, ANALYZE_KEYS, units)
     w0, w1 = m["window_s"]
     print_quantity_table(f"{doc['case']}: window {w0:.3f}-{w1:.3f} s ({m['window_reason']})",
                          rows)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-from gearcli.display_units import DEFAULT, convert, unit_and_factor
+from gearcli.display_units import DEFAULT, convert
 
 
 class Metric(NamedTuple):
@@ -94,11 +94,6 @@ def display(key: str, value, system: str = DEFAULT):
     m = METRICS[key]
     shown, unit = convert(value, m.unit, system, m.fine)
     return m.label, shown, unit
-
-
-def display_unit(key: str, system: str = DEFAULT) -> str:
-    m = METRICS[key]
-    return unit_and_factor(m.unit, system, m.fine)[0]
 
 
 def rows(values: dict, keys, system: str = DEFAULT) -> list[tuple[str, object, str]]:

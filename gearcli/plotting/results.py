@@ -293,7 +293,8 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
 
     sx = 1.0 / order_Hz if order_Hz else 1.0  # x axis: frequency [Hz] or order [-]
 
-    def level(a):
+    def level(a, ref: float):
+        """Amplitudes as plotted: dB re ``ref`` (the panel's largest) with ``db``, else as is."""
         return 20.0 * np.log10(np.maximum(np.asarray(a, float), 1e-300) / ref) if db else a
 
     freq = np.asarray(freq_Hz, float)
@@ -307,9 +308,8 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
         ax = axes[i]
         a = np.asarray(amp, float)[sel]
         top = float(a.max(initial=0.0)) or 1.0
-        ref = top
         if db:
-            ax.plot(sx * freq[sel], level(a), color=FORCE, lw=0.7)
+            ax.plot(sx * freq[sel], level(a, top), color=FORCE, lw=0.7)
             ax.set_ylim(-140.0, 10.0)
         else:
             ax.semilogy(sx * freq[sel], a, color=FORCE, lw=0.7)
@@ -343,7 +343,7 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
                 ax.text(sx * f, 1.01, label.replace("fz", " f_z"), color=HARMONIC, fontsize=8,
                         ha="center", va="bottom", transform=ax.get_xaxis_transform())
             if ln.get("resolvable") and ln.get("amplitude"):
-                ax.plot(sx * ln["measured_Hz"], level(ln["amplitude"]), "o", mfc="none",
+                ax.plot(sx * ln["measured_Hz"], level(ln["amplitude"], top), "o", mfc="none",
                         color=HARMONIC, ms=6)
                 drawn.add("meas")
         folds = _folds(f_z_Hz, sample_rate_Hz, x_max, harmonics + 1)

@@ -44,19 +44,17 @@ def fmt(value, digits: int = 4) -> str:
     return str(value)
 
 
-def qty(value, system: str = DEFAULT) -> str:
-    """A stored "number unit" string (internal units) as 'number unit' in the display units
-    ``system`` (gearcli/display_units.py: "104.7 rad/s" -> "1000 rpm")."""
-    if value is None:
-        return "–"
-    x, u = convert(number(value), unit_of(value), system)
-    return f"{fmt(x)} {u}".strip()
+def _cells(value, system: str, unit: str | None = None) -> tuple[str, str]:
+    """(value, unit) cells in the display units ``system`` (gearcli/display_units.py) of a
+    stored "number unit" string (internal units), or of the number ``value`` in ``unit``."""
+    x, u = (value, unit) if unit is not None else (number(value), unit_of(value))
+    shown, shown_unit = convert(x, u, system)
+    return fmt(shown), shown_unit
 
 
-def _cells(value, system: str) -> tuple[str, str]:
-    """(value, unit) cells of a stored "number unit" string in the display units."""
-    x, u = convert(number(value), unit_of(value), system)
-    return fmt(x), u
+def qty(value, system: str = DEFAULT, unit: str | None = None) -> str:
+    """:func:`_cells` as one 'number unit' text ("104.7 rad/s" -> "1000 rpm"); None as "–"."""
+    return "–" if value is None else " ".join(_cells(value, system, unit)).strip()
 
 
 def _is_number(value) -> bool:
@@ -89,8 +87,8 @@ def gears_table(data: ReportData) -> Table:
     if geo is not None:
         for label, attr in (("reference diameter d", "d_mm"), ("tip diameter d_a", "d_a_mm"),
                             ("base diameter d_b", "d_b_mm"), ("root diameter d_f", "d_f_mm")):
-            rows.append((label, qty(f"{getattr(geo.pinion, attr)} mm", u),
-                         qty(f"{getattr(geo.gear, attr)} mm", u)))
+            rows.append((label, qty(getattr(geo.pinion, attr), u, "mm"),
+                         qty(getattr(geo.gear, attr), u, "mm")))
     for label, key in (("density ρ", "density"), ("Young's modulus E", "youngs_modulus"),
                        ("Poisson ratio ν", "poisson_ratio")):
         cells = []
@@ -121,13 +119,13 @@ def geometry_table(data: ReportData) -> Table | None:
         return None
     rows = [
         ("gear ratio i = z2/z1", fmt(geo.ratio), "–"),
-        ("operating centre distance a_w", *_cells(f"{geo.a_w_mm} mm", u)),
+        ("operating centre distance a_w", *_cells(geo.a_w_mm, u, "mm")),
         ("operating pressure angle α_w", fmt(math.degrees(geo.alpha_w_rad)), "deg"),
-        ("base pitch p_b", *_cells(f"{geo.p_b_mm} mm", u)),
-        ("path of contact g_α", *_cells(f"{geo.g_alpha_mm} mm", u)),
+        ("base pitch p_b", *_cells(geo.p_b_mm, u, "mm")),
+        ("path of contact g_α", *_cells(geo.g_alpha_mm, u, "mm")),
         ("transverse contact ratio ε_α", fmt(geo.eps_alpha), "–"),
         ("time with one pair in contact", fmt(100.0 * geo.single_contact_fraction), "%"),
-        ("normal backlash j_n", *_cells(f"{geo.j_n_mm} mm", u)),
+        ("normal backlash j_n", *_cells(geo.j_n_mm, u, "mm")),
     ]
     note = "; ".join(f.message for f in geo.findings)
     return Table("Pair geometry (derived)", ("quantity", "value", "unit"), rows, note)
@@ -149,7 +147,7 @@ def contact_table(data: ReportData) -> Table:
         k = data.scalars.get("mesh_stiffness_N_mm")
         if isinstance(k, int | float):
             rows.append(("mesh stiffness, linearised at the static load",
-                         *_cells(f"{k} N/mm", data.units)))
+                         *_cells(k, data.units, "N/mm")))
     else:
         e = number(c.get("exponent", 1.0))
         stiffness = c.get("stiffness")
