@@ -144,8 +144,6 @@ def iso_deviations(case: Case, geo: GeometryResult, c_prime: float, line_load: f
       σ_Hlim (``contact_fatigue_limit``), else 0 (B_k = 1, the formula at C_a = 0). Of the two
       gears', the C_a with the larger B_k = |1 − c′ C_a / (F_t K_A / b)| (conservative).
     """
-    import numpy as np
-
     from gearcli.model.errors import iso1328_single_pitch_tolerance_um
 
     g = geo.geometry
