@@ -25,10 +25,10 @@ from gearcli.core.layout import (
     F,
     P,
 )
-from gearcli.core.nrt import jit_noalloc
+from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
 
-@jit_noalloc
+@jit_noalloc_inline
 def table_of(family, gear):
     """Gap-table (and tooth-offset) row of one flank family and gear (layout.N_TABLES)."""
     return family * N_GEARS + gear

@@ -21,7 +21,7 @@ import numpy as np
 from gearcli.core.derive import table_of
 from gearcli.core.gaptable import hermite
 from gearcli.core.jit import jit
-from gearcli.core.layout import COAST_FLANKS, DRIVE_FLANKS, GEAR, PINION, D, F, P
+from gearcli.core.layout import DRIVE_FLANKS, GEAR, N_FAMILIES, PINION, D, F, P
 from gearcli.core.nrt import jit_noalloc
 
 
@@ -131,11 +131,11 @@ def next_crossing(s1, v1, a1, delta, deltadot, deltaddot, model, window, margin)
         A crossing counts when the flank overlap at the table end exceeds ``-margin`` [mm]
         (covers runout and tooth offsets, which are not evaluated here).
     """
-    tau = _flank_crossing(DRIVE_FLANKS, s1, v1, a1, delta, deltadot, deltaddot, model, window,
-                          margin)
-    if model.prm[P.coast_flanks] != 0.0:
-        tau_c = _flank_crossing(COAST_FLANKS, s1, v1, a1, delta, deltadot, deltaddot, model,
-                                window, margin)
-        if tau_c < tau:
-            tau = tau_c
+    # the family as a loop counter, not a constant: one compiled _flank_crossing for both
+    # (numba compiles a function once per literal argument value)
+    n_families = N_FAMILIES if model.prm[P.coast_flanks] != 0.0 else DRIVE_FLANKS + 1
+    tau = math.inf
+    for f in range(n_families):
+        tau = min(tau, _flank_crossing(f, s1, v1, a1, delta, deltadot, deltaddot, model,
+                                       window, margin))
     return tau

@@ -8,11 +8,15 @@ compiled from older sources (numba issue #6845).
 
 import functools
 
-from gearcli.numba_cache import configure  # the one non-core import: configuration, no physics
+# the two non-core imports: numba's configuration, no physics
+from gearcli.numba_cache import configure
+from gearcli.numba_inline import apply as fix_inliner
 
 configure()
 
 import numba  # noqa: E402  (after the cache folder is set)
+
+fix_inliner()  # the IR inliner's copies, linear instead of quadratic (gearcli/numba_inline.py)
 
 #: Decorator for every compiled function of the core.
 jit = functools.partial(numba.njit, cache=True, fastmath=False, nogil=True, error_model="numpy")

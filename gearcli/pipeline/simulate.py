@@ -147,11 +147,11 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     from gearcli.core.integrate import simulate
 
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
-    compiling = announce_compilation(notice)
     case = loaded.case
     refuse_unsupported(loaded)
     geo = run_geometry(loaded)
     check_run_size(loaded, geo)  # before anything is sized by the run
+    compiling = announce_compilation(notice)  # a refused run compiles nothing: no notice
     ki = build_kernel_input(case, geo)
     last_ramp = max(case.drive.speed.pp.last_breakpoint if case.drive.speed else 0.0,
                     case.drive.torque.pp.last_breakpoint if case.drive.torque else 0.0,

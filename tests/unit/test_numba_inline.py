@@ -1,0 +1,93 @@
+"""The compile-time fix of numba's IR inliner (gearcli/numba_inline.py): the copied blocks of
+one IR share one copy of its scope, everything else is copied as numba copies it, and inlined
+functions compute what the Python source computes."""
+
+import copy
+
+import numba
+import pytest
+from numba.core import compiler, inline_closurecall, ir
+
+from gearcli import numba_inline
+
+
+def _installed():
+    """The fix is installed unless numba's inliner changed shape (then numba is left alone)."""
+    if not numba_inline.apply():
+        pytest.skip("numba's IR inliner changed shape: the fix is not installed "
+                    "(gearcli/numba_inline.py)")
+
+
+def _callee(x, n):
+    total = 0.0
+    for i in range(n):
+        if i % 3 == 0:
+            total += x * i
+        elif i % 3 == 1:
+            total -= x
+        else:
+            total += 1.0
+    return total
+
+
+def _copy_blocks(func_ir):
+    """What numba's copy_ir does with the blocks: one deepcopy per block, no shared memo."""
+    return {label: inline_closurecall.copy.deepcopy(block)
+            for label, block in func_ir.blocks.items()}
+
+
+def test_blocks_of_one_copy_share_one_scope_copy():
+    _installed()
+    func_ir = compiler.run_frontend(_callee)
+    scopes = {id(b.scope) for b in func_ir.blocks.values()}
+    assert len(func_ir.blocks) > 3 and len(scopes) == 1  # the IR being copied: one scope
+
+    token = numba_inline._SCOPES.set({})
+    try:
+        first = _copy_blocks(func_ir)
+        second = _copy_blocks(func_ir)  # a second copy of the same IR in the same call
+    finally:
+        numba_inline._SCOPES.reset(token)
+    original_scope = next(iter(func_ir.blocks.values())).scope
+    copied = {id(b.scope) for b in first.values()}
+    assert len(copied) == 1 and id(original_scope) not in copied
+    scope = next(iter(first.values())).scope
+    assert sorted(scope.localvars._con) == sorted(original_scope.localvars._con)
+    # the statements themselves are fresh copies, equal to the original ones
+    for label, block in func_ir.blocks.items():
+        assert first[label] is not block
+        assert [str(s) for s in first[label].body] == [str(s) for s in block.body]
+        assert all(a is not b for a, b in zip(first[label].body, block.body, strict=True))
+    assert {id(b.scope) for b in second.values()} == copied  # same call: the same scope copy
+
+    # outside inline_ir the module's deepcopy is copy.deepcopy: a scope copy per block
+    plain = _copy_blocks(func_ir)
+    assert len({id(b.scope) for b in plain.values()}) == len(plain)
+
+
+def test_plain_deepcopy_outside_the_inliner_is_untouched():
+    block = next(iter(compiler.run_frontend(_callee).blocks.values()))
+    memo = {}
+    assert isinstance(numba_inline._deepcopy(block, memo), ir.Block)
+    assert id(block) in memo  # the caller's memo is used as given
+    assert numba_inline._deepcopy([1, [2]]) == copy.deepcopy([1, [2]])
+
+
+@pytest.mark.parametrize("x, n", [(0.5, 0), (1.25, 7), (-2.0, 31)])
+def test_nested_inlined_functions_compute_the_python_result(x, n):
+    _installed()
+    inner = numba.njit(inline="always")(_callee)
+
+    @numba.njit(inline="always")
+    def middle(x, n):
+        return inner(x, n) + inner(2.0 * x, n + 1)
+
+    @numba.njit
+    def outer(x, n):
+        s = 0.0
+        for k in range(2):
+            s += middle(x + k, n)
+        return s
+
+    expected = sum(_callee(x + k, n) + _callee(2.0 * (x + k), n + 1) for k in range(2))
+    assert outer(x, n) == expected  # the same operations in the same order: exact
