@@ -112,7 +112,7 @@ def cyclic_gc_paused():
 
 
 #: What the first run's compilation takes (bench/RESULTS.md, issue 16; 2-core machine) [s].
-COMPILE_TIME_S = 40
+COMPILE_TIME_S = 30
 
 
 def stderr_notice(text: str) -> None:
