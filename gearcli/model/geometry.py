@@ -385,6 +385,18 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
             add("warning", "clearance", role, f"{role} tip to {mate} root: clearance c = {c:.3f} mm"
                 f"; recommended: c >= 0.1 m = {0.1 * m:.3f} mm")
 
+    # The model is a plane one: the load is taken as uniform across the face (K_Hbeta = 1,
+    # docs/theory.md §10.2). A face many pinion diameters wide bends and twists the pinion along
+    # it, so the load concentrates at one end; design guidance keeps b/d1 within 0.2 ... 2.0
+    # (VDI 2736-2:2014, initial design).
+    b = min(geo.pinion.face_width_mm, geo.gear.face_width_mm)
+    b_d1 = b / geo.pinion.d_mm
+    if b_d1 > FACE_WIDTH_RATIO_MAX:
+        add("warning", "face_width", None, f"face width b = {b:.4g} mm is {b_d1:.2f} x the "
+            f"pinion's reference diameter d1 = {geo.pinion.d_mm:.4g} mm; recommended: b/d1 <= "
+            f"{FACE_WIDTH_RATIO_MAX:g} (VDI 2736-2): the pinion bends and twists along so wide a "
+            "face, and the model takes the load as uniform across it")
+
     z_sum = geo.pinion.teeth + geo.gear.teeth
     alpha = geo.pressure_angle_rad
     if not shift_sum_ok:
@@ -407,11 +419,12 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
     beyond = {"pinion": geo.A_mm < 0.0, "gear": geo.E_mm > geo.T1T2_mm}
     if beyond["pinion"]:
         add("error", "interference", "pinion", f"pinion: gear tip reaches beyond T1, |T1A| = "
-            f"{geo.A_mm:.3f} mm (involute interference at the pinion root); allowed: >= 0")
+            f"{geo.A_mm:.3f} mm (involute interference at the pinion root); allowed: >= 0 "
+            f"({_BEYOND_T_CURE.format(gear='pinion', mate='gear')})")
     if beyond["gear"]:
         add("error", "interference", "gear", f"gear: pinion tip reaches beyond T2, |T2E| = "
             f"{geo.T1T2_mm - geo.E_mm:.3f} mm (involute interference at the gear root); "
-            "allowed: >= 0")
+            f"allowed: >= 0 ({_BEYOND_T_CURE.format(gear='gear', mate='pinion')})")
     for role, g, mate in pair:
         if not beyond[role] and g.d_Nf_mm < g.d_Ff_mm * (1.0 - 1e-9):
             zone = ("undercut: that part of the path has no involute, the real contact ratio "
@@ -423,8 +436,25 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
             code = "undercut_contact" if g.undercut else "interference"
             add(severity, code, role, f"{role}: the {mate} tip reaches d_Nf = "
                 f"{g.d_Nf_mm:.3f} mm, below the root form diameter d_Ff = {g.d_Ff_mm:.3f} mm "
-                f"({zone}); allowed: d_Nf >= d_Ff")
+                f"({zone}); allowed: d_Nf >= d_Ff" + (
+                    "" if g.undercut else
+                    f" ({_FILLET_CURE.format(gear=role, mate=mate)})"))
     return tuple(out)
+
+
+#: Largest face width to pinion reference diameter ratio b/d1 without a warning (VDI 2736-2:2014,
+#: initial design: 0.2 <= b/d1 <= 2.0).
+FACE_WIDTH_RATIO_MAX = 2.0
+
+#: What clears an involute interference at a gear's root, the mate's tip beyond the
+#: interference point T (ISO 21771:2007 and Niemann/Winter II: more teeth or a positive profile
+#: shift on that gear move T out along the line of action; a shorter mate tip ends the path
+#: before T).
+_BEYOND_T_CURE = ("more teeth or a larger profile shift on the {gear}, or a shorter {mate} tip")
+#: The mate's tip inside the gear's root fillet (d_Nf < d_Ff): the gear's profile shift moves
+#: d_Ff and, through the centre distance, d_Nf; which way clears it depends on the pair, so no
+#: direction is given.
+_FILLET_CURE = ("change the {gear}'s profile shift or teeth, or shorten the {mate} tip")
 
 
 def mesh_frequencies(z1: int, pinion_speed_rad_s: float, i: float) -> tuple[float, float, float]:

@@ -32,7 +32,7 @@ class GeometryResult:
 _FINDING_KEYS = {
     "contact_ratio": ("gears", "centre_distance"),
     "centre_distance": ("gears", "centre_distance"),
-    "interference": ("gears", "{gear}", "teeth"),
+    "interference": ("gears", "{gear}", "teeth"),  # or its profile shift: _interference_key
     "undercut": ("gears", "{gear}", "profile_shift"),
     "pointed_tip": ("gears", "{gear}", "profile_shift"),
     "clearance": ("gears", "{gear}", "tip_shortening"),
@@ -117,10 +117,24 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
     return GeometryResult(loaded.name, geo, mass, nominal_pinion_speed(case), warnings)
 
 
+def _interference_key(loaded: LoadedCase, gear: str) -> tuple[str, ...]:
+    """The key an interference error names: of the gear's two levers (ISO 21771: more teeth or
+    a larger profile shift clear its root), the one a --set changed, else the profile shift
+    when the case file sets it, else the teeth."""
+    shift, teeth = (("gears", gear, key) for key in ("profile_shift", "teeth"))
+    src = loaded.source
+    for loc in (shift, teeth):
+        if loc in src.overridden:
+            return loc
+    return shift if _raw(loaded, shift) is not None else teeth
+
+
 def _located(loaded: LoadedCase, finding: Finding, more: int):
     keys = _FINDING_KEYS.get(finding.code, ("gears",))
     gear = finding.subject or "pinion"
     loc = tuple(k.format(gear=gear) for k in keys)
+    if finding.code == "interference":
+        loc = _interference_key(loaded, gear)
     if loc[-1] == "centre_distance" and loaded.case.gears.centre_distance is None:
         loc = ("gears",)
     text = finding.message + (f" (+{more} more)" if more else "")

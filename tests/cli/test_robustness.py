@@ -254,3 +254,20 @@ def test_absurd_option_values_are_clean_errors(args, code):
     assert r.exit_code == code, r.stderr
     assert "internal error" not in r.stderr and "Traceback" not in r.stderr
 
+
+
+@pytest.mark.parametrize("case, override, key, cure", [
+    # a --set profile shift that makes the gear's tip cut the pinion's root fillet: the error
+    # names the key that was changed (it named the unchanged teeth before), and no direction
+    ("iso_pair.yaml", "gears.pinion.profile_shift=1.5", "gears.pinion.profile_shift: got 1.5",
+     "change the pinion's profile shift or teeth, or shorten the gear tip"),
+    # too few teeth: involute interference beyond T1, whose classic cures are named
+    ("iso_pair.yaml", "gears.pinion.teeth=8", "gears.pinion.teeth: got 8",
+     "more teeth or a larger profile shift on the pinion, or a shorter gear tip"),
+])
+def test_interference_names_the_changed_lever(case, override, key, cure):
+    r = invoke("geometry", ROOT / "cases" / case, "--set", override)
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert line.startswith(f"error: --set {override}: {key};"), line
+    assert cure in line

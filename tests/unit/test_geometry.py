@@ -240,6 +240,16 @@ def test_fillet_interference_is_an_error():
     assert "interference" in codes(g, "error")
 
 
+@pytest.mark.parametrize("b_mm, warned", [(340.0, False), (341.0, True), (500.0, True)])
+def test_face_width_beyond_two_pinion_diameters_is_warned(b_mm, warned):
+    # z1 = 17, m = 10: d1 = 170 mm, so VDI 2736-2's b/d1 <= 2.0 ends at b = 340 mm
+    g = compute_pair_geometry(PairSpec(10.0, DEG20, GearSpec(17, b_mm), GearSpec(25, b_mm)))
+    assert ("face_width" in codes(g, "warning")) == warned
+    if warned:
+        text = next(f.message for f in g.findings if f.code == "face_width")
+        assert f"{b_mm / 170.0:.2f} x the pinion's reference diameter" in text
+
+
 def test_contact_ratio_below_one_is_an_error():
     spec = PairSpec(10.0, DEG20, GearSpec(17, 100.0, 0.0, 0.6), GearSpec(25, 100.0, 0.0, 0.6))
     g = compute_pair_geometry(spec)
