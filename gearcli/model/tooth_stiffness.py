@@ -124,6 +124,10 @@ SHEAR_FACTOR = 1.2
 SOLID_RIM_RATIO = 1.2
 #: Lower end of the Sainsot fit in h_fi = r_f / r_int (as reproduced in ROSS).
 SAINSOT_H_MIN = 1.4
+#: Upper end of the fit: beyond it the polynomial is extrapolated and the body compliance grows
+#: fast (iso_pair's pinion, mesh mean stiffness: 1.03e6 N/mm at h_fi 2.3, 0.74e6 at 6.1,
+#: 0.42e6 at 11.5, 0.13e6 at 23).
+SAINSOT_H_MAX = 7.0
 
 _FILLET_SAMPLES = 2001  # fillet samples for its spline (as rating.py; error ~ (1/n)^4)
 _GAUSS = np.polynomial.legendre.leggauss(10)  # 10-point Gauss-Legendre per panel

@@ -21,6 +21,7 @@ from gearcli.model.stiffness import IsoStiffness
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import case_gap_tables
 from gearcli.pipeline.mesh_input import (
+    bore_notes,
     case_mesh,
     contact_stiffness,
     iso_stiffness,
@@ -84,6 +85,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     if e.runout.pinion or e.runout.gear or e.pitch_deviation.pinion or e.pitch_deviation.gear:
         notes.append("runout and pitch deviations are not included (they vary over whole "
                      "revolutions; simulate includes them)")
+    notes += bore_notes(case, geo)
     iso = iso_stiffness(case, geo, force)
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))
 

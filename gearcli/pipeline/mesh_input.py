@@ -70,6 +70,27 @@ def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
         raise CaseError(f"gears: tooth stiffness: {exc}") from None
 
 
+def bore_notes(case: Case, geo: GeometryResult) -> list[str]:
+    """The tooth law's validity notes on the given bores: h_fi = r_f / r_int outside the range
+    of Sainsot et al.'s body-compliance fit (model.tooth_stiffness, docs/theory.md §4b), where
+    the foundation term is extrapolated."""
+    from gearcli.model.tooth_stiffness import SAINSOT_H_MAX, SAINSOT_H_MIN
+
+    out = []
+    for role in ("pinion", "gear"):
+        bore = getattr(case.gears, role).bore_diameter
+        if case.contact.law != "tooth" or bore is None:
+            continue
+        h_fi = getattr(geo.geometry, role).d_f_mm / bore
+        if not SAINSOT_H_MIN <= h_fi <= SAINSOT_H_MAX:
+            out.append(f"gears.{role}.bore_diameter = {bore:g} mm gives h_fi = r_f/r_int = "
+                       f"{h_fi:.2f}, outside {SAINSOT_H_MIN:g} ... {SAINSOT_H_MAX:g}, the range "
+                       "of Sainsot et al.'s gear-body compliance fit: the foundation term is "
+                       "extrapolated" + (" and grows fast, so the tooth stiffness may be far "
+                                         "too low" if h_fi > SAINSOT_H_MAX else ""))
+    return out
+
+
 def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
     """The mesh linearised at the static load (docs/theory.md §4, §4b, §6): with a prescribed
     pinion speed only the gear vibrates, else both gears are free."""

@@ -403,8 +403,10 @@ def energy_balance(k) -> dict:
 
 def collect_warnings(res: SimulationResult) -> list[str]:
     """Warnings the terminal and the summary show (docs/theory.md §4, §7)."""
+    from gearcli.pipeline.mesh_input import bore_notes
+
     s, ki = res.summary, res.kernel_input
-    out = []
+    out = bore_notes(res.loaded.case, res.geometry)
     if s["mesh_damping_ratio"] > 1.0:
         out.append(f"overdamped mesh: damping ratio {s['mesh_damping_ratio']:.2f} > 1 "
                    f"(c_max {res.loaded.case.contact.max_damping:g} N*s/mm); measured gear "

@@ -33,3 +33,21 @@ def test_mesh_table_and_bad_load():
     assert "Static transmission error" in res.output and "2000 N" in res.output
     bad = runner.invoke(app, ["mesh", str(SEED), "--load", "-5"])
     assert bad.exit_code == 1 and "--load must be a force > 0 N" in bad.output
+
+
+def test_bore_outside_the_body_compliance_fit_is_noted(tmp_path):
+    """iso_pair's pinion root circle is d_f = 96 mm: an 8 mm bore gives h_fi = d_f / bore = 12,
+    beyond the upper end 7 of Sainsot et al.'s fit (theory §4b); its own 40 mm bore (2.4) and
+    a 15 mm one (6.4) are inside."""
+    from tests.conftest import ROOT
+
+    case = ROOT / "cases" / "iso_pair.yaml"
+    for bore, noted in (("40 mm", False), ("15 mm", False), ("8 mm", True)):
+        r = runner.invoke(app, ["mesh", str(case), "--json", "--set",
+                                f"gears.pinion.bore_diameter={bore}"])
+        assert r.exit_code == 0, r.output
+        notes = json.loads(r.stdout)["notes"]
+        hit = [n for n in notes if "gears.pinion.bore_diameter" in n]
+        assert bool(hit) == noted, notes
+        if noted:
+            assert "h_fi = r_f/r_int = 12.00" in hit[0] and "extrapolated" in hit[0]
