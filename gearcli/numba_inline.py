@@ -18,7 +18,10 @@ the caller's scope, so the inlined IR, and the machine code, are the same.
 
 :func:`apply` installs it only when numba's inliner still has that shape (a nested ``copy_ir``
 that calls ``deepcopy`` through the module's ``copy``); otherwise numba is left alone, which
-costs compile time only. numba internals are touched nowhere else.
+costs compile time only. numba internals are touched nowhere else. :func:`apply_when_compiling`
+defers it to numba's first compilation in the process (its ``numba:compile`` event, which a
+cache hit never raises): importing the inliner costs ~50 ms that a run from the cache would
+otherwise pay before numba needs it.
 """
 
 from __future__ import annotations
@@ -77,3 +80,18 @@ def apply() -> bool:
     module.copy = types.SimpleNamespace(deepcopy=_deepcopy, copy=copy.copy)
     module.InlineWorker.inline_ir = inline_ir
     return True
+
+
+def apply_when_compiling() -> None:
+    """Install the fix at the start of the process's first numba compilation (not before:
+    a run whose compiled code all comes from the cache never imports the inliner for it)."""
+    from numba.core import event
+
+    class _OnCompile(event.Listener):
+        def on_start(self, ev):
+            apply()  # idempotent; cheap once installed
+
+        def on_end(self, ev):
+            pass
+
+    event.register("numba:compile", _OnCompile())

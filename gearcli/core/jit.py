@@ -10,13 +10,13 @@ import functools
 
 # the two non-core imports: numba's configuration, no physics
 from gearcli.numba_cache import configure
-from gearcli.numba_inline import apply as fix_inliner
+from gearcli.numba_inline import apply_when_compiling as fix_inliner
 
 configure()
 
 import numba  # noqa: E402  (after the cache folder is set)
 
-fix_inliner()  # the IR inliner's copies, linear instead of quadratic (gearcli/numba_inline.py)
+fix_inliner()  # the IR inliner's copies, linear, not quadratic (gearcli/numba_inline.py)
 
 #: Decorator for every compiled function of the core.
 jit = functools.partial(numba.njit, cache=True, fastmath=False, nogil=True, error_model="numpy")

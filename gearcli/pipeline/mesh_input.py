@@ -74,12 +74,15 @@ def bore_notes(case: Case, geo: GeometryResult) -> list[str]:
     """The tooth law's validity notes on the given bores: h_fi = r_f / r_int outside the range
     of Sainsot et al.'s body-compliance fit (model.tooth_stiffness, docs/theory.md §4b), where
     the foundation term is extrapolated."""
+    if case.contact.law != "tooth":
+        return []
+    # imported here, as in tooth_stiffness: the model loads scipy.interpolate
     from gearcli.model.tooth_stiffness import SAINSOT_H_MAX, SAINSOT_H_MIN
 
     out = []
     for role in ("pinion", "gear"):
         bore = getattr(case.gears, role).bore_diameter
-        if case.contact.law != "tooth" or bore is None:
+        if bore is None:
             continue
         h_fi = getattr(geo.geometry, role).d_f_mm / bore
         if not SAINSOT_H_MIN <= h_fi <= SAINSOT_H_MAX:

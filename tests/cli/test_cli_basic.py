@@ -91,3 +91,20 @@ def test_quiet_commands_print_nothing_on_success(tmp_path):
         result = runner.invoke(app, args)
         assert result.exit_code in (0, 4), (args, result.output)
         assert result.stdout.strip() == "", (args, result.stdout)
+
+
+def test_simulate_of_an_impact_case_imports_no_unused_heavy_modules(tmp_path):
+    # what the seed's run (IMPACT law, warm or cold cache) has no use for: the tooth-compliance
+    # model's scipy.interpolate (~0.4 s), pandas, matplotlib, pint (issue 16: start-up)
+    code = (
+        "import sys, runpy\n"
+        f"sys.argv=['gearcli','simulate',{str(SEED)!r},'-o',{str(tmp_path / 'o')!r},'--quiet',"
+        "'--set','run.end_time=0.05']\n"
+        "try:\n runpy.run_module('gearcli', run_name='__main__')\n"
+        "except SystemExit as e: print('EXIT', e.code)\n"
+        "heavy=[m for m in ('scipy.interpolate','pandas','matplotlib','pint') "
+        "if m in sys.modules]\nprint('HEAVY', heavy)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert "HEAVY []" in out.stdout, (out.stdout[-300:], out.stderr[-300:])
+    assert (tmp_path / "o" / "summary.json").exists()

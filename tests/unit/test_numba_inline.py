@@ -91,3 +91,22 @@ def test_nested_inlined_functions_compute_the_python_result(x, n):
 
     expected = sum(_callee(x + k, n) + _callee(2.0 * (x + k), n + 1) for k in range(2))
     assert outer(x, n) == expected  # the same operations in the same order: exact
+
+
+def test_installed_by_the_first_compilation_not_by_the_import():
+    """A run from the cache never pays for the inliner's import; the first compile installs
+    the fix before anything is inlined (numba's 'numba:compile' event)."""
+    import subprocess
+    import sys
+
+    code = ("import sys, gearcli.core.jit, numba\n"
+            "print('numba.core.inline_closurecall' in sys.modules and getattr("
+            "sys.modules['numba.core.inline_closurecall'].InlineWorker.inline_ir, "
+            "'_gearcli_shared_scope', False))\n"
+            "numba.njit(lambda x: x + 1)(1)\n"
+            "from numba.core import inline_closurecall as m\n"
+            "from gearcli import numba_inline\n"
+            "print(getattr(m.InlineWorker.inline_ir, '_gearcli_shared_scope', False) or "
+            "not numba_inline._inliner_has_known_shape(m))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.split() == ["False", "True"], out.stderr[-500:]
