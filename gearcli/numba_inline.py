@@ -12,9 +12,13 @@ time was in ``copy.deepcopy``; the solver's first compilation took 34.8 s and 1.
 memory before this fix, 21 s and 0.54 GB after (bench/RESULTS.md, session 7).
 
 The fix gives the blocks of one copy one shared copy of their scope, which is the structure of
-the IR being copied (its blocks share one scope). Everything else is copied exactly as numba
-copies it, and inline_ir only reads the callee's scope before it points every inlined block at
-the caller's scope, so the inlined IR, and the machine code, are the same.
+the IR being copied (its blocks share one scope); each copy of an IR gets its own. Everything
+else is copied exactly as numba copies it. inline_ir reads the callee's variables from the
+first block's scope, renames them there (and its SSA step adds versions), then points every
+inlined block at the caller's scope: with numba's per-block copies only the first block's copy
+saw those changes, with the fix the one shared copy does, and the inlined IR is the same.
+tests/unit/test_numba_inline.py compares the LLVM IR of IR-inlined and typed-inlined functions
+compiled with and without the fix.
 
 :func:`apply` installs it only when numba's inliner still has that shape (a nested ``copy_ir``
 that calls ``deepcopy`` through the module's ``copy``); otherwise numba is left alone, which
@@ -28,46 +32,69 @@ from __future__ import annotations
 
 import contextvars
 import copy
+import functools
 import types
 
-#: Scope copies of the inline_ir call in progress: id(original scope) -> (scope, its copy);
-#: None outside inline_ir (then deepcopy behaves exactly as copy.deepcopy).
+#: Scope copies of the inline_ir call in progress: id(original scope) -> [scope, its copy,
+#: ids of the blocks copied with it]; None outside inline_ir (then deepcopy is copy.deepcopy).
 _SCOPES: contextvars.ContextVar[dict | None] = contextvars.ContextVar("scopes", default=None)
 
 
 def _deepcopy(obj, memo=None):
     """``copy.deepcopy`` for numba's inliner: an ``ir.Block`` copied inside ``inline_ir``
-    reuses the one copy of its scope made for this call."""
+    shares one copy of its scope with the other blocks of the same copy of the IR.
+
+    A block copied a second time in the same call starts a second copy of the IR, which gets a
+    scope copy of its own (numba copies the callee twice per call: one copy to mutate, one kept
+    unmutated; they must not share a scope)."""
     from numba.core import ir
 
     scopes = _SCOPES.get()
     if memo is None and scopes is not None and isinstance(obj, ir.Block):
         key = id(obj.scope)
-        if key not in scopes:  # the scope object is kept alive by the tuple (no id reuse)
-            scopes[key] = (obj.scope, copy.deepcopy(obj.scope))
-        memo = {key: scopes[key][1]}
+        entry = scopes.get(key)
+        if entry is None or id(obj) in entry[2]:  # the scope is kept alive here: no id reuse
+            entry = scopes[key] = [obj.scope, copy.deepcopy(obj.scope), set()]
+        entry[2].add(id(obj))
+        memo = {key: entry[1]}
     return copy.deepcopy(obj, memo)
+
+
+class _CopyModule:
+    """Stands in for the ``copy`` module inside numba's inliner: its ``deepcopy`` is
+    :func:`_deepcopy`, every other name is the ``copy`` module's."""
+
+    deepcopy = staticmethod(_deepcopy)
+
+    def __getattr__(self, name):
+        return getattr(copy, name)
 
 
 def _inliner_has_known_shape(module) -> bool:
     worker = getattr(module, "InlineWorker", None)
     inline_ir = getattr(worker, "inline_ir", None)
-    if inline_ir is None or getattr(module, "copy", None) is not copy:
+    code = getattr(inline_ir, "__code__", None)
+    if code is None or getattr(module, "copy", None) is not copy:
         return False
-    nested = [c for c in inline_ir.__code__.co_consts if isinstance(c, types.CodeType)]
+    nested = [c for c in code.co_consts if isinstance(c, types.CodeType)]
     return any(c.co_name == "copy_ir" and "deepcopy" in c.co_names for c in nested)
 
 
 def apply() -> bool:
-    """Install the fix into numba's inliner; True when it is (or already was) installed."""
-    from numba.core import inline_closurecall as module
+    """Install the fix into numba's inliner; True when it is (or already was) installed,
+    False when numba's inliner has another shape (or anything about it is unexpected)."""
+    try:
+        from numba.core import inline_closurecall as module
 
-    if getattr(module.InlineWorker.inline_ir, "_gearcli_shared_scope", False):
-        return True
-    if not _inliner_has_known_shape(module):
+        if getattr(module.InlineWorker.inline_ir, "_gearcli_shared_scope", False):
+            return True
+        if not _inliner_has_known_shape(module):
+            return False
+        original = module.InlineWorker.inline_ir
+    except Exception:  # noqa: BLE001  (a numba we do not know: leave it alone)
         return False
-    original = module.InlineWorker.inline_ir
 
+    @functools.wraps(original)
     def inline_ir(self, *args, **kwargs):
         token = _SCOPES.set({})
         try:
@@ -76,10 +103,19 @@ def apply() -> bool:
             _SCOPES.reset(token)
 
     inline_ir._gearcli_shared_scope = True
-    inline_ir.__doc__ = original.__doc__
-    module.copy = types.SimpleNamespace(deepcopy=_deepcopy, copy=copy.copy)
+    module.copy = _CopyModule()
     module.InlineWorker.inline_ir = inline_ir
     return True
+
+
+def remove() -> None:
+    """Undo :func:`apply` (tests compare numba's code with and without the fix)."""
+    from numba.core import inline_closurecall as module
+
+    wrapped = module.InlineWorker.inline_ir
+    if getattr(wrapped, "_gearcli_shared_scope", False):
+        module.InlineWorker.inline_ir = wrapped.__wrapped__
+        module.copy = copy
 
 
 def apply_when_compiling() -> None:

@@ -387,15 +387,16 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
 
     # The model is a plane one: the load is taken as uniform across the face (K_Hbeta = 1,
     # docs/theory.md §10.2). A face many pinion diameters wide bends and twists the pinion along
-    # it, so the load concentrates at one end; design guidance keeps b/d1 within 0.2 ... 2.0
-    # (VDI 2736-2:2014, initial design).
+    # it, so the load concentrates at one end. The threshold is a generous one for a validity
+    # warning: the upper end of VDI 2736-2:2014's initial-design range 0.2 ... 2.0 (written for
+    # thermoplastic gears; steel-gear guidance is lower, about 1 ... 1.5).
     b = min(geo.pinion.face_width_mm, geo.gear.face_width_mm)
     b_d1 = b / geo.pinion.d_mm
     if b_d1 > FACE_WIDTH_RATIO_MAX:
         add("warning", "face_width", None, f"face width b = {b:.4g} mm is {b_d1:.2f} x the "
             f"pinion's reference diameter d1 = {geo.pinion.d_mm:.4g} mm; recommended: b/d1 <= "
-            f"{FACE_WIDTH_RATIO_MAX:g} (VDI 2736-2): the pinion bends and twists along so wide a "
-            "face, and the model takes the load as uniform across it")
+            f"{FACE_WIDTH_RATIO_MAX:g} (VDI 2736-2, generous for steel): the pinion bends and "
+            "twists along so wide a face, and the model takes the load as uniform across it")
 
     z_sum = geo.pinion.teeth + geo.gear.teeth
     alpha = geo.pressure_angle_rad
@@ -442,8 +443,9 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
     return tuple(out)
 
 
-#: Largest face width to pinion reference diameter ratio b/d1 without a warning (VDI 2736-2:2014,
-#: initial design: 0.2 <= b/d1 <= 2.0).
+#: Largest face width to pinion reference diameter ratio b/d1 without a warning: the upper end
+#: of VDI 2736-2:2014's initial-design range 0.2 <= b/d1 <= 2.0 (a thermoplastic-gear standard;
+#: steel gears are usually designed below ~1.5), so only a face far outside usual designs warns.
 FACE_WIDTH_RATIO_MAX = 2.0
 
 #: What clears an involute interference at a gear's root, the mate's tip beyond the

@@ -118,15 +118,12 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
 
 
 def _interference_key(loaded: LoadedCase, gear: str) -> tuple[str, ...]:
-    """The key an interference error names: of the gear's two levers (ISO 21771: more teeth or
-    a larger profile shift clear its root), the one a --set changed, else the profile shift
-    when the case file sets it, else the teeth."""
+    """The key an interference error names: the gear's profile shift when a --set changed it
+    (and not its teeth), else its teeth. Which value of a file the user edited is unknown, so
+    a file's error names the teeth, the lever with the larger effect; the message names both."""
     shift, teeth = (("gears", gear, key) for key in ("profile_shift", "teeth"))
-    src = loaded.source
-    for loc in (shift, teeth):
-        if loc in src.overridden:
-            return loc
-    return shift if _raw(loaded, shift) is not None else teeth
+    overridden = loaded.source.overridden
+    return shift if shift in overridden and teeth not in overridden else teeth
 
 
 def _located(loaded: LoadedCase, finding: Finding, more: int):

@@ -121,7 +121,8 @@ def stderr_notice(text: str) -> None:
 
 def announce_compilation(notice=stderr_notice) -> bool:
     """Tell ``notice`` (one line, default stderr: terminals and pipelines alike) when this run
-    will compile the solver; True when it will (or cannot tell)."""
+    will compile the solver; True when it will, False when the solver is cached or the cache
+    cannot be inspected (then nothing is announced)."""
     from gearcli.core.integrate import kernel_cached
 
     if kernel_cached() is not False:

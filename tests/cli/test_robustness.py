@@ -271,3 +271,22 @@ def test_interference_names_the_changed_lever(case, override, key, cure):
     line = error_line(r)
     assert line.startswith(f"error: --set {override}: {key};"), line
     assert cure in line
+
+
+def test_interference_from_a_file_names_the_teeth(tmp_path):
+    # which value of a file the user edited is unknown: the teeth are named even when the file
+    # sets a profile shift (it named the shift before), and so is a --set of the mate's teeth
+    text = (ROOT / "cases" / "iso_pair.yaml").read_text()
+    assert "    teeth: 21\n" in text
+    case = tmp_path / "ip9.yaml"
+    case.write_text(text.replace("    teeth: 21\n", "    teeth: 9\n", 1))
+    line = error_line(invoke("geometry", case))
+    assert f"{case}:" in line and "gears.pinion.teeth: got 9;" in line, line
+
+
+def test_bore_outside_the_root_circle_is_refused(tmp_path):
+    r = invoke("mesh", ROOT / "cases" / "iso_pair.yaml", "--set",
+               "gears.gear.bore_diameter=250 mm")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "gears.gear.bore_diameter: got 250 mm" in line and "expected < d_f" in line, line

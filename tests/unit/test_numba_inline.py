@@ -3,10 +3,14 @@ one IR share one copy of its scope, everything else is copied as numba copies it
 functions compute what the Python source computes."""
 
 import copy
+import re
+import types
+import warnings
 
 import numba
 import pytest
 from numba.core import compiler, inline_closurecall, ir
+from numba.extending import overload
 
 from gearcli import numba_inline
 
@@ -46,6 +50,7 @@ def test_blocks_of_one_copy_share_one_scope_copy():
     try:
         first = _copy_blocks(func_ir)
         second = _copy_blocks(func_ir)  # a second copy of the same IR in the same call
+        of_copy = _copy_blocks(types.SimpleNamespace(blocks=first))  # numba's second copy
     finally:
         numba_inline._SCOPES.reset(token)
     original_scope = next(iter(func_ir.blocks.values())).scope
@@ -53,12 +58,21 @@ def test_blocks_of_one_copy_share_one_scope_copy():
     assert len(copied) == 1 and id(original_scope) not in copied
     scope = next(iter(first.values())).scope
     assert sorted(scope.localvars._con) == sorted(original_scope.localvars._con)
+    assert scope.localvars is not original_scope.localvars  # a deep copy, not a shallow one
+    assert scope.localvars._con["x"] is not original_scope.localvars._con["x"]
+    # every copy of an IR has a scope of its own, shared by its blocks only
+    for other in (second, of_copy):
+        ids = {id(b.scope) for b in other.values()}
+        assert len(ids) == 1 and not ids & copied and id(original_scope) not in ids
+    # renaming in one copy's scope (what inline_ir does) leaves the original and the others
+    scope.redefine("renamed_by_the_inliner", loc=scope.loc)
+    for untouched in (original_scope, next(iter(second.values())).scope):
+        assert "renamed_by_the_inliner" not in untouched.localvars._con
     # the statements themselves are fresh copies, equal to the original ones
     for label, block in func_ir.blocks.items():
         assert first[label] is not block
         assert [str(s) for s in first[label].body] == [str(s) for s in block.body]
         assert all(a is not b for a, b in zip(first[label].body, block.body, strict=True))
-    assert {id(b.scope) for b in second.values()} == copied  # same call: the same scope copy
 
     # outside inline_ir the module's deepcopy is copy.deepcopy: a scope copy per block
     plain = _copy_blocks(func_ir)
@@ -110,3 +124,55 @@ def test_installed_by_the_first_compilation_not_by_the_import():
             "not numba_inline._inliner_has_known_shape(m))\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.split() == ["False", "True"], out.stderr[-500:]
+
+
+def _typed_target(x):
+    return x
+
+
+@overload(_typed_target, inline="always")  # numba's typed inlining (update_type_and_call_maps)
+def _typed_target_impl(x):
+    def impl(x):
+        y = 0.0
+        for i in range(3):
+            y += x * i
+        return y
+    return impl
+
+
+def _compiled_llvm() -> str:
+    """LLVM IR of a fresh chain of IR-inlined and typed-inlined functions, with the names,
+    block labels and inlined-variable versions (process-wide counters), string lengths and the
+    padding before comments,
+    which differ between two compilations, normalised."""
+    inner = numba.njit(inline="always")(_callee)
+
+    @numba.njit(inline="always")
+    def middle(x, n):
+        return inner(x, n) + _typed_target(x)
+
+    @numba.njit
+    def outer(x, n):
+        return middle(x, n) + middle(2.0 * x, n)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # numba's own pedantic SSA note on overload inlining
+        outer(1.0, 3)
+    text = next(iter(outer.inspect_llvm().values()))
+    for pattern, repl in ((r"_ZN[\w$.]+", "F"), (r"\b(outer|middle|inner)\b", "F"),
+                          (r"B\d+", "B"), (r"_v\d+", "_v"), (r"\[\d+ x i8\]", "[n x i8]"),
+                          (r"(source_filename|; ModuleID) = .*", ""), (r" +", " ")):
+        text = re.sub(pattern, repl, text)
+    return text
+
+
+def test_the_same_machine_code_with_and_without_the_fix():
+    _installed()
+    try:
+        numba_inline.remove()
+        assert not getattr(inline_closurecall.InlineWorker.inline_ir, "_gearcli_shared_scope",
+                           False)
+        without = _compiled_llvm()
+    finally:
+        assert numba_inline.apply()
+    assert _compiled_llvm() == without
