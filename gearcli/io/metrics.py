@@ -6,6 +6,7 @@ display-unit setting (gearcli/display_units.py: rpm or rad/s, µm or m, ...)."""
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 from gearcli.display_units import DEFAULT, convert
@@ -99,3 +100,12 @@ def display(key: str, value, system: str = DEFAULT):
 def rows(values: dict, keys, system: str = DEFAULT) -> list[tuple[str, object, str]]:
     """Display rows of the ``keys`` present in ``values``."""
     return [display(k, values[k], system) for k in keys if k in values]
+
+
+def json_number(value) -> float | None:
+    """A number for a JSON document: NaN and infinities (not defined, e.g. a single-pair zone
+    of a pair whose contact ratio is above 2) become null, which JSON has, unlike NaN."""
+    if value is None:
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None

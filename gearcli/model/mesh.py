@@ -133,7 +133,8 @@ def tooth_mesh_mode(static_force_N: float, x_mm, k_N_mm, g_alpha_mm: float, p_b_
     k_mean = float(np.sum((k_fine[1:] + k_fine[:-1]) * 0.5 * np.diff(fine))) / p_b_mm
     single = (fine >= g_alpha_mm - p_b_mm) & (fine <= p_b_mm)
     lead = fine <= g_alpha_mm - p_b_mm  # the double-pair zone seen from the leading pair
-    k_single = float(k_fine[single].mean())
+    # a contact ratio above 2 leaves no single-pair zone: not defined (NaN), not a warning
+    k_single = float(k_fine[single].mean()) if single.any() else math.nan
     k_double = float((k_fine[lead] + np.interp(fine[lead] + p_b_mm, x, k)).mean()) \
         if lead.any() else math.nan
     if pinion_free:

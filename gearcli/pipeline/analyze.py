@@ -79,6 +79,12 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
     n1 = metrics["pinion_speed_mean_deg_s"] / 360.0
     n2 = metrics["gear_speed_mean_deg_s"] / 360.0
     f_z_measured = geo.pinion.teeth * n1
+    if not f_z_measured * (win.t1_s - win.t0_s) >= 1.0:  # also 0 and NaN
+        raise ResultsError(
+            f"the pinion turns less than one tooth pitch in the analysis window {win.t0_s:g} "
+            f"... {win.t1_s:g} s (mean speed {metrics['pinion_speed_mean_deg_s']:.3g} deg/s): "
+            "there is no mesh frequency to analyse (a run at rest, such as a ring-down, is "
+            "read from its time series and summary.json; use gearcli simulate for it)")
     spectra = {name: amplitude_spectrum(run.column(col)[sel], rate) for name, col, _ in SIGNALS}
     expected = mesh_lines(f_z_measured, {"n1": n1, "n2": n2}, case.checks.harmonics)
     lines = {name: [(label, measure_line(f, a, fe)) for label, fe in expected]

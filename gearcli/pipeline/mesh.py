@@ -15,6 +15,7 @@ import numpy as np
 
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import CaseError
+from gearcli.io.metrics import json_number
 from gearcli.model.gap import slot_layout
 from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh, tooth_law
 from gearcli.model.stiffness import IsoStiffness
@@ -129,8 +130,8 @@ def mesh_document(res: MeshAnalysis) -> dict:
         },
         "stiffness": {
             "mesh_mean_N_mm": float(lm.mesh_stiffness_N_mm.mean()),
-            "single_pair_zone_N_mm": lm.zone_stiffness_N_mm(1),
-            "double_pair_zone_N_mm": lm.zone_stiffness_N_mm(2),
+            "single_pair_zone_N_mm": json_number(lm.zone_stiffness_N_mm(1)),
+            "double_pair_zone_N_mm": json_number(lm.zone_stiffness_N_mm(2)),
             "iso6336_single_pair_c_prime_b_N_mm": res.iso.pair_stiffness_N_mm,
             "iso6336_mean_c_gamma_alpha_b_N_mm": res.iso.mesh_stiffness_N_mm,
         },

@@ -72,9 +72,17 @@ def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
                               E2_MPa=m2.youngs_modulus, nu2=m2.poisson_ratio,
                               bore_diameter1_mm=gears.pinion.bore_diameter,
                               bore_diameter2_mm=gears.gear.bore_diameter)
-    except ValueError as exc:  # a bore that does not fit inside the root circle
+    except ValueError as exc:
         from gearcli.errors import CaseError
 
+        if "contact height outside the tooth" in str(exc):
+            # the gap tables reach 20 static deflections beyond first touch (kernel_input):
+            # a deflection that large no longer touches the tooth's flank
+            raise CaseError(
+                f"load.torque: the static deflection at this load is too large for the teeth "
+                f"(E = {m1.youngs_modulus:g} / {m2.youngs_modulus:g} MPa): the tooth law would "
+                f"need contact beyond the tooth ({exc}); expected a smaller load or a stiffer "
+                "material") from None
         raise CaseError(f"gears: tooth stiffness: {exc}") from None
 
 

@@ -16,6 +16,7 @@ from pathlib import Path
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.case.schema import Case
 from gearcli.errors import CaseError
+from gearcli.io.metrics import json_number
 from gearcli.model.mesh import MeshMode
 from gearcli.model.modal import (
     NO_PEAK_DAMPING_RATIO,
@@ -203,8 +204,8 @@ def modal_document(res: ModalAnalysis) -> dict:
             "static_deflection_mm": m.static_deflection_mm,
             "pair_stiffness_N_mm": m.pair_stiffness_N_mm,
             "mesh_stiffness_N_mm": m.mesh_stiffness_N_mm,
-            "single_pair_stiffness_N_mm": m.single_pair_stiffness_N_mm,
-            "double_pair_stiffness_N_mm": m.double_pair_stiffness_N_mm,
+            "single_pair_stiffness_N_mm": json_number(m.single_pair_stiffness_N_mm),
+            "double_pair_stiffness_N_mm": json_number(m.double_pair_stiffness_N_mm),
             "mesh_damping_Ns_mm": m.mesh_damping_Ns_mm,
             "motor_curve_damping_Nmms_rad": res.system.motor_curve_damping_Nmms_rad,
             "load_quadratic_damping_Nmms_rad": res.system.load_quadratic_damping_Nmms_rad,

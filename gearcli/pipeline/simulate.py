@@ -14,6 +14,7 @@ import numpy as np
 
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import SolverError
+from gearcli.io.metrics import json_number
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import (
     HARMONICS_RESOLVED,
@@ -354,8 +355,8 @@ def summarize(res: SimulationResult) -> dict:
         "contact_loss_fraction": float(np.mean(force <= 0.0)),
         "coast_force_max_N": float(np.nanmax(k.column("force_coast_N")[w])),
         "mesh_stiffness_N_mm": mm.mesh_stiffness_N_mm,
-        "single_pair_stiffness_N_mm": mm.single_pair_stiffness_N_mm,
-        "double_pair_stiffness_N_mm": mm.double_pair_stiffness_N_mm,
+        "single_pair_stiffness_N_mm": json_number(mm.single_pair_stiffness_N_mm),
+        "double_pair_stiffness_N_mm": json_number(mm.double_pair_stiffness_N_mm),
         "static_deflection_mm": mm.static_deflection_mm,
         "mesh_natural_frequency_Hz": mesh_f,
         "mesh_damping_ratio": mesh_zeta,

@@ -28,6 +28,7 @@ import numpy as np
 
 from gearcli.case.load import load_case_text
 from gearcli.errors import CaseError, ResultsError
+from gearcli.io.metrics import json_number
 from gearcli.io.results import StoredRun, read_run
 from gearcli.model.contact_point import contact_points
 from gearcli.model.geometry import PairGeometry
@@ -249,10 +250,7 @@ def _peak(res: StressResult, values: np.ndarray, sel: np.ndarray, teeth: int) ->
             "force_N": float(res.force_N[i, j]), "zone": _zone(res.geometry, x)}
 
 
-def _num(value):
-    """JSON-safe float: NaN/inf -> None."""
-    value = float(value)
-    return value if math.isfinite(value) else None
+_num = json_number
 
 
 def _ratio(num, den):

@@ -8,8 +8,7 @@ measured gear-mesh frequency f_z = z1 n1).
 
 from __future__ import annotations
 
-import numpy as np
-
+from gearcli.io.metrics import json_number
 from gearcli.model.geometry import mesh_frequencies
 from gearcli.pipeline.spectrum import amplitude_spectrum, measure_line
 
@@ -47,8 +46,4 @@ def point_metrics(res) -> dict[str, float | None]:
     return out
 
 
-def _num(value) -> float | None:
-    if value is None:
-        return None
-    v = float(value)
-    return v if np.isfinite(v) else None
+_num = json_number

@@ -367,6 +367,10 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise OutputError(f"{out}: exists and is not a folder")
+    if out.is_dir() and not (out / SUMMARY).exists() and any(out.iterdir()) and not force:
+        raise OutputError(f"{out}: folder holds other files and no {SUMMARY} of a sweep; "
+                          "expected a new or empty folder or an earlier sweep's (--force writes "
+                          "into it anyway)")
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -380,6 +384,11 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
         path.unlink()
     earlier = read_summary(path, columns)
     by_hash = {p.case_hash: p for p in study.points}
+    foreign = sum(1 for h in earlier if h not in by_hash)
+    if foreign:  # resuming keeps this study's rows only: the others would be lost
+        raise OutputError(f"{path}: holds {foreign} result(s) of cases this study does not have "
+                          "(another study, or changed settings); use --force to start over or "
+                          "another output folder")
     done: dict[int, dict] = {}
     for h, rec in earlier.items():
         if h in by_hash:

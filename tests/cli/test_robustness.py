@@ -3,6 +3,7 @@ silent nonsense. One test per reported class; the property-based fuzz is in test
 
 from __future__ import annotations
 
+import json
 import os
 
 import pytest
@@ -290,3 +291,46 @@ def test_bore_outside_the_root_circle_is_refused(tmp_path):
     assert r.exit_code == 1
     line = error_line(r)
     assert "gears.gear.bore_diameter: got 250 mm" in line and "expected < d_f" in line, line
+
+
+@pytest.mark.parametrize("speed", ["0", "-0 rpm"])
+def test_a_run_at_rest_simulates_but_has_no_mesh_frequency_to_analyse(tmp_path, speed):
+    # a pinion held at rest (a ring-down) is a valid simulation; analyze divided by its zero
+    # mesh frequency (exit 3), and so did run
+    case, sets = ROOT / "cases" / "iso_pair.yaml", ("--set", f"drive.speed={speed}", "--set",
+                                                   "run.end_time=0.2")
+    r = invoke("simulate", case, "-o", tmp_path / "o", "--quiet", *sets)
+    assert r.exit_code == 0, r.output
+    for args in (("analyze", tmp_path / "o"), ("run", case, "-o", tmp_path / "r", *sets)):
+        r = invoke(*args)
+        assert r.exit_code == 1, (args, r.output)
+        line = error_line(r)
+        assert "the pinion turns less than one tooth pitch" in line, line
+    assert not (tmp_path / "r").exists()
+
+
+def test_a_load_too_large_for_the_teeth_names_the_load(tmp_path):
+    r = invoke("simulate", ROOT / "cases" / "iso_pair.yaml", "-o", tmp_path / "o", "--set",
+               "load.torque=3e4 N*m")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert line.startswith("error: load.torque: the static deflection at this load is too "
+                           "large for the teeth"), line
+
+
+def test_a_pair_without_single_pair_zone_writes_valid_json(tmp_path):
+    # contact ratio 2.6: no single-pair zone, whose stiffness is then null, never NaN
+    sets = ["gears.pressure_angle=16", "gears.rack.addendum=1.35", "gears.rack.dedendum=1.6",
+            "gears.rack.root_radius=0.2", "gears.pinion.teeth=40", "gears.gear.teeth=80",
+            "gears.pinion.profile_shift=0", "gears.gear.profile_shift=0"]
+    args = [a for s in sets for a in ("--set", s)]
+    r = invoke("mesh", ROOT / "cases" / "iso_pair.yaml", "--json", *args)
+    assert r.exit_code == 0, r.output
+
+    def no_nan(token):
+        raise AssertionError(f"{token} in JSON")
+
+    doc = json.loads(r.stdout, parse_constant=no_nan)
+    assert doc["stiffness"]["single_pair_zone_N_mm"] is None
+    assert doc["stiffness"]["double_pair_zone_N_mm"] > 0
+    assert "RuntimeWarning" not in r.stderr

@@ -186,3 +186,31 @@ def test_watching_the_own_process_does_nothing():
 
     watch_parent(os.getpid())
     assert not any(t.name == "gearcli-parent-watch" for t in threading.enumerate())
+
+
+def test_another_studys_results_are_not_silently_replaced(tmp_path):
+    """Same columns, other cases (here another end time): resuming would drop the first
+    study's rows, so the second study is refused unless --force."""
+    out = tmp_path / "out"
+    first = write_study(tmp_path, "parameters:\n  gears.module: [10]\n", "a.yaml")
+    r = runner.invoke(app, ["sweep", str(first), "-o", str(out), "-j", "1", "-q"])
+    assert r.exit_code == 0, r.stderr
+    before = (out / "summary.csv").read_text()
+    second = write_study(tmp_path, "parameters:\n  gears.module: [10]\n", "b.yaml")
+    second.write_text(second.read_text().replace("run.end_time: 0.4 s", "run.end_time: 0.3 s"))
+    r = runner.invoke(app, ["sweep", str(second), "-o", str(out), "-j", "1", "-q"])
+    assert r.exit_code == 1 and "holds 1 result(s) of cases this study does not have" in r.stderr
+    assert (out / "summary.csv").read_text() == before
+    r = runner.invoke(app, ["sweep", str(second), "-o", str(out), "-j", "1", "-q", "--force"])
+    assert r.exit_code == 0, r.stderr
+    assert (out / "summary.csv").read_text() != before
+
+
+def test_a_folder_of_other_files_is_not_a_sweep_folder(tmp_path):
+    path = write_study(tmp_path, "parameters:\n  gears.module: [10]\n")
+    out = tmp_path / "notes"
+    out.mkdir()
+    (out / "notes.txt").write_text("mine")
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(out), "-j", "1", "-q"])
+    assert r.exit_code == 1 and "holds other files" in r.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["notes.txt"]
