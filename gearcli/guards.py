@@ -78,7 +78,9 @@ def read_bounded(path: str | os.PathLike, limit: int = MAX_INPUT_BYTES,
                 raise InputTooLarge(too_large(st.st_size, limit))
             os.set_blocking(fd, True)
             return _read_all(fd, limit)
-        return _read_stream(fd, limit, timeout_s)
+        # a character device (/dev/null, a terminal) at end of input reads empty: that is EOF;
+        # a FIFO reads empty also before its writer has opened it
+        return _read_stream(fd, limit, timeout_s, eof_on_empty=stat.S_ISCHR(st.st_mode))
     finally:
         os.close(fd)
 
@@ -93,7 +95,7 @@ def _read_all(fd: int, limit: int) -> bytes:
     return b"".join(chunks)
 
 
-def _read_stream(fd: int, limit: int, timeout_s: float) -> bytes:
+def _read_stream(fd: int, limit: int, timeout_s: float, eof_on_empty: bool = False) -> bytes:
     chunks, size = [], 0
     deadline = time.monotonic() + timeout_s
     poller = select.poll()
@@ -110,7 +112,7 @@ def _read_stream(fd: int, limit: int, timeout_s: float) -> bytes:
         except BlockingIOError:
             continue
         if not chunk:
-            if events[0][1] & select.POLLHUP or size:
+            if events[0][1] & select.POLLHUP or size or eof_on_empty:
                 return b"".join(chunks)
             continue
         size += len(chunk)

@@ -32,6 +32,13 @@ LIMITS: dict[str, float] = {
 }
 #: Any other quantity (stiffness, damping, inertia) and plain coefficients.
 DEFAULT_LIMIT = 1e15
+#: Smallest magnitude of the material constants, by key name, in internal units: a body
+#: lighter than 0.1 kg/m^3 (air is 1.2) or softer than 1 MPa (soft rubber) is no gear, and such
+#: values gave runs that ended "ok" at 1e28 rpm with a 5e15 Hz mesh mode.
+LOWER_LIMITS: dict[str, tuple[float, str]] = {
+    "density": (1e-13, "density"),  # t/mm^3 = 0.1 kg/m^3
+    "youngs_modulus": (1.0, "Young's modulus"),  # MPa
+}
 #: Largest integer per key name; any other integer: INT_LIMIT.
 COUNT_LIMITS = {"teeth": 10_000}
 INT_LIMIT = 2**63 - 1
@@ -63,6 +70,11 @@ def _check(value, loc, name, dim, parent) -> Iterator[tuple[tuple, object, str]]
     elif isinstance(value, float):
         if not abs(value) <= _limit(dim):
             yield loc, value, _message(dim)
+        elif name in LOWER_LIMITS and abs(value) < LOWER_LIMITS[name][0]:
+            lower, label = LOWER_LIMITS[name]
+            shown = _shown(lower, dim) if dim else f"{lower:g}"
+            yield loc, value, (f"expected a {label} of at least {shown} (no gear material is "
+                               "lighter or softer)")
     elif isinstance(value, TimeFunction):
         if not _function_peak(value) <= _limit(value.dim):
             yield loc, None, (f"reaches {_shown(_function_peak(value), value.dim)}; "

@@ -334,3 +334,24 @@ def test_a_pair_without_single_pair_zone_writes_valid_json(tmp_path):
     assert doc["stiffness"]["single_pair_zone_N_mm"] is None
     assert doc["stiffness"]["double_pair_zone_N_mm"] > 0
     assert "RuntimeWarning" not in r.stderr
+
+
+@pytest.mark.parametrize("override, fragment", [
+    ("material.density=1e-30", "expected a density of at least 1e-10 kg/mm^3"),
+    ("gears.pinion.material.density=1e-30", "expected a density of at least"),
+    ("material.youngs_modulus=1 Pa", "expected a Young's modulus of at least 1 MPa"),
+])
+def test_no_gear_material_is_that_light_or_soft(override, fragment):
+    # such values ran to status "ok" at 1e28 rpm with a 5e15 Hz mesh mode
+    r = invoke("geometry", ROOT / "cases" / "iso_pair.yaml", "--set", override)
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert f"--set {override}:" in line and fragment in line, line
+
+
+def test_dev_null_as_the_case_is_empty_at_once():
+    # a character device reads empty at its end: that is EOF, not "no data yet" (it polled
+    # for 30 s); the wall time is not asserted, the message is the empty file's
+    r = invoke("geometry", "/dev/null")
+    assert r.exit_code == 1
+    assert "file is empty" in error_line(r)
