@@ -116,6 +116,13 @@ def cyclic_gc_paused():
 COMPILE_TIME_S = 30
 
 
+def last_ramp_s(case) -> float:
+    """When the drive and load time functions reach their final values [s]."""
+    return max(case.drive.speed.pp.last_breakpoint if case.drive.speed else 0.0,
+               case.drive.torque.pp.last_breakpoint if case.drive.torque else 0.0,
+               case.load.torque.pp.last_breakpoint, 0.0)
+
+
 def stderr_notice(text: str) -> None:
     print(f"gearcli: {text}", file=sys.stderr, flush=True)
 
@@ -155,9 +162,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     check_run_size(loaded, geo)  # before anything is sized by the run
     compiling = announce_compilation(notice)  # a refused run compiles nothing: no notice
     ki = build_kernel_input(case, geo)
-    last_ramp = max(case.drive.speed.pp.last_breakpoint if case.drive.speed else 0.0,
-                    case.drive.torque.pp.last_breakpoint if case.drive.torque else 0.0,
-                    case.load.torque.pp.last_breakpoint, 0.0)
+    last_ramp = last_ramp_s(case)
     # the natural frequencies of `gearcli modal` (one model): settling time, summary, margins
     from gearcli.pipeline.modal import case_modes
 
@@ -439,9 +444,17 @@ def collect_warnings(res: SimulationResult) -> list[str]:
             out.append(f"output aliasing: {rate:g} Hz sampling resolves only {n_ok} of the "
                        f"{harmonics} analysed mesh harmonics (default rate resolves "
                        f"{HARMONICS_RESOLVED})")
-    if res.window.reason.startswith("the second half"):
+    ramp_end, end_time = last_ramp_s(res.loaded.case), res.loaded.case.run.end_time
+    if ramp_end >= end_time:
+        out.append(f"no steady state: the drive/load functions reach their final values at "
+                   f"{ramp_end:g} s, after the run ends ({end_time:g} s); the nominal speed, "
+                   "mesh frequency and static force are never reached")
+    elif res.window.reason.startswith("the second half"):
         out.append("no steady state: the run ends before the ramps have settled")
-    elif res.window.reason.startswith("the whole run"):
+    elif ramp_end > res.window.t0_s:
+        out.append(f"not settled: the window starts at {res.window.t0_s:g} s, before the "
+                   f"ramps end ({ramp_end:g} s); its values still carry the ramp")
+    if res.window.reason.startswith("the whole run"):
         out.append(f"short run: fewer than {MIN_MESH_CYCLES} mesh cycles; the spectra and "
                    "steady-state values are not meaningful")
     return out

@@ -355,3 +355,15 @@ def test_dev_null_as_the_case_is_empty_at_once():
     r = invoke("geometry", "/dev/null")
     assert r.exit_code == 1
     assert "file is empty" in error_line(r)
+
+
+def test_a_ramp_that_outlasts_the_run_is_warned(tmp_path):
+    # the speed reaches 1500 rpm at 100 s, a 0.2 s run sees 0.015 rpm: no steady state
+    r = invoke("simulate", ROOT / "cases" / "iso_pair.yaml", "-o", tmp_path / "o", "--quiet",
+               "--set", "run.end_time=0.2", "--set",
+               "drive.speed={function: 'STEP(time, 0, 0, 100, 1500)', unit: rpm}")
+    assert r.exit_code == 0, r.output
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert any(w.startswith("no steady state: the drive/load functions reach their final "
+                            "values at 100 s, after the run ends (0.2 s)")
+               for w in summary["warnings"]), summary["warnings"]
