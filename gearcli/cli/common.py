@@ -138,7 +138,7 @@ def option_quantities(texts, dim_name: str, option: str) -> tuple[float, ...] | 
     unit. None stays None; a bad value raises CaseError naming the option (exit 1)."""
     if texts is None:
         return None
-    from gearcli import units
+    from gearcli import guards, units
     from gearcli.errors import CaseError
 
     dim = getattr(units, dim_name)
@@ -149,8 +149,10 @@ def option_quantities(texts, dim_name: str, option: str) -> tuple[float, ...] | 
         except ValueError:
             value = text
         try:
+            if isinstance(value, str):  # the case file's rules: a number first, plain powers
+                guards.check_unit_text(value, need_number=True)
             out.append(units.parse_quantity(value, dim))
-        except units.UnitError as exc:
+        except (units.UnitError, ValueError) as exc:
             raise CaseError(f"{option} {text!r}: {exc}") from None
     return tuple(out)
 

@@ -117,6 +117,9 @@ def check_summary(path: Path, summary: dict) -> None:
     for key, kind in REQUIRED_SCALARS.items():
         if key not in scalars or not _is(scalars[key], kind):
             raise bad(f"scalars.{key}", kind)
+    t0, t1 = scalars["window_s"]
+    if not 0.0 <= t0 < t1:
+        raise bad("scalars.window_s", "a window T0 < T1 (seconds from the start)")
     balance = scalars.get("energy_balance")
     if not isinstance(balance, dict) or not _is(balance.get("relative_residual"), _NUMBER):
         raise bad("scalars.energy_balance.relative_residual", _NUMBER)

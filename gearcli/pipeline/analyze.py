@@ -106,7 +106,14 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
 def _window(t, s, given, f_z, geo) -> Window:
     t_end = float(t[-1])
     if given is None:
-        t0, t1 = s["window_s"]
+        try:
+            t0, t1 = map(float, s["window_s"])
+        except (TypeError, ValueError):
+            t0 = t1 = math.nan
+        if not (t[0] - 1e-9 <= t0 < t1 <= t_end + 1e-9):
+            raise ResultsError(f"summary.json: window_s = {s.get('window_s')!r} is not a "
+                               f"window of the run ({t[0]:g} ... {t_end:g} s; edited?); "
+                               "expected T0 < T1 inside the run, or give --window T0 T1")
         return Window(t0, t1, s["window_reason"])
     t0, t1 = map(float, given)
     if not (t[0] <= t0 < t1 <= t_end + 1e-9):

@@ -367,3 +367,27 @@ def test_a_ramp_that_outlasts_the_run_is_warned(tmp_path):
     assert any(w.startswith("no steady state: the drive/load functions reach their final "
                             "values at 100 s, after the run ends (0.2 s)")
                for w in summary["warnings"]), summary["warnings"]
+
+
+@pytest.mark.parametrize("option, values", [("--window", ["200", "ms"]),
+                                            ("--speed-range", ["0", "'rpm'"])])
+def test_a_unit_alone_is_not_an_option_value(tmp_path, option, values):
+    # "ms" was read as 1 ms and "'rpm'" leaked pint's AssertionError
+    args = (("analyze", tmp_path) if option == "--window"
+            else ("modal", ROOT / "cases" / "iso_pair.yaml"))
+    r = invoke(*args, option, *values)
+    assert r.exit_code == 1
+    assert "no number in front: a unit alone is not a value" in error_line(r)
+
+
+def test_an_edited_window_in_summary_json_is_refused(tmp_path):
+    out = tmp_path / "o"
+    r = invoke("simulate", SEED, "-o", out, "--quiet", "--set", "run.end_time=0.3")
+    assert r.exit_code == 0, r.output
+    doc = json.loads((out / "summary.json").read_text())
+    doc["scalars"]["window_s"] = [5, 1]  # it ended in exit 3 (zero-size array)
+    (out / "summary.json").write_text(json.dumps(doc))
+    for command in ("analyze", "stress", "report"):
+        r = invoke(command, out)
+        assert r.exit_code == 1, (command, r.output)
+        assert "scalars.window_s missing or not a window T0 < T1" in error_line(r)
