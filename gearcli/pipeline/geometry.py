@@ -99,6 +99,7 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
     )
     if errors:
         raise _located(loaded, errors[0], len(errors) - 1)
+    check_relief_extents(loaded, geo)
     pinion_in, gear_in = mass_inputs(case)
     mass = tuple(
         gear_mass_properties(
@@ -115,6 +116,36 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
     )
     warnings = tuple(f for f in geo.findings if f.severity == "warning")
     return GeometryResult(loaded.name, geo, mass, nominal_pinion_speed(case), warnings)
+
+
+def check_relief_extents(loaded: LoadedCase, geo: PairGeometry) -> None:
+    """A profile relief must start on the active flank: a length shorter than the path of
+    contact g_alpha, a start diameter between the active profile start d_Nf and the tip d_a
+    (model.gap measures it from the end of the path it grows towards)."""
+    for kind in ("tip_relief", "root_relief"):
+        for role in ("pinion", "gear"):
+            relief = getattr(getattr(loaded.case.modifications, kind), role)
+            if relief is None:
+                continue
+            gg = getattr(geo, role)
+            if relief.length is not None and relief.length >= geo.g_alpha_mm:
+                loc = ("modifications", kind, role, "length")
+                raise loaded.error(loc, f"a relief {relief.length:g} mm long does not start on "
+                                   f"the path of contact, which is g_alpha = "
+                                   f"{geo.g_alpha_mm:.4g} mm long; expected < "
+                                   f"{geo.g_alpha_mm:.4g} mm", *_raw_pair(loaded, loc))
+            d = relief.start_diameter
+            if d is not None and not gg.d_Nf_mm < d < gg.d_a_mm:
+                loc = ("modifications", kind, role, "start_diameter")
+                raise loaded.error(loc, f"{d:g} mm is off the {role}'s active flank; expected "
+                                   f"between its active profile start d_Nf = {gg.d_Nf_mm:.4g} "
+                                   f"mm and its tip d_a = {gg.d_a_mm:.4g} mm",
+                                   *_raw_pair(loaded, loc))
+
+
+def _raw_pair(loaded: LoadedCase, loc) -> tuple[object, bool]:
+    value = _raw(loaded, loc)
+    return value, value is not None
 
 
 def _interference_key(loaded: LoadedCase, gear: str) -> tuple[str, ...]:

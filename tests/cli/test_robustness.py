@@ -391,3 +391,18 @@ def test_an_edited_window_in_summary_json_is_refused(tmp_path):
         r = invoke(command, out)
         assert r.exit_code == 1, (command, r.output)
         assert "scalars.window_s missing or not a window T0 < T1" in error_line(r)
+
+
+@pytest.mark.parametrize("relief, key, fragment", [
+    ("{amount: 15 um, start_diameter: 1 mm}", "start_diameter",
+     "1 mm is off the pinion's active flank; expected between its active profile start d_Nf"),
+    ("{amount: 15 um, length: 1000 mm}", "length",
+     "a relief 1000 mm long does not start on the path of contact, which is g_alpha = 23.17"),
+])
+def test_a_relief_off_the_active_flank_is_refused(relief, key, fragment):
+    # both passed silently (iso_pair's path of contact is 23.17 mm long)
+    r = invoke("geometry", ROOT / "cases" / "iso_pair.yaml", "--set",
+               f"modifications.tip_relief.pinion={relief}")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert f"modifications.tip_relief.pinion.{key}:" in line and fragment in line, line
