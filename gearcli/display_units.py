@@ -42,6 +42,9 @@ _TABLE: dict[str, tuple[tuple[str, float], tuple[str, float]]] = {
     "t/mm^3": (("kg/m³", 1e12), ("kg/m³", 1e12)),
     "mJ": (("J", 1e-3), ("J", 1e-3)),
     "fraction": (("%", 100.0), ("%", 100.0)),
+    # ISO 6336-1's own units of c', c_gamma_alpha (per face width) and m_red (per face width)
+    "N/(mm·µm)": (("N/(mm·µm)", 1.0), ("N/m²", 1e9)),
+    "kg/mm": (("kg/mm", 1.0), ("kg/m", 1e3)),
 }
 #: Deflections are stored in mm but read in µm by engineers (a transmission error of 0.0084 mm
 #: is "8.4 µm"): ``fine=True`` selects this row instead of "mm".

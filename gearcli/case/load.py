@@ -173,7 +173,9 @@ def _limit_message(err: dict, loc: Loc) -> str | None:
     dim = None
     for meta in getattr(field, "metadata", ()):
         dim = getattr(getattr(meta, "func", None), "dim", None) or dim
-    if dim is None or limit is None:
+    if limit is None:
         return None
+    if dim is None:  # a plain number (a coefficient): the bound as written, not pydantic's
+        return f"expected {op} {float(limit):g}"  # fixed-point 0.000000000000023
     return f"expected {op} {float(limit) / dim.factor:g} {dim.default}"
 

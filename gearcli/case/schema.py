@@ -401,7 +401,10 @@ class Run(Section):
         "checks.harmonics harmonics of the mesh frequency",
     )
     output_rate: Frequency | None = qfield(units.FREQUENCY, None, "output sample rate", gt=0)
-    rtol: Coefficient = Field(1e-6, gt=0, lt=1e-2, description="relative tolerance (1e-6)")
+    # below 100 machine epsilons a relative tolerance cannot be met in double precision (the
+    # floor scipy's solve_ivp raises rtol to)
+    rtol: Coefficient = Field(1e-6, ge=2.3e-14, lt=1e-2,
+                              description="relative tolerance (1e-6), 2.3e-14 <= rtol < 1e-2")
     atol: Length | None = qfield(
         units.LENGTH, None, "absolute tolerance on deflections; default: 1e-5 of the static "
         "deflection, at most 1e-6 mm (docs/theory.md §6.7)", gt=0)

@@ -51,12 +51,16 @@ def schema(
 
 @app.command()
 @handle_errors
-def new(path: Path = typer.Argument(..., help="Where to write the starter case (.yaml).")) -> None:
+def new(path: Path = typer.Argument(..., help="Where to write the starter case (.yaml); "
+                                     "'-' prints it.")) -> None:
     """Write a commented starter case (the seed study); never overwrites a file.
 
-    Example: gearcli new mycase.yaml"""
+    Example: gearcli new mycase.yaml, or gearcli new - > mycase.yaml"""
     from gearcli.case.starter import starter_text
     from gearcli.io.files import write_new_text
 
+    if str(path) == "-":  # the shell convention: standard output
+        typer.echo(starter_text(), nl=False)
+        return
     write_new_text(path, starter_text())
     typer.echo(f"wrote {path} (the seed case; edit it, then: gearcli geometry {path})")

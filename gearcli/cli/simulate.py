@@ -24,7 +24,9 @@ def simulate(
         [], "--set", help="Override a case value: key.path=value (repeatable)."
     ),
     force: bool = typer.Option(False, "--force", help="Replace an earlier results folder."),
-    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress, no summary table."),
+    quiet: bool = typer.Option(False, "--quiet", "-q",
+                               help="No progress, no summary table, no warnings (summary.json "
+                               "keeps them)."),
     as_json: bool = typer.Option(False, "--json", help="Print summary.json to stdout."),
     fmt: str = typer.Option(
         "csv", "--format",

@@ -108,3 +108,11 @@ def test_simulate_of_an_impact_case_imports_no_unused_heavy_modules(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert "HEAVY []" in out.stdout, (out.stdout[-300:], out.stderr[-300:])
     assert (tmp_path / "o" / "summary.json").exists()
+
+
+def test_new_dash_prints_the_starter_case(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(app, ["new", "-"])
+    assert result.exit_code == 0, result.output
+    assert result.stdout == SEED.read_text()
+    assert not (tmp_path / "-").exists()  # it wrote a file named '-'

@@ -406,3 +406,16 @@ def test_a_relief_off_the_active_flank_is_refused(relief, key, fragment):
     assert r.exit_code == 1
     line = error_line(r)
     assert f"modifications.tip_relief.pinion.{key}:" in line and fragment in line, line
+
+
+def test_rtol_below_double_precision_is_refused_with_a_readable_bound():
+    r = invoke("geometry", SEED, "--set", "run.rtol=1e-20")
+    assert r.exit_code == 1
+    assert error_line(r).endswith("run.rtol: got '1e-20'; expected >= 2.3e-14")
+
+
+def test_iso_method_b_block_follows_the_si_units(tmp_path):
+    r = invoke("--units", "si", "mesh", ROOT / "cases" / "iso_pair.yaml")
+    assert r.exit_code == 0, r.output
+    assert "N/(mm·µm)" not in r.stdout and "kg/mm" not in r.stdout
+    assert "N/m²" in r.stdout and "kg/m " in r.stdout
