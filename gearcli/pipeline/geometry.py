@@ -100,6 +100,8 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
     if errors:
         raise _located(loaded, errors[0], len(errors) - 1)
     check_relief_extents(loaded, geo)
+    check_bores(loaded, geo)
+    check_runout(loaded, geo)
     pinion_in, gear_in = mass_inputs(case)
     mass = tuple(
         gear_mass_properties(
@@ -141,6 +143,36 @@ def check_relief_extents(loaded: LoadedCase, geo: PairGeometry) -> None:
                                    f"between its active profile start d_Nf = {gg.d_Nf_mm:.4g} "
                                    f"mm and its tip d_a = {gg.d_a_mm:.4g} mm",
                                    *_raw_pair(loaded, loc))
+
+
+def check_bores(loaded: LoadedCase, geo: PairGeometry) -> None:
+    """A bore lies inside the root circle: below the teeth there is a rim (or a hub)."""
+    for role in ("pinion", "gear"):
+        bore, d_f = getattr(loaded.case.gears, role).bore_diameter, getattr(geo, role).d_f_mm
+        if bore is not None and bore >= d_f:
+            loc = ("gears", role, "bore_diameter")
+            raise loaded.error(loc, f"the bore must lie inside the root circle (a rim below "
+                               f"the teeth): expected < d_f = {d_f:.4g} mm",
+                               *_raw_pair(loaded, loc))
+
+
+#: Largest runout eccentricity, in modules: the centre distance varies by +-e, and a quarter
+#: module takes the teeth out of the small-displacement contact the gap tables describe (ISO
+#: 1328-2 runout tolerances F_r stay below ~0.02 m even in grade 11).
+RUNOUT_MAX_MODULES = 0.25
+
+
+def check_runout(loaded: LoadedCase, geo: PairGeometry) -> None:
+    runout = loaded.case.errors.runout
+    limit = RUNOUT_MAX_MODULES * geo.module_mm
+    for role in ("pinion", "gear"):
+        r = getattr(runout, role)
+        if r is not None and r.eccentricity >= limit:
+            loc = ("errors", "runout", role, "eccentricity")
+            raise loaded.error(loc, f"a runout eccentricity of {RUNOUT_MAX_MODULES:g} module "
+                               f"and more takes the teeth out of mesh contact (ISO 1328-2 "
+                               f"runout tolerances are below ~0.02 m); expected < {limit:.4g} mm",
+                               *_raw_pair(loaded, loc))
 
 
 def _raw_pair(loaded: LoadedCase, loc) -> tuple[object, bool]:

@@ -290,7 +290,7 @@ def test_bore_outside_the_root_circle_is_refused(tmp_path):
                "gears.gear.bore_diameter=250 mm")
     assert r.exit_code == 1
     line = error_line(r)
-    assert "gears.gear.bore_diameter: got 250 mm" in line and "expected < d_f" in line, line
+    assert "gears.gear.bore_diameter: got '250 mm'" in line and "expected < d_f" in line, line
 
 
 @pytest.mark.parametrize("speed", ["0", "-0 rpm"])
@@ -419,3 +419,17 @@ def test_iso_method_b_block_follows_the_si_units(tmp_path):
     assert r.exit_code == 0, r.output
     assert "N/(mm·µm)" not in r.stdout and "kg/mm" not in r.stdout
     assert "N/m²" in r.stdout and "kg/m " in r.stdout
+
+
+@pytest.mark.parametrize("override, fragment", [
+    ("gears.pinion.bore_diameter=200", "the bore must lie inside the root circle"),
+    ("errors.runout.pinion.eccentricity=10", "expected < 1.25 mm"),  # module 5: a quarter
+])
+def test_geometry_refuses_bores_and_runout_the_pair_cannot_have(override, fragment):
+    # geometry passed a 200 mm bore in a 96 mm root circle; a 10 mm runout ended in a generic
+    # solver failure
+    r = invoke("geometry", ROOT / "cases" / "iso_pair.yaml", "--set", override)
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert f"{override.partition('=')[0]}: got 10" in line or "bore" in line
+    assert fragment in line, line
