@@ -433,6 +433,10 @@ def collect_warnings(res: SimulationResult) -> list[str]:
                      "for a real backlash")
         out.append(text)
     f_z, rate = ki.gear_mesh_frequency_Hz, ki.output_rate_Hz
+    asked = res.loaded.case.run.output_rate
+    if asked is not None and rate > asked * (1.0 + 1e-9):
+        out.append(f"output rate {asked:g} Hz gives fewer than 10 samples in the run: "
+                   f"written at {rate:g} Hz instead")
     if f_z:
         harmonics = res.loaded.case.checks.harmonics
         nyquist = rate / 2.0

@@ -433,3 +433,12 @@ def test_geometry_refuses_bores_and_runout_the_pair_cannot_have(override, fragme
     line = error_line(r)
     assert f"{override.partition('=')[0]}: got 10" in line or "bore" in line
     assert fragment in line, line
+
+
+def test_a_raised_output_rate_is_said(tmp_path):
+    # 1 Hz over 0.2 s is under the 10-sample floor: 50 Hz was written without a word
+    r = invoke("simulate", ROOT / "cases" / "iso_pair.yaml", "-o", tmp_path / "o", "--set",
+               "run.end_time=0.2", "--set", "run.output_rate=1")
+    assert r.exit_code == 0, r.output
+    assert ("warning: output rate 1 Hz gives fewer than 10 samples in the run: written at "
+            "50 Hz instead") in r.stderr
