@@ -16,6 +16,7 @@ units out (mm, N, s, t, rad; every name and column carries its unit, docs/theory
 from __future__ import annotations
 
 import json
+import os
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
@@ -53,6 +54,8 @@ def _overrides(set_) -> list[str]:
     """``{"key.path": value}`` as the command line's ``--set key.path=value`` texts (values
     as JSON, which the override parser reads as YAML: numbers, strings with units, lists);
     a sequence of such texts (the command line's) as it is."""
+    if isinstance(set_, str):  # one "key.path=value" text, not a sequence of characters
+        return [set_]
     if set_ is not None and not isinstance(set_, Mapping):
         return [str(item) for item in set_]
     out = []
@@ -108,6 +111,11 @@ def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the
         if overrides:
             src.data = apply_overrides(src.data, overrides, Case)
         return validate_source(src, str(source.get("name") or "case"))
+    if not isinstance(source, str | os.PathLike):
+        from gearcli.errors import CaseError
+
+        raise CaseError(f"load_case({source!r:.60}): expected the path of a case file (str or "
+                        "Path), the case as a mapping, or a LoadedCase")
     return load_file(source, overrides)
 
 

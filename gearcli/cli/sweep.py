@@ -58,7 +58,7 @@ def sweep(
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
     failed points are recorded, never abort the study.
 
-    Exit codes: 0 ok, 4 a point failed the study's checks, 1 bad input.
+    Exit codes: 0 ok, 4 a point failed the study's checks or could not be run, 1 bad input.
 
     Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2
     """
@@ -86,6 +86,7 @@ def sweep(
             typer.echo(f"warning: a direction failed: {e}", err=True)
         for note in df.attrs["notes"]:
             typer.echo(f"note: {note}", err=True)
+        _raise_if_points_failed(df, out)
         return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         df = api.sweep(spec, out, jobs or None, scheduler, force, keep_timeseries, fmt,
@@ -99,11 +100,23 @@ def sweep(
         typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
                    f"{a['failed']} failed, {invalid} outside the model's validity{checked} "
                    f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
-    if checks_failed:
-        from gearcli.errors import CheckFailed
+    from gearcli.errors import CheckFailed
 
+    if checks_failed:
         raise CheckFailed(f"{out}: {checks_failed} of {len(df)} points failed the study's "
                           "checks (column 'checks' of summary.csv)")
+    _raise_if_points_failed(df, out)
+
+
+def _raise_if_points_failed(df, out) -> None:
+    """Exit 4 when points could not be run (their rows say why): a script must not take a
+    study with holes for a complete one."""
+    failed = int((df["status"] == "failed").sum())
+    if failed:
+        from gearcli.errors import CheckFailed
+
+        raise CheckFailed(f"{out}: {failed} of {len(df)} points failed (status 'failed', the "
+                          "reason in column 'error' of summary.csv)")
 
 
 def _sweep_columns():

@@ -483,6 +483,9 @@ def _speed_override(src: Source, data: dict, overrides: list, value) -> str:
         n1_deg_s = f_z / float(teeth) * 360.0
     except (units.UnitError, TypeError, ValueError) as exc:
         raise src.error(("parameters", MESH_FREQUENCY), f"got {value!r}: {exc}") from None
+    if not f_z > 0.0:  # 0 Hz divided the speed curve's dwell (exit 3); < 0 is a reverse drive
+        raise src.error(("parameters", MESH_FREQUENCY), f"got {value!r}; expected a mesh "
+                        "frequency > 0 Hz (the pinion turns forward)")
     speed = data.get("drive", {}).get("speed")
     m = _RAMP.match(speed) if isinstance(speed, str) else None
     if m:

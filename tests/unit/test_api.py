@@ -205,3 +205,17 @@ def test_mesh_returns_a_typed_summary_equal_to_the_cli_json():
     for group in ("ste", "stiffness", "iso6336_method_b"):
         for key in schema["properties"][group]["properties"]:
             assert key in doc[group], (group, key)
+
+
+@pytest.mark.parametrize("source", [None, 123, b"cases/seed.yaml", ["cases/seed.yaml"]])
+def test_load_case_refuses_what_is_no_case_with_a_gearcli_error(source):
+    from gearcli.errors import CaseError
+
+    with pytest.raises(CaseError, match="expected the path of a case file"):
+        gearcli.load_case(source)
+
+
+def test_one_override_text_is_one_override():
+    # a str was iterated character by character ("--set 'r': expected key.path=value")
+    case = gearcli.load_case(SEED, set="run.end_time=0.3")
+    assert case.case.run.end_time == 0.3

@@ -214,3 +214,23 @@ def test_a_folder_of_other_files_is_not_a_sweep_folder(tmp_path):
     r = runner.invoke(app, ["sweep", str(path), "-o", str(out), "-j", "1", "-q"])
     assert r.exit_code == 1 and "holds other files" in r.stderr
     assert sorted(p.name for p in out.iterdir()) == ["notes.txt"]
+
+
+def test_points_that_cannot_run_make_the_sweep_exit_4(tmp_path):
+    # the rows are written all the same; a script must not read exit 0 as a complete study
+    path = write_study(tmp_path, "parameters:\n  gears.pinion.teeth: [17, 5]\n")
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(tmp_path / "out"), "-j", "1", "-q"])
+    assert r.exit_code == 4, r.output
+    assert "1 of 2 points failed (status 'failed'" in r.stderr
+    assert (tmp_path / "out" / "summary.csv").read_text().count("\n") == 3
+
+
+@pytest.mark.parametrize("level", ["0 Hz", "-500 Hz"])
+def test_a_speed_curve_level_at_or_below_zero_is_refused(tmp_path, level):
+    study = tmp_path / "sc.yaml"
+    study.write_text(f"base: {ROOT / 'cases' / 'iso_pair.yaml'}\ndesign: speed_curve\n"
+                     f"parameters:\n  mesh_frequency: [\"{level}\", \"1000 Hz\"]\n")
+    r = runner.invoke(app, ["sweep", str(study), "-o", str(tmp_path / "out")])
+    assert r.exit_code == 1, r.output  # 0 Hz ended in exit 3
+    assert f"parameters.mesh_frequency: got '{level}'; expected a mesh frequency > 0 Hz" \
+        in r.stderr
