@@ -289,7 +289,8 @@ def _checks(res: Analysis, case, s, f_z_band: tuple[float, float]) -> list[Check
                and gmf.amplitude > LINE_PROMINENCE * floor)
     out.append(Check("gmf_line_present", gmf.measured_Hz if gmf.resolvable else None,
                      f"line at f_z = {f_z:.3f} Hz +- 1 bin, > {LINE_PROMINENCE:g} x floor",
-                     bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"))
+                     bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"
+                     if f_z >= rate / 2.0 else "no peak within 1 bin of f_z"))
     out.append(resonance_check(m, s, f_z, ck, f_z_band))
     if m["dynamic_factor"] is not None:
         out.append(Check("dynamic_factor", m["dynamic_factor"], f"<= {ck.dynamic_factor_max:g}",

@@ -47,7 +47,10 @@ class Line:
     measured_Hz: float
     amplitude: float
     bin_error: float  #: (measured - expected) / bin width
-    resolvable: bool  #: expected line below the Nyquist frequency
+    #: below the Nyquist frequency, and the peak found within 1 bin of the expected
+    #: frequency; else the search window caught a neighbour's lobe (a sideband closer than ~3
+    #: bins to a far larger mesh line reads the mesh line) and the values are not this line's
+    resolvable: bool
 
 
 def measure_line(freq: np.ndarray, amp: np.ndarray, expected_Hz: float,
@@ -66,7 +69,9 @@ def measure_line(freq: np.ndarray, amp: np.ndarray, expected_Hz: float,
     delta = side * (2.0 * r - 1.0) / (1.0 + r) if r > 0.5 else 0.0
     delta = float(np.clip(delta, -0.5, 0.5))
     f = (k + delta) * df
-    return Line(expected_Hz, f, float(amp[k] / hann_response(delta)), (f - expected_Hz) / df, True)
+    bin_error = (f - expected_Hz) / df
+    return Line(expected_Hz, f, float(amp[k] / hann_response(delta)), bin_error,
+                abs(bin_error) <= 1.0)
 
 
 def mesh_lines(f_z: float, shaft_Hz: dict[str, float], harmonics: int) -> list[tuple[str, float]]:
