@@ -68,6 +68,9 @@ def sweep(
 
     if fmt not in ("csv", "parquet"):
         raise OutputError(f"--format {fmt}: expected csv or parquet")
+    if fmt != "csv" and not keep_timeseries:
+        raise OutputError(f"--format {fmt}: the format of the time series --keep-timeseries "
+                          "keeps; expected --keep-timeseries with it (summary.csv is CSV)")
     spec = load_study(study, allow_large=yes)
     if spec.design == "speed_curve":
         from gearcli.io.outdir import check_target

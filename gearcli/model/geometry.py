@@ -362,16 +362,16 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
                 f"not above the base diameter d_b = {g.d_b_mm:.3f} mm; allowed: d_a > d_b")
         if g.undercut:
             add("warning", "undercut", role, f"{role}: undercut: profile shift x = "
-                f"{g.profile_shift:.4f} is {g.undercut_coef:.4f} m = {g.undercut_mm:.3f} mm "
+                f"{g.profile_shift:.4f} is {g.undercut_coef:.4f} module = {g.undercut_mm:.3f} mm "
                 f"below x_min = {g.x_min:.4f} (z = {g.teeth} < z_min = {g.z_min:.2f}); "
                 "allowed without undercut: x >= x_min")
         if g.s_a_mm <= 0.0:
             add("error", "pointed_tip", role, f"{role}: tip thickness s_a = {g.s_a_mm:.3f} mm "
-                "(the flanks meet below the tip circle); allowed: s_a > 0, >= 0.2 m = "
+                "(the flanks meet below the tip circle); allowed: s_a > 0, >= 0.2 module = "
                 f"{0.2 * m:.3f} mm recommended")
         elif g.s_a_mm < 0.2 * m:
             add("warning", "pointed_tip", role, f"{role}: tip thickness s_a = {g.s_a_mm:.3f} mm = "
-                f"{g.s_a_mm / m:.3f} m; recommended: s_a >= 0.2 m = {0.2 * m:.3f} mm")
+                f"{g.s_a_mm / m:.3f} module; recommended: s_a >= 0.2 module = {0.2 * m:.3f} mm")
         if g.tip_rounding_mm > 0.0 and g.d_a_mm > g.d_b_mm and math.isnan(g.d_Fa_mm):
             add("error", "tip_rounding", role, f"{role}: tip rounding radius "
                 f"{g.tip_rounding_mm:.3f} mm does not fit on the tooth tip; allowed: the "
@@ -379,11 +379,11 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
         c = g.tip_clearance_mm
         if c < 0.0:
             add("error", "clearance", role, f"{role} tip to {mate} root: clearance c = {c:.3f} mm "
-                f"(the tip hits the root); allowed: c >= 0, >= 0.1 m = {0.1 * m:.3f} mm "
+                f"(the tip hits the root); allowed: c >= 0, >= 0.1 module = {0.1 * m:.3f} mm "
                 "recommended")
         elif c < 0.1 * m:
             add("warning", "clearance", role, f"{role} tip to {mate} root: clearance c = {c:.3f} mm"
-                f"; recommended: c >= 0.1 m = {0.1 * m:.3f} mm")
+                f"; recommended: c >= 0.1 module = {0.1 * m:.3f} mm")
 
     # The model is a plane one: the load is taken as uniform across the face (K_Hbeta = 1,
     # docs/theory.md §10.2). A face many pinion diameters wide bends and twists the pinion along

@@ -7,7 +7,7 @@ import shlex
 from dataclasses import dataclass, field
 
 from gearcli.display_units import DEFAULT, convert, unit_and_factor
-from gearcli.io.metrics import display
+from gearcli.io.metrics import METRICS, display
 from gearcli.report.data import ReportData, number, unit_of
 
 
@@ -264,6 +264,10 @@ def results_table(data: ReportData) -> Table:
     known = set(RESULT_KEYS) | _NOT_SHOWN
     for key, v in m.items():
         if key in known or isinstance(v, bool):
+            continue
+        if key in METRICS and isinstance(v, int | float):  # the registry's label and unit
+            rows.append(tuple(fmt(x) if i == 1 else x
+                              for i, x in enumerate(display(key, v, data.units))))
             continue
         if isinstance(v, int | float) or (isinstance(v, list)
                                            and all(isinstance(x, int | float) for x in v)):

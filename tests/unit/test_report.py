@@ -288,3 +288,9 @@ def test_no_order_map_for_a_start_up_transient(tmp_path):
     build_report(run, fmt="md")
     names = {p.stem for p in (run / "figures").glob("*.png")}
     assert "orders" not in names and {"speeds", "force", "spectra"} <= names
+
+
+def test_results_rows_use_the_metric_registrys_labels(md_report):
+    # keys the registry knows were labelled from their names ("force max t [s]")
+    _, text = md_report
+    assert "| time of the maximum force |" in text and "force max t" not in text

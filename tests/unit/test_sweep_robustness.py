@@ -234,3 +234,11 @@ def test_a_speed_curve_level_at_or_below_zero_is_refused(tmp_path, level):
     assert r.exit_code == 1, r.output  # 0 Hz ended in exit 3
     assert f"parameters.mesh_frequency: got '{level}'; expected a mesh frequency > 0 Hz" \
         in r.stderr
+
+
+def test_parquet_without_kept_time_series_is_refused(tmp_path):
+    path = write_study(tmp_path, "parameters:\n  gears.module: [10]\n")
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(tmp_path / "out"), "--format",
+                            "parquet"])
+    assert r.exit_code == 1 and "expected --keep-timeseries with it" in r.stderr
+    assert not (tmp_path / "out").exists()
