@@ -47,6 +47,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from gearcli import guards, units
+from gearcli.case.keypaths import field_at
 from gearcli.case.load import data_loc, validate_source
 from gearcli.case.overrides import apply_overrides, check_path
 from gearcli.case.schema import Case
@@ -299,6 +300,18 @@ def _split(value) -> tuple[float, str] | None:
     return None
 
 
+def _default_unit(key: str) -> str:
+    """The case-file unit of a bare number at ``key`` ('' for plain numbers and counts)."""
+    if key == MESH_FREQUENCY:
+        return units.FREQUENCY.default
+    field = field_at(Case, tuple(key.split(".")))
+    for meta in getattr(field, "metadata", ()):
+        dim = getattr(getattr(meta, "func", None), "dim", None)
+        if dim is not None:
+            return dim.default
+    return ""
+
+
 def _to_unit(number: float, unit: str, target: str) -> float:
     if unit == target:
         return number
@@ -321,11 +334,12 @@ def _parameter(src: Source, key: str, spec) -> Parameter:
         if not spec:
             raise src.error(loc, "empty list; expected at least one value")
         parts = [_split(v) for v in spec]
-        unit = next((p[1] for p in parts if p), "")
+        default = _default_unit(key)  # a bare number's unit, as in the case file
+        unit = next((p[1] for p in parts if p and p[1]), default)
         numbers = []
         for i, (v, p) in enumerate(zip(spec, parts, strict=True)):
             try:
-                numbers.append(_to_unit(p[0], p[1], unit) if p else math.nan)
+                numbers.append(_to_unit(p[0], p[1] or default, unit) if p else math.nan)
             except Exception:
                 raise src.error((*loc, i), f"got {v!r}: wrong unit; expected a value in "
                                 f"'{unit}' or a compatible unit") from None

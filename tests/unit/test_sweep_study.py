@@ -48,7 +48,18 @@ parameters:
   gears.module: [9, 11, 12]
 """))
     assert len(o.points) == 1 + 2 + 3 and o.points[0].overrides == []
-    assert o.points[1].values == {"gears.face_width [mm]": 80.0, "gears.module": 10.0}
+    # bare numbers are in the key's case-file unit, which names the column as for "80 mm"
+    assert o.points[1].values == {"gears.face_width [mm]": 80.0, "gears.module [mm]": 10.0}
+
+
+def test_a_list_mixes_bare_numbers_and_units_as_a_case_file_does(tmp_path):
+    # ["80 mm", 120] failed with "wrong unit", [80, "120 mm"] with "a value in ''"
+    for widths in ('["80 mm", 120]', '[80, "120 mm"]', '[80, "0.12 m"]'):
+        s = load_study(write_study(tmp_path, f"parameters:\n  gears.face_width: {widths}\n"))
+        values = next(iter(s.points[0].values))  # the column: the first written unit, or mm
+        factor = 1e-3 if values.endswith("[m]") else 1.0
+        assert [p.values[values] for p in s.points] == pytest.approx([80 * factor,
+                                                                      120 * factor])
 
 
 def test_mesh_frequency_sets_the_drive_speed(tmp_path):
