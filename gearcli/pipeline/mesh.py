@@ -59,7 +59,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     if not force > 0.0:
         raise loaded.error(("load", "torque"), "the static load is zero: give a load torque "
                            "or --load with a force > 0 N") if load_N is None else \
-            ValueError(f"--load must be > 0 N, got {load_N}")
+            CaseError(f"load_N (--load) {load_N!r}: expected a force > 0 N")
     tables, _ = case_gap_tables(case, geo, mesh)
     slots = int(slot_layout(g, tables)["n_slots"])
     if case.contact.law == "tooth":

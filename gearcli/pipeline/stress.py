@@ -110,6 +110,11 @@ def _window(run: StoredRun, given) -> tuple[tuple[float, float], str]:
     if not (t[0] - 1e-12 <= t0 < t1 <= t[-1] + 1e-9):
         raise ResultsError(f"--window {t0:g} {t1:g}: outside the run or empty; expected "
                            f"{t[0]:g} <= T0 < T1 <= {t[-1]:g} s")
+    f_z = run.summary.get("scalars", {}).get("gear_mesh_frequency_Hz")
+    if f_z and (t1 - t0) * f_z < 1.0:  # a peak over part of a mesh cycle misses pair zones
+        raise ResultsError(f"--window {t0:g} {t1:g}: {t1 - t0:g} s is shorter than one mesh "
+                           f"cycle (1/f_z = {1.0 / f_z:.3g} s); expected a window of at least "
+                           "one mesh cycle")
     return (t0, t1), "given (--window)"
 
 

@@ -442,3 +442,12 @@ def test_a_raised_output_rate_is_said(tmp_path):
     assert r.exit_code == 0, r.output
     assert ("warning: output rate 1 Hz gives fewer than 10 samples in the run: written at "
             "50 Hz instead") in r.stderr
+
+
+def test_a_stress_window_shorter_than_a_mesh_cycle_is_refused(tmp_path):
+    out = tmp_path / "o"
+    assert invoke("simulate", SEED, "-o", out, "--quiet", "--set",
+                  "run.end_time=0.3").exit_code == 0
+    r = invoke("stress", out, "--window", "0", "0.0005")  # f_z = 141.7 Hz: 7.06 ms a cycle
+    assert r.exit_code == 1
+    assert "is shorter than one mesh cycle (1/f_z = 0.00706 s)" in error_line(r)
