@@ -322,8 +322,9 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
     ----------
     run : Simulation or str or Path
         A simulation, or a results folder of `gearcli simulate`.
-    window : (float, float), optional
-        Analysis window [s]; default the steady window.
+    window : (T0, T1), optional
+        Analysis window: numbers [s] or texts with units ("250 ms"), as ``--window``; default
+        the steady window.
     strict : bool
         Warnings count as failed checks.
 
@@ -335,6 +336,16 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
 
     from gearcli.pipeline.analyze import analyze as run_analysis
 
+    if window is not None:
+        from gearcli import units
+        from gearcli.errors import CaseError
+
+        try:
+            window = units.parse_quantities(window, units.TIME)
+        except (units.UnitError, TypeError) as exc:
+            raise CaseError(f"window {exc}; expected (T0, T1) in s or with units") from None
+        if len(window) != 2:
+            raise CaseError(f"window: {len(window)} values; expected (T0, T1)")
     with contextlib.ExitStack() as stack:
         return Analysis(run_analysis(_folder_of(run, stack), window, strict))
 
@@ -577,6 +588,16 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     from gearcli.pipeline.sweep_run import rows_as_table, run_study, summary_columns
     from gearcli.pipeline.sweep_study import Study, load_study
 
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
+        from gearcli.errors import CaseError
+
+        raise CaseError(f"jobs {jobs!r}: expected a whole number of worker processes >= 1 "
+                        "(or None: one per CPU)")
+    if not isinstance(study, Study | str | os.PathLike):
+        from gearcli.errors import CaseError
+
+        raise CaseError(f"sweep({study!r:.60}): expected the path of a study file (str or "
+                        "Path) or a loaded Study")
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
     with contextlib.ExitStack() as stack:
         if out is None:

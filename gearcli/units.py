@@ -212,3 +212,27 @@ def _refuse_cycles(text: str, dim: Dim) -> None:
 def format_internal(value: float, dim: Dim) -> str:
     """Render an internal value with its internal unit, loadable back exactly."""
     return f"{value!r} {dim.internal}"
+
+
+def parse_quantities(texts, dim: Dim) -> tuple[float, ...]:
+    """Values given as numbers or texts (``2``, ``"2"``, ``"2 s"``), each in the internal unit
+    of ``dim``, by the case file's rules (bare numbers in ``dim.default``; a unit needs a
+    number in front; plain powers). Raises UnitError with the offending value."""
+    from gearcli import guards
+
+    out = []
+    for text in texts:
+        value = text
+        if isinstance(text, str):
+            try:
+                value = float(text)
+            except ValueError:
+                try:
+                    guards.check_unit_text(text, need_number=True)
+                except ValueError as exc:
+                    raise UnitError(f"{text!r}: {exc}") from None
+        try:
+            out.append(parse_quantity(value, dim))
+        except UnitError as exc:
+            raise UnitError(f"{text!r}: {exc}") from None
+    return tuple(out)

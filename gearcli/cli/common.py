@@ -138,23 +138,13 @@ def option_quantities(texts, dim_name: str, option: str) -> tuple[float, ...] | 
     unit. None stays None; a bad value raises CaseError naming the option (exit 1)."""
     if texts is None:
         return None
-    from gearcli import guards, units
+    from gearcli import units
     from gearcli.errors import CaseError
 
-    dim = getattr(units, dim_name)
-    out = []
-    for text in texts:
-        try:
-            value: float | str = float(text)
-        except ValueError:
-            value = text
-        try:
-            if isinstance(value, str):  # the case file's rules: a number first, plain powers
-                guards.check_unit_text(value, need_number=True)
-            out.append(units.parse_quantity(value, dim))
-        except (units.UnitError, ValueError) as exc:
-            raise CaseError(f"{option} {text!r}: {exc}") from None
-    return tuple(out)
+    try:
+        return units.parse_quantities(texts, getattr(units, dim_name))
+    except units.UnitError as exc:
+        raise CaseError(f"{option} {exc}") from None
 
 
 def check_figure_path(option: str, path: Path | None, force: bool) -> None:

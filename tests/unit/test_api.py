@@ -219,3 +219,22 @@ def test_one_override_text_is_one_override():
     # a str was iterated character by character ("--set 'r': expected key.path=value")
     case = gearcli.load_case(SEED, set="run.end_time=0.3")
     assert case.case.run.end_time == 0.3
+
+
+def test_analyze_takes_a_window_with_units_and_refuses_a_bad_one(tmp_path):
+    sim = gearcli.simulate(SEED, set={"run.end_time": 0.8})
+    a = gearcli.analyze(sim, window=("0.2 s", "800 ms"))  # the spectra need >= 0.353 s
+    assert a.document()["window_s"] == pytest.approx([0.2, 0.8])
+    with pytest.raises(CaseError, match="no number in front"):
+        gearcli.analyze(sim, window=("s", 0.8))
+
+
+@pytest.mark.parametrize("jobs", [0, -1, "2", 1.5, True])
+def test_sweep_refuses_a_bad_worker_count(jobs):
+    with pytest.raises(CaseError, match="expected a whole number of worker processes"):
+        gearcli.sweep(ROOT / "cases" / "seed.yaml", jobs=jobs)
+
+
+def test_sweep_refuses_what_is_no_study():
+    with pytest.raises(CaseError, match="expected the path of a study file"):
+        gearcli.sweep({"parameters": {"gears.module": [10]}})
