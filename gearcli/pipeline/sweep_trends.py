@@ -106,7 +106,10 @@ def trend_rows(df, study: Study) -> list[dict]:
                            change_percent=float(change), ratio=float(ratio), spearman_rho=rho,
                            direction=direction)
             else:
-                row.update(direction="not varied (fewer than 2 numeric levels)")
+                levels = {float(v) for v in p.numbers if math.isfinite(v)}
+                row.update(direction="not varied (fewer than 2 numeric levels)"
+                           if len(levels) < 2 else
+                           "no trend: fewer than 2 of its levels ran (see the failed points)")
             rows.append(row)
     return rows
 

@@ -242,3 +242,12 @@ def test_parquet_without_kept_time_series_is_refused(tmp_path):
                             "parquet"])
     assert r.exit_code == 1 and "expected --keep-timeseries with it" in r.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_a_parameter_whose_other_level_failed_is_not_called_unvaried(tmp_path):
+    path = write_study(tmp_path, "parameters:\n  gears.pinion.teeth: [17, 5]\n")
+    out = tmp_path / "out"
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(out), "-j", "1", "-q"])
+    assert r.exit_code == 4, r.output
+    text = (out / "trends.md").read_text()
+    assert "fewer than 2 of its levels ran" in text and "not varied" not in text
