@@ -344,8 +344,8 @@ def _bounded(make, timeout: float, what: str):
 class SweepOutcome:
     folder: Path
     total: int
-    skipped: int
-    ran: int
+    skipped: int  #: points whose rows an earlier run of the study wrote
+    ran: int  #: cases run now (points that resolve to one case share its run)
     failed: int
     wall_time_s: float
     rows: list[dict]
@@ -383,7 +383,9 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     if force and path.is_file():
         path.unlink()
     earlier = read_summary(path, columns)
-    by_hash = {p.case_hash: p for p in study.points}
+    by_hash: dict[str, list] = {}  # points that resolve to one case ("10 mm", "0.01 m")
+    for p in study.points:
+        by_hash.setdefault(p.case_hash, []).append(p)
     foreign = sum(1 for h in earlier if h not in by_hash)
     if foreign:  # resuming keeps this study's rows only: the others would be lost
         raise OutputError(f"{path}: holds {foreign} result(s) of cases this study does not have "
@@ -391,10 +393,12 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
                           "another output folder")
     done: dict[int, dict] = {}
     for h, rec in earlier.items():
-        if h in by_hash:
-            p = by_hash[h]
+        for p in by_hash.get(h, []):
             done[p.index] = {**rec, "point": p.index, **_param_cells(p)}
+    skipped = len(done)
     todo = [p for p in study.points if p.index not in done]
+    # a case is run once: its other points copy the row (unless each keeps its time series)
+    todo = todo if keep_timeseries else [p for p in todo if by_hash[p.case_hash][0] is p]
     # rewrite what is kept (drops a torn line), then append new rows one by one
     _write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
                   + "".join(_line(columns, done[i]) for i in sorted(done)))
@@ -416,21 +420,23 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     if payloads:
         with open(path, "a", encoding="utf-8") as fh:
             for row in execute(payloads, min(jobs, len(payloads)), scheduler):
-                p = study.points[row["point"]]
-                row.update(_param_cells(p))
-                _apply_checks(study, row)
-                fh.write(_line(columns, row))
+                first = study.points[row["point"]]
+                ran += 1
+                same = [first] if keep_timeseries else by_hash[first.case_hash]
+                for p in same:
+                    cells = {**row, "point": p.index, **_param_cells(p)}
+                    _apply_checks(study, cells)
+                    fh.write(_line(columns, cells))
+                    done[p.index] = cells
+                    n_failed += cells["status"] == "failed"
                 fh.flush()
                 os.fsync(fh.fileno())
-                done[p.index] = row
-                ran += 1
-                n_failed += row["status"] == "failed"
                 if progress:
                     progress(len(done), n_failed, len(study.points))
     rows = [done[i] for i in sorted(done)]
     _write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
                   + "".join(_line(columns, r) for r in rows))
-    return SweepOutcome(out, len(study.points), len(study.points) - len(todo), ran, n_failed,
+    return SweepOutcome(out, len(study.points), skipped, ran, n_failed,
                         time.perf_counter() - t_start, rows)
 
 

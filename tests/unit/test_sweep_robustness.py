@@ -251,3 +251,16 @@ def test_a_parameter_whose_other_level_failed_is_not_called_unvaried(tmp_path):
     assert r.exit_code == 4, r.output
     text = (out / "trends.md").read_text()
     assert "fewer than 2 of its levels ran" in text and "not varied" not in text
+
+
+def test_points_that_resolve_to_one_case_run_it_once(tmp_path):
+    path = write_study(tmp_path, 'parameters:\n  gears.module: ["10 mm", "0.01 m", 9]\n')
+    out = tmp_path / "out"
+    r = runner.invoke(app, ["sweep", str(path), "-o", str(out), "-j", "1"])
+    assert r.exit_code == 0, r.output
+    assert "3 points: 2 run, 0 already done" in r.output
+    import pandas as pd
+
+    df = pd.read_csv(out / "summary.csv")
+    assert list(df["point"]) == [0, 1, 2] and df["case_hash"][0] == df["case_hash"][1]
+    assert df["force_max_N"][0] == df["force_max_N"][1] != df["force_max_N"][2]
