@@ -31,6 +31,12 @@ class LoadedCase:
     def error(self, loc: Loc, message: str, value: object = None, has_value: bool = False):
         return self.source.error(loc, message, value, has_value)
 
+    def error_at(self, loc: Loc, message: str):
+        """:meth:`error` quoting the value as written at ``loc`` (none for a section or a
+        list): for checks of the validated case that point back at the YAML."""
+        value, has_value = _raw_value(self.source.data, loc)
+        return self.error(loc, message, value, has_value and not isinstance(value, dict | list))
+
 
 def load_case(path: str | Path, overrides: list[str] | None = None) -> LoadedCase:
     """Read, parse and validate the case file at ``path``, with ``--set`` overrides applied.

@@ -72,16 +72,12 @@ def refuse_reverse_drive(loaded: LoadedCase) -> None:
         low = min(float(pp(t)) for t in times)
         final = pp.final_value()
         if low < 0.0 or (final is not None and final < 0.0):
-            raw = loaded.source.data.get("drive", {}).get(key)
-            raise loaded.error(("drive", key), f"a reverse drive (negative {key}) is not "
-                               f"supported; expected a {key} >= 0 (the pinion turns forward: "
-                               "a reverse run is the mirror image of a forward one)", raw,
-                               isinstance(raw, str | int | float))
+            raise loaded.error_at(("drive", key), f"a reverse drive (negative {key}) is not "
+                                  f"supported; expected a {key} >= 0 (the pinion turns "
+                                  "forward: a reverse run is the mirror image of a forward one)")
     if d.initial_speed < 0.0:
-        raw = loaded.source.data.get("drive", {}).get("initial_speed")
-        raise loaded.error(("drive", "initial_speed"), "a reverse drive (negative speed) is not "
-                           "supported; expected initial_speed >= 0", raw,
-                           isinstance(raw, str | int | float))
+        raise loaded.error_at(("drive", "initial_speed"), "a reverse drive (negative speed) is "
+                              "not supported; expected initial_speed >= 0")
 
 
 def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
@@ -132,17 +128,16 @@ def check_relief_extents(loaded: LoadedCase, geo: PairGeometry) -> None:
             gg = getattr(geo, role)
             if relief.length is not None and relief.length >= geo.g_alpha_mm:
                 loc = ("modifications", kind, role, "length")
-                raise loaded.error(loc, f"a relief {relief.length:g} mm long does not start on "
-                                   f"the path of contact, which is g_alpha = "
-                                   f"{geo.g_alpha_mm:.4g} mm long; expected < "
-                                   f"{geo.g_alpha_mm:.4g} mm", *_raw_pair(loaded, loc))
+                raise loaded.error_at(loc, f"a relief {relief.length:g} mm long does not start on "
+                                      f"the path of contact, which is g_alpha = "
+                                      f"{geo.g_alpha_mm:.4g} mm long; expected < "
+                                      f"{geo.g_alpha_mm:.4g} mm")
             d = relief.start_diameter
             if d is not None and not gg.d_Nf_mm < d < gg.d_a_mm:
                 loc = ("modifications", kind, role, "start_diameter")
-                raise loaded.error(loc, f"{d:g} mm is off the {role}'s active flank; expected "
-                                   f"between its active profile start d_Nf = {gg.d_Nf_mm:.4g} "
-                                   f"mm and its tip d_a = {gg.d_a_mm:.4g} mm",
-                                   *_raw_pair(loaded, loc))
+                raise loaded.error_at(loc, f"{d:g} mm is off the {role}'s active flank; expected "
+                                      f"between its active profile start d_Nf = {gg.d_Nf_mm:.4g} "
+                                      f"mm and its tip d_a = {gg.d_a_mm:.4g} mm")
 
 
 def check_bores(loaded: LoadedCase, geo: PairGeometry) -> None:
@@ -151,9 +146,8 @@ def check_bores(loaded: LoadedCase, geo: PairGeometry) -> None:
         bore, d_f = getattr(loaded.case.gears, role).bore_diameter, getattr(geo, role).d_f_mm
         if bore is not None and bore >= d_f:
             loc = ("gears", role, "bore_diameter")
-            raise loaded.error(loc, f"the bore must lie inside the root circle (a rim below "
-                               f"the teeth): expected < d_f = {d_f:.4g} mm",
-                               *_raw_pair(loaded, loc))
+            raise loaded.error_at(loc, f"the bore must lie inside the root circle (a rim below "
+                                  f"the teeth): expected < d_f = {d_f:.4g} mm")
 
 
 #: Largest runout eccentricity, in modules: the centre distance varies by +-e, and a quarter
@@ -169,15 +163,10 @@ def check_runout(loaded: LoadedCase, geo: PairGeometry) -> None:
         r = getattr(runout, role)
         if r is not None and r.eccentricity >= limit:
             loc = ("errors", "runout", role, "eccentricity")
-            raise loaded.error(loc, f"a runout eccentricity of {RUNOUT_MAX_MODULES:g} module "
-                               f"and more takes the teeth out of mesh contact (ISO 1328-2 "
-                               f"runout tolerances are below ~0.02 m); expected < {limit:.4g} mm",
-                               *_raw_pair(loaded, loc))
-
-
-def _raw_pair(loaded: LoadedCase, loc) -> tuple[object, bool]:
-    value = _raw(loaded, loc)
-    return value, value is not None
+            raise loaded.error_at(loc, f"a runout eccentricity of {RUNOUT_MAX_MODULES:g} module "
+                                  "and more takes the teeth out of mesh contact (ISO 1328-2 "
+                                  "runout tolerances are below ~0.02 m); expected < "
+                                  f"{limit:.4g} mm")
 
 
 def _interference_key(loaded: LoadedCase, gear: str) -> tuple[str, ...]:
@@ -198,17 +187,7 @@ def _located(loaded: LoadedCase, finding: Finding, more: int):
     if loc[-1] == "centre_distance" and loaded.case.gears.centre_distance is None:
         loc = ("gears",)
     text = finding.message + (f" (+{more} more)" if more else "")
-    value = _raw(loaded, loc)
-    return loaded.error(loc, text, value, has_value=value is not None)
-
-
-def _raw(loaded: LoadedCase, loc) -> object:
-    node = loaded.source.data
-    for part in loc:
-        if not isinstance(node, dict) or part not in node:
-            return None
-        node = node[part]
-    return None if isinstance(node, dict | list) else node
+    return loaded.error_at(loc, text)
 
 
 def geometry_dict(result: GeometryResult) -> dict:

@@ -292,34 +292,22 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
     f_z = mesh_frequencies(g.pinion.teeth, speed, g.ratio)[0] if speed else None
     rows, key = output_rows(case, f_z)
     if rows > guards.MAX_OUTPUT_ROWS:
-        value, has = _raw(loaded, ("run", key))
-        raise loaded.error(("run", key), guards.output_rows_message(
+        raise loaded.error_at(("run", key), guards.output_rows_message(
             rows, f"a run of {case.run.end_time:g} s" + (
                 f" with {case.run.output_steps:,} output steps" if key == "output_steps" else
-                f" sampled at {rows / case.run.end_time:.6g} Hz")), value, has)
+                f" sampled at {rows / case.run.end_time:.6g} Hz")))
     max_steps = PARAM_DEFAULTS["max_steps"]
     if case.run.max_step is not None and case.run.end_time / case.run.max_step > max_steps:
-        value, has = _raw(loaded, ("run", "max_step"))
-        raise loaded.error(("run", "max_step"), f"a run of {case.run.end_time:g} s in steps of "
+        raise loaded.error_at(("run", "max_step"), f"a run of {case.run.end_time:g} s in steps of "
                            f"at most {case.run.max_step:g} s needs "
                            f"{case.run.end_time / case.run.max_step:.3g} steps; the solver "
                            f"stops at {max_steps:.3g}: expected max_step >= "
-                           f"{case.run.end_time / max_steps:.3g} s", value, has)
+                           f"{case.run.end_time / max_steps:.3g} s")
     if f_z and f_z > 0.0 and case.run.end_time < 1.0 / f_z:
-        value, has = _raw(loaded, ("run", "end_time"))
-        raise loaded.error(("run", "end_time"), f"{case.run.end_time:g} s is shorter than one "
+        raise loaded.error_at(("run", "end_time"), f"{case.run.end_time:g} s is shorter than one "
                            f"mesh cycle ({1.0 / f_z:.4g} s at f_z = {f_z:.5g} Hz); expected at "
                            f"least one mesh cycle (a steady window needs {MIN_MESH_CYCLES}: "
-                           f"{MIN_MESH_CYCLES / f_z:.4g} s)", value, has)
-
-
-def _raw(loaded: LoadedCase, loc: tuple) -> tuple[object, bool]:
-    node = loaded.source.data
-    for part in loc:
-        if not isinstance(node, dict) or part not in node:
-            return None, False
-        node = node[part]
-    return node, not isinstance(node, dict | list)
+                           f"{MIN_MESH_CYCLES / f_z:.4g} s)")
 
 
 def summarize(res: SimulationResult) -> dict:
