@@ -22,6 +22,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from gearcli.errors import CaseError
+
 if TYPE_CHECKING:
     from gearcli.results import (
         SCHEMA_VERSION,
@@ -112,8 +114,6 @@ def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the
             src.data = apply_overrides(src.data, overrides, Case)
         return validate_source(src, str(source.get("name") or "case"))
     if not isinstance(source, str | os.PathLike):
-        from gearcli.errors import CaseError
-
         raise CaseError(f"load_case({source!r:.60}): expected the path of a case file (str or "
                         "Path), the case as a mapping, or a LoadedCase")
     return load_file(source, overrides)
@@ -338,8 +338,6 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
 
     if window is not None:
         from gearcli import units
-        from gearcli.errors import CaseError
-
         try:
             window = units.parse_quantities(window, units.TIME)
         except (units.UnitError, TypeError) as exc:
@@ -589,13 +587,9 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     from gearcli.pipeline.sweep_study import Study, load_study
 
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
-        from gearcli.errors import CaseError
-
         raise CaseError(f"jobs {jobs!r}: expected a whole number of worker processes >= 1 "
                         "(or None: one per CPU)")
     if not isinstance(study, Study | str | os.PathLike):
-        from gearcli.errors import CaseError
-
         raise CaseError(f"sweep({study!r:.60}): expected the path of a study file (str or "
                         "Path) or a loaded Study")
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)

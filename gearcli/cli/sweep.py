@@ -103,9 +103,9 @@ def sweep(
         typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
                    f"{a['failed']} failed, {invalid} outside the model's validity{checked} "
                    f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
-    from gearcli.errors import CheckFailed
-
     if checks_failed:
+        from gearcli.errors import CheckFailed
+
         raise CheckFailed(f"{out}: {checks_failed} of {len(df)} points failed the study's "
                           "checks (column 'checks' of summary.csv)")
     _raise_if_points_failed(df, out)
