@@ -129,6 +129,11 @@ SAINSOT_H_MIN = 1.4
 #: 0.42e6 at 11.5, 0.13e6 at 23).
 SAINSOT_H_MAX = 7.0
 
+class ContactOutsideTooth(ValueError):
+    """A contact point asked for lies beyond the tooth's profile (for the dynamics: a
+    deflection so large that the extended tables reach past the tip, pipeline/mesh_input)."""
+
+
 _FILLET_SAMPLES = 2001  # fillet samples for its spline (as rating.py; error ~ (1/n)^4)
 _GAUSS = np.polynomial.legendre.leggauss(10)  # 10-point Gauss-Legendre per panel
 _PANELS = (160, 480, 64)  # panels on the fillet, the involute and the tip rounding
@@ -162,7 +167,7 @@ class ToothSection:
         y = np.asarray(y_mm, float)
         top = self.y_mm[-1]
         if np.any(y < self.y0_mm - 1e-9) or np.any(y > top + 1e-9):
-            raise ValueError(
+            raise ContactOutsideTooth(
                 f"contact height outside the tooth of the {self.teeth}-tooth gear: "
                 f"{y.min():.6g} … {y.max():.6g} mm, the profile spans {self.y0_mm:.6g} … "
                 f"{top:.6g} mm"

@@ -66,8 +66,9 @@ def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
                               bore_diameter2_mm=gears.gear.bore_diameter)
     except ValueError as exc:
         from gearcli.errors import CaseError
+        from gearcli.model.tooth_stiffness import ContactOutsideTooth
 
-        if "contact height outside the tooth" in str(exc):
+        if isinstance(exc, ContactOutsideTooth):
             # the gap tables reach 20 static deflections beyond first touch (kernel_input):
             # a deflection that large no longer touches the tooth's flank
             raise CaseError(
