@@ -160,8 +160,10 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     refuse_unsupported(loaded)
     geo = run_geometry(loaded)
     check_run_size(loaded, geo)  # before anything is sized by the run
-    compiling = announce_compilation(notice)  # a refused run compiles nothing: no notice
+    check_load(loaded)
     ki = build_kernel_input(case, geo)
+    check_static_deflection(loaded, geo, ki.mesh.static_deflection_mm)
+    compiling = announce_compilation(notice)  # a refused run compiles nothing: no notice
     last_ramp = last_ramp_s(case)
     # the natural frequencies of `gearcli modal` (one model): settling time, summary, margins
     from gearcli.pipeline.modal import case_modes
@@ -253,9 +255,12 @@ def validity_of(res: SimulationResult):
     k = res.kernel
     w = k.column("t_s") >= res.window.t0_s
     free_pinion = res.kernel_input.params[P.drive_mode] != DRIVE_SPEED
+    mesh = res.kernel_input.mesh
     return check_validity(
         penetration_max_mm=k.extremum("penetration_max_mm"),
-        static_deflection_mm=res.kernel_input.mesh.static_deflection_mm,
+        # without load the power law's linearisation point (1 % of d_max, model/mesh.py) is
+        # no static deflection: the guard is the thickness bound alone (validity.py, item 1)
+        static_deflection_mm=mesh.static_deflection_mm if mesh.static_force_N > 0.0 else 0.0,
         module_mm=res.geometry.geometry.module_mm,
         gear_speed_rad_s=k.column("omega2_rad_s")[w],
         pinion_speed_rad_s=k.column("omega1_rad_s")[w] if free_pinion else None,
@@ -308,6 +313,42 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
                            f"mesh cycle ({1.0 / f_z:.4g} s at f_z = {f_z:.5g} Hz); expected at "
                            f"least one mesh cycle (a steady window needs {MIN_MESH_CYCLES}: "
                            f"{MIN_MESH_CYCLES / f_z:.4g} s)")
+
+
+def check_load(loaded: LoadedCase) -> None:
+    """Refuse a load torque that ends negative: the load would drive the gear and the pair run
+    on its coast flanks, while the static force, the dynamic factor and the checks are those of
+    the drive flanks (docs/theory.md §7). A load that is negative only on the way (a reversal
+    inside a time function) runs."""
+    from gearcli.pipeline.mesh_input import final_load_torque_Nmm
+
+    torque = final_load_torque_Nmm(loaded.case)
+    if torque < 0.0:
+        raise loaded.error_at(("load", "torque"), (
+            f"the load torque ends at {torque:g} N*mm: a negative load drives the gear, so the "
+            "pair would run on its coast flanks, while the dynamic factor and the checks are "
+            "those of the drive flanks; expected a resisting torque >= 0 at the end of the "
+            "ramps"))
+
+
+def check_static_deflection(loaded: LoadedCase, geo: GeometryResult,
+                            static_deflection_mm: float) -> None:
+    """Refuse a case whose static deflection alone is beyond the contact model's range (the
+    thickness bound of the validity guard, pipeline/validity.py, docs/theory.md §10.2): every
+    run of it would end invalid, and its linearised mesh mode is meaningless. Names the
+    contact stiffness when the case gives one, else Young's modulus."""
+    from gearcli.pipeline.validity import PENETRATION_PER_THICKNESS, penetration_limit_mm
+
+    limit = penetration_limit_mm(0.0, geo.geometry.module_mm)
+    if not static_deflection_mm > limit:
+        return
+    contact = loaded.case.contact
+    loc = (("contact", "stiffness") if contact.law == "impact"
+           and contact.stiffness != "derived" else ("material", "youngs_modulus"))
+    raise loaded.error_at(loc, (
+        f"the static deflection at the case's load is {static_deflection_mm:.4g} mm, beyond "
+        f"the contact model's range of {limit:.4g} mm ({100 * PENETRATION_PER_THICKNESS:g} % "
+        "of the tooth thickness); expected a stiffer contact or a smaller load.torque"))
 
 
 def summarize(res: SimulationResult) -> dict:
@@ -439,7 +480,8 @@ def collect_warnings(res: SimulationResult) -> list[str]:
     ramp_end, end_time = last_ramp_s(res.loaded.case), res.loaded.case.run.end_time
     if ramp_end >= end_time:
         out.append(f"no steady state: the drive/load functions reach their final values at "
-                   f"{ramp_end:g} s, after the run ends ({end_time:g} s); the nominal speed, "
+                   f"{ramp_end:g} s, " + ("when" if ramp_end == end_time else "after")
+                   + f" the run ends ({end_time:g} s); the nominal speed, "
                    "mesh frequency and static force are never reached")
     elif res.window.reason.startswith("the second half"):
         out.append("no steady state: the run ends before the ramps have settled")

@@ -165,7 +165,8 @@ def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, win
         t_ref = force_max_t_s if force_max_t_s is not None else t[-1]
         s_ref = float(np.interp(t_ref, t, stat))
         fig.suptitle(f"Mesh force peaks at {force_max_N / 1e3:.2f} kN, "
-                     f"{force_max_N / s_ref:.2f} × the static {s_ref / 1e3:.2f} kN")
+                     + (f"{force_max_N / s_ref:.2f} × the static {s_ref / 1e3:.2f} kN"
+                        if s_ref > 0.0 else "without a static load (no dynamic factor)"))
     else:
         fig.suptitle("Mesh force against the static force T_load / r_b2")
     return fig

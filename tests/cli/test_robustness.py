@@ -318,6 +318,50 @@ def test_a_load_too_large_for_the_teeth_names_the_load(tmp_path):
                            "large for the teeth"), line
 
 
+@pytest.mark.parametrize("override, fragment", [
+    # a penalty contact that soft carried the load on damping alone: f_n 1e-6 Hz, zeta 4e8,
+    # and the run passed the validity guard (its penetration stayed below 5 % of the tooth)
+    ("contact.stiffness=1e-20", "contact.stiffness: got '1e-20'; the static deflection at the "
+                                "case's load is 3.9"),
+    ("contact.stiffness=1e2", "contact.stiffness: got '1e2'; the static deflection at the "
+                              "case's load is 8.4"),
+])
+def test_a_contact_too_soft_for_the_load_is_refused(tmp_path, override, fragment):
+    r = invoke("run", SEED, "-o", tmp_path / "o", "--set", override)
+    assert r.exit_code == 1, r.output
+    line = error_line(r)
+    assert fragment in line and "beyond the contact model's range of 0.7854 mm" in line, line
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_load_that_ends_negative_is_refused_and_a_reversal_on_the_way_runs(tmp_path):
+    # a negative load drives the gear: the pair ran on its coast flanks, the summary said
+    # dynamic factor 0, and the report crashed drawing a colour scale without range (exit 3)
+    r = invoke("run", SEED, "-o", tmp_path / "o", "--set", "load.torque=-3e5")
+    assert r.exit_code == 1, r.output
+    line = error_line(r)
+    assert "load.torque: got '-3e5'; the load torque ends at -300000 N*mm" in line, line
+    assert not (tmp_path / "o").exists()
+    r = invoke("simulate", SEED, "-o", tmp_path / "s", "--quiet", "--set", "run.end_time=0.2",
+               "--set", "load.torque=STEP(time, 0, -1e5, 0.1, 2e5)")
+    assert r.exit_code == 0, r.output
+
+
+def test_a_run_without_load_is_judged_by_the_tooth_thickness_and_reported(tmp_path):
+    # without load the IMPACT law's linearisation point (1 % of d_max) stood in for the static
+    # deflection, so the seed's rattle (17 µm) was "10 x the static deflection" and invalid;
+    # the tooth law's run was valid and its report divided by the zero static force (exit 3)
+    from gearcli.pipeline.simulate import run_simulation
+
+    res = run_simulation(SEED, ["load.torque=0", "run.end_time=0.5"], zoom=False)
+    assert res.status == "ok", res.invalid_reason
+    assert res.summary["dynamic_factor"] is None  # no static force: no dynamic factor
+    r = invoke("run", ROOT / "cases" / "iso_pair.yaml", "-o", tmp_path / "o", "--set",
+               "load.torque=0", "--set", "run.end_time=0.2")
+    assert r.exit_code in (0, 4), r.output
+    assert "internal error" not in r.output and (tmp_path / "o" / "report.html").is_file()
+
+
 def test_a_pair_without_single_pair_zone_writes_valid_json(tmp_path):
     # contact ratio 2.6: no single-pair zone, whose stiffness is then null, never NaN
     sets = ["gears.pressure_angle=16", "gears.rack.addendum=1.35", "gears.rack.dedendum=1.6",
