@@ -74,6 +74,7 @@ settings = {"units": "engineering"}
 
 @app.callback()
 def _root(
+    ctx: typer.Context,
     version: bool = typer.Option(
         False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
     ),
@@ -91,7 +92,9 @@ def _root(
     Example: gearcli --units si run cases/seed.yaml -o out/seed
     """
     if units not in UNIT_SYSTEMS:
-        typer.echo(f"error: --units {units}: expected one of {', '.join(UNIT_SYSTEMS)}",
+        source = getattr(ctx.get_parameter_source("units"), "name", "")
+        given = "GEARCLI_UNITS=" if source == "ENVIRONMENT" else "--units "
+        typer.echo(f"error: {given}{units}: expected one of {', '.join(UNIT_SYSTEMS)}",
                    err=True)
         raise typer.Exit(1)
     settings["units"] = units

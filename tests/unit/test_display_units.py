@@ -58,6 +58,10 @@ def test_cli_units_option_and_environment(monkeypatch):
     bad = runner.invoke(app, ["--units", "imperial", "geometry", seed])
     assert bad.exit_code == 1 and "--units imperial: expected one of engineering, si" in \
         bad.output
+    monkeypatch.setenv("GEARCLI_UNITS", "imperial")  # named as the user gave it
+    bad = runner.invoke(app, ["geometry", seed])
+    assert bad.exit_code == 1 and "GEARCLI_UNITS=imperial: expected one of engineering, si" in \
+        bad.output
 
 
 def test_options_take_quantities_with_units():
