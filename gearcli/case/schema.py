@@ -111,7 +111,7 @@ class Gear(Section):
     tip_rounding: Length = qfield(units.LENGTH, 0.0, "tip rounding radius (0: sharp)", ge=0)
     bore_diameter: Length | None = qfield(
         units.LENGTH, None, "bore (rim inner) diameter for the tooth law's gear-body compliance "
-        "(Sainsot et al. 2004); default: a solid rim 1.2 tooth depths below the root circle",
+        "(Sainsot et al. 2004); default: a third of the root diameter (a solid gear on a shaft)",
         gt=0)
     face_width: Length | None = qfield(
         units.LENGTH, None, "face width; default gears.face_width", gt=0
