@@ -146,11 +146,23 @@ def _time_function_validator(dim: Dim):
                     "expected a mapping with keys 'function' (an expression such as "
                     "'STEP(time, 0, 0, 1, 450)') and optional 'unit'"
                 )
+            unit_given = "unit" in value
             unit = str(value.get("unit", dim.default))
             checked_unit(unit, dim)  # validates the unit and its dimension
             value = value["function"]
             if isinstance(value, int | float) and not isinstance(value, bool):
                 value = repr(float(value))
+            if unit_given and isinstance(value, str) and not is_expression(value):
+                # a constant is in the mapping's unit, as an expression is (this is also how
+                # a case is written back: {function: "52.36", unit: "rad/s"})
+                try:
+                    float(value)
+                except ValueError:
+                    raise ValueError(
+                        f"expected a number or an expression as the function of a mapping "
+                        f"with 'unit' ({value!r} carries its own unit besides unit {unit!r}: "
+                        "drop one of them)") from None
+                value = f"{value} {unit}"
         if isinstance(value, bool) or not isinstance(value, int | float | str):
             raise ValueError(
                 f"expected a {dim.name} ({dim.default}): a number, a string with units, or an "

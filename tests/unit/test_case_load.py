@@ -94,3 +94,20 @@ def test_resolved_case_round_trips():
     text = json.dumps(_resolved(a))  # JSON is YAML
     b = load_case_text(text).case
     assert _resolved(b) == _resolved(a)
+
+
+def test_a_constant_in_a_mapping_takes_its_unit_and_round_trips():
+    # {function: "450", unit: "N*m"} was read as 450 N*mm, and every sweep that wrote a case
+    # with a constant speed back ({function: "52.36", unit: "rad/s"}) ran it at 52.36 deg/s
+    text = SEED.read_text()
+    plain = load_case_text(text.replace("speed: STEP(time, 0, 0, 1, 3000)", "speed: 500 rpm")
+                           ).case
+    mapped = load_case_text(text.replace("speed: STEP(time, 0, 0, 1, 3000)",
+                                         'speed: {function: "500", unit: rpm}')).case
+    assert mapped.drive.speed.pp(1.0) == pytest.approx(plain.drive.speed.pp(1.0), rel=1e-15)
+    assert plain.drive.speed.pp(1.0) == pytest.approx(math.radians(3000.0), rel=1e-12)  # rad/s
+    again = load_case_text(json.dumps(_resolved(plain))).case
+    assert again.drive.speed.pp(1.0) == plain.drive.speed.pp(1.0)
+    with pytest.raises(Exception, match="carries its own unit"):
+        load_case_text(text.replace("speed: STEP(time, 0, 0, 1, 3000)",
+                                    'speed: {function: "500 rpm", unit: rpm}'))
