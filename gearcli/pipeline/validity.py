@@ -14,10 +14,11 @@ Checked, in this order (the first that fails is the reason):
    undamped, error-free model, not a gear's response. The thickness term (5 % of the tooth
    thickness) bounds the small-deflection geometry of the gap tables (contact points of the
    rigid profiles) for soft penalty contacts and for runs without load (δ_s = 0).
-2. **Speed reversal** — the gear (and, with a torque drive, the pinion) turning backwards in the
-   steady window by more than 1 % of its mean speed: the pair's kinematics (tables of roll
-   position, the drive/coast flank assignment and the output sampling by roll) assume a
-   forward-running pair.
+2. **Speed reversal** — the gear (and, with a torque drive, the pinion) running backwards (mean
+   speed negative: backwards throughout, e.g. a load larger than a torque drive) or turning
+   backwards in the steady window by more than 1 % of its mean speed: the pair's kinematics
+   (tables of roll position, the drive/coast flank assignment and the output sampling by roll)
+   assume a forward-running pair.
 3. **Runaway energy** — the energy balance's relative residual (docs/theory.md §6.6) above
    ``ENERGY_RESIDUAL_LIMIT``: the integration did not conserve energy, so no number of the run
    is trustworthy (measured residuals of valid runs: 1e-9 … 1e-5).
@@ -69,11 +70,18 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
     for name, omega in (("gear", gear_speed_rad_s), ("pinion", pinion_speed_rad_s)):
         if omega is None or omega.size == 0:
             continue
-        forward = np.sign(np.mean(omega)) or 1.0
-        if np.min(forward * omega) < -REVERSAL_FRACTION * abs(np.mean(omega)):
+        mean = float(np.mean(omega))
+        if mean < 0.0 and -mean > 0.5 * float(np.max(np.abs(omega))):
+            # backwards throughout (e.g. a load torque larger than a torque drive's)
             return Validity(INVALID, (
-                f"the {name} turns backwards in the steady window (speed down to "
-                f"{np.degrees(np.min(forward * omega)) * forward:.4g} deg/s): the model assumes "
+                f"the {name} runs backwards in the steady window (mean speed "
+                f"{np.degrees(mean):.4g} deg/s): the model assumes a forward-running pair"))
+        forward = np.sign(mean) or 1.0
+        worst = float(omega[np.argmin(forward * omega)])
+        if forward * worst < -REVERSAL_FRACTION * abs(mean):
+            return Validity(INVALID, (
+                f"the {name} turns backwards in the steady window (speed {np.degrees(worst):.4g}"
+                f" deg/s against its mean of {np.degrees(mean):.4g} deg/s): the model assumes "
                 "a forward-running pair"))
     if not energy_relative_residual <= ENERGY_RESIDUAL_LIMIT:
         return Validity(INVALID, (

@@ -109,7 +109,16 @@ def test_speed_reversal_and_energy_residual_are_invalid():
     assert _check(gear_speed_rad_s=np.array([50.0, 20.0, -0.2, 30.0])).status == OK  # 0.8 %
     v = _check(gear_speed_rad_s=back)
     assert v.status == INVALID and v.reason.startswith("the gear turns backwards")
+    assert "speed -28.65 deg/s against its mean of 1425 deg/s" in v.reason  # signs as they are
+    # backwards throughout (a load larger than a torque drive): judged against the sign of
+    # its own mean this passed, and the run reported a dynamic factor
+    v = _check(gear_speed_rad_s=np.full(10, -50.0))
+    assert v.status == INVALID and v.reason.startswith("the gear runs backwards in the steady "
+                                                       "window (mean speed -2865 deg/s)")
     assert _check(gear_speed_rad_s=-back).status == INVALID  # a reverse-running gear likewise
+    # a ring-down at rest dithers about zero: judged by its dither, not as running backwards
+    dither = np.array([1e-6, -1.1e-6, 1.2e-6, -1e-6])
+    assert "runs backwards" not in _check(gear_speed_rad_s=dither).reason
     v = _check(pinion_speed_rad_s=back)
     assert v.status == INVALID and "pinion" in v.reason
     assert _check(energy_relative_residual=0.5 * ENERGY_RESIDUAL_LIMIT).status == OK
