@@ -70,6 +70,13 @@ RIGID_TOLERANCE = 1e-9
 #: is round-off of a free rigid-body root.
 LIVE_ROOT_FRACTION = 1e-9
 
+#: A complex root pair with |λ| below this fraction of the largest |λ| is round-off of the
+#: double zero root of a free rigid-body mode: that root is defective (a Jordan block, angle and
+#: speed), and round-off ε splits it into a pair of size ~√ε |A| (Golub & Van Loan, Matrix
+#: Computations, 4th ed., §7.2.2: a perturbation ε of a defective eigenvalue of multiplicity 2
+#: moves it by O(ε^(1/2))), i.e. 1e-8 of the largest root, above LIVE_ROOT_FRACTION.
+DEFECTIVE_ROOT_FRACTION = 1e-6
+
 #: Natural frequencies this close (relative) are one repeated frequency.
 REPEATED_TOLERANCE = 1e-6
 
@@ -480,7 +487,8 @@ def linear_modes(system: LinearSystem) -> ModalResult:
         return _mac(vec[:n, j], phi[:, i].astype(complex))
 
     pair: dict[int, int] = {}  # undamped mode -> index of its complex root
-    cplx = [j for j in live if lam[j].imag > 1e-12 * lam_scale]
+    cplx = [j for j in live if lam[j].imag > 1e-12 * lam_scale
+            and abs(lam[j]) > DEFECTIVE_ROOT_FRACTION * lam_scale]
     if cplx and elastic:
         from scipy.optimize import linear_sum_assignment  # ~0.3 s to import: only here
 

@@ -329,3 +329,22 @@ def test_seed_lateral_mesh_mode_below_torsional():
     mesh = min(lat.elastic, key=lambda m: m.natural_frequency_Hz)
     assert "mesh" in mesh.description
     assert mesh.natural_frequency_Hz < tors.natural_frequency_Hz
+
+
+@pytest.mark.parametrize("zeta", [0.05, 3.0])
+def test_free_pair_with_an_overdamped_mesh_keeps_its_mesh_mode(zeta):
+    """Torque drive, both gears free: the state matrix has the defective double zero root of
+    the rigid rotation, which round-off splits into a complex pair ~1e-8 of the largest root.
+    With an overdamped mesh (no genuine complex pair left) that pair was taken for the mesh
+    mode (the seed with a torque drive: "mode 2: 8.4e-06 Hz, ζ 7.7e-09"). Exact: one
+    relative coordinate on the line of action, m_e = 1/(r_b1²/J1 + r_b2²/J2), ω² = k/m_e,
+    ζ = c/(2√(k m_e)) (Rao, Mechanical Vibrations, §2.6), for ζ < 1 and ζ > 1 alike."""
+    k = 1e4  # N/mm
+    m_e = 1.0 / (RB1**2 / J1 + RB2**2 / J2)  # t
+    c = 2.0 * zeta * math.sqrt(k * m_e)
+    res = linear_modes(LinearSystem(structure(), k, c))
+    assert [m.rigid for m in res.modes] == [True, False]
+    mesh = res.modes[1]
+    assert mesh.natural_frequency_Hz == pytest.approx(hz(k / m_e), rel=1e-9)
+    assert mesh.damping_ratio == pytest.approx(zeta, rel=1e-9)
+    assert res.slowest_decay_rate_1_s() > 0.0  # the round-off pair is no slow decay either
