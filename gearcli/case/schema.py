@@ -266,6 +266,14 @@ class Drive(Section):
         if self.type != "torque" and (self.torque is not None or self.motor_curve is not None):
             key = "torque" if self.torque is not None else "motor_curve"
             raise FieldError((key,), f"only applies to drive type 'torque', not '{self.type}'")
+        if self.type == "torque" and self.speed is not None:
+            raise FieldError(("speed",), "only applies to drive types 'speed' and 'shaft', not "
+                             "'torque' (the pinion's speed follows from the torques; give "
+                             "'reference_speed' for the frequencies, and drop 'speed', e.g. "
+                             "--set drive.speed=null)")
+        if self.type != "torque" and self.reference_speed is not None:
+            raise FieldError(("reference_speed",), "only applies to drive type 'torque', not "
+                             f"'{self.type}' (a prescribed speed gives the frequencies)")
         if self.type == "speed" and self.shaft is not None:
             raise FieldError(("shaft",), "'shaft' needs drive type 'shaft' (prescribed motor "
                              "speed) or 'torque' (with a motor_inertia); the pinion of type "

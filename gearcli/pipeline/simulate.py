@@ -264,6 +264,8 @@ def validity_of(res: SimulationResult):
         module_mm=res.geometry.geometry.module_mm,
         gear_speed_rad_s=k.column("omega2_rad_s")[w],
         pinion_speed_rad_s=k.column("omega1_rad_s")[w] if free_pinion else None,
+        window_s=res.window.t1_s - res.window.t0_s,
+        teeth=(res.geometry.geometry.pinion.teeth, res.geometry.geometry.gear.teeth),
         energy_relative_residual=res.summary["energy_balance"]["relative_residual"])
 
 

@@ -106,8 +106,8 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
         status, reason = check_validity(
             penetration_max_mm=bound, static_deflection_mm=ki.mesh.static_deflection_mm,
             module_mm=res.geometry.geometry.module_mm, gear_speed_rad_s=omega2[w],
-            pinion_speed_rad_s=omega1[w] if free_pinion else None,
-            energy_relative_residual=residual)
+            pinion_speed_rad_s=omega1[w] if free_pinion else None, window_s=t1 - t0,
+            teeth=(z1, res.geometry.geometry.gear.teeth), energy_relative_residual=residual)
         f_max = float(force[w].max())
         valid = status == "ok"
         rows.append({

@@ -500,6 +500,12 @@ def _speed_override(src: Source, data: dict, overrides: list, value) -> str:
     if not f_z > 0.0:  # 0 Hz divided the speed curve's dwell (exit 3); < 0 is a reverse drive
         raise src.error(("parameters", MESH_FREQUENCY), f"got {value!r}; expected a mesh "
                         "frequency > 0 Hz (the pinion turns forward)")
+    drive_type = next((v for p, v in overrides if p.key == "drive.type"), None)
+    drive_type = drive_type or data.get("drive", {}).get("type", "speed")
+    if drive_type == "torque":
+        raise src.error(("parameters", MESH_FREQUENCY), "sets the pinion speed (drive.speed), "
+                        "which a torque drive does not prescribe: expected a base case with "
+                        "drive type 'speed' or 'shaft'")
     speed = data.get("drive", {}).get("speed")
     m = _RAMP.match(speed) if isinstance(speed, str) else None
     if m:

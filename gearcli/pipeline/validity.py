@@ -14,8 +14,8 @@ Checked, in this order (the first that fails is the reason):
    undamped, error-free model, not a gear's response. The thickness term (5 % of the tooth
    thickness) bounds the small-deflection geometry of the gap tables (contact points of the
    rigid profiles) for soft penalty contacts and for runs without load (δ_s = 0).
-2. **Speed reversal** — the gear (and, with a torque drive, the pinion) running backwards (mean
-   speed negative: backwards throughout, e.g. a load larger than a torque drive) or turning
+2. **Speed reversal** — the gear (and, with a torque drive, the pinion) running backwards (by
+   more than one tooth pitch over the window: e.g. a load larger than a torque drive) or turning
    backwards in the steady window by more than 1 % of its mean speed: the pair's kinematics
    (tables of roll position, the drive/coast flank assignment and the output sampling by roll)
    assume a forward-running pair.
@@ -57,9 +57,11 @@ def penetration_limit_mm(static_deflection_mm: float, module_mm: float) -> float
 
 def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, module_mm: float,
                    gear_speed_rad_s: np.ndarray, pinion_speed_rad_s: np.ndarray | None,
+                   window_s: float, teeth: tuple[int, int],
                    energy_relative_residual: float) -> Validity:
-    """Validity of one run (module notes). Speeds are the steady window's samples [rad/s];
-    ``pinion_speed_rad_s`` only when the pinion is free (torque drive), else None."""
+    """Validity of one run (module notes). Speeds are the steady window's samples [rad/s]
+    (``window_s`` long); ``pinion_speed_rad_s`` only when the pinion is free (torque drive),
+    else None; ``teeth`` = (z1, z2)."""
     limit = penetration_limit_mm(static_deflection_mm, module_mm)
     if not penetration_max_mm <= limit:
         return Validity(INVALID, (
@@ -67,15 +69,19 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
             f"{limit:.4g} mm ({PENETRATION_PER_STATIC:g} x the static deflection "
             f"{static_deflection_mm:.4g} mm, at most {100 * PENETRATION_PER_THICKNESS:g} % of "
             "the tooth thickness)"))
-    for name, omega in (("gear", gear_speed_rad_s), ("pinion", pinion_speed_rad_s)):
+    for name, omega, z in (("gear", gear_speed_rad_s, teeth[1]),
+                           ("pinion", pinion_speed_rad_s, teeth[0])):
         if omega is None or omega.size == 0:
             continue
         mean = float(np.mean(omega))
-        if mean < 0.0 and -mean > 0.5 * float(np.max(np.abs(omega))):
-            # backwards throughout (e.g. a load torque larger than a torque drive's)
+        pitches = -mean * window_s * z / (2.0 * math.pi)
+        if pitches > 1.0:
+            # backwards throughout (e.g. a load torque larger than a torque drive's); a gear
+            # creeping back by its deflection in a ring-down at rest is not
             return Validity(INVALID, (
                 f"the {name} runs backwards in the steady window (mean speed "
-                f"{np.degrees(mean):.4g} deg/s): the model assumes a forward-running pair"))
+                f"{np.degrees(mean):.4g} deg/s, {pitches:.3g} tooth pitches): the model "
+                "assumes a forward-running pair"))
         forward = np.sign(mean) or 1.0
         worst = float(omega[np.argmin(forward * omega)])
         if forward * worst < -REVERSAL_FRACTION * abs(mean):

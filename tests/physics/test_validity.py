@@ -89,7 +89,8 @@ def test_sweep_marks_invalid_points_and_leaves_their_metrics_empty(tmp_path):
 # --- the rules one by one (pure function) ---------------------------------------------------
 def _check(**kw):
     args = dict(penetration_max_mm=0.01, static_deflection_mm=0.005, module_mm=5.0,
-                gear_speed_rad_s=np.full(10, 50.0), pinion_speed_rad_s=None,
+                gear_speed_rad_s=np.full(10, 50.0), pinion_speed_rad_s=None, window_s=0.1,
+                teeth=(20, 40),
                 energy_relative_residual=1e-8)
     args.update(kw)
     return check_validity(**args)
@@ -112,9 +113,12 @@ def test_speed_reversal_and_energy_residual_are_invalid():
     assert "speed -28.65 deg/s against its mean of 1425 deg/s" in v.reason  # signs as they are
     # backwards throughout (a load larger than a torque drive): judged against the sign of
     # its own mean this passed, and the run reported a dynamic factor
-    v = _check(gear_speed_rad_s=np.full(10, -50.0))
+    v = _check(gear_speed_rad_s=np.full(10, -50.0))  # 0.1 s: 31.8 pitches of a 40-tooth gear
     assert v.status == INVALID and v.reason.startswith("the gear runs backwards in the steady "
-                                                       "window (mean speed -2865 deg/s)")
+                                                       "window (mean speed -2865 deg/s, 31.8")
+    # a gear creeping back by its deflection (ring-down at rest, -0.0126 deg/s measured): no
+    creep = np.full(10, -2.2e-4)
+    assert "runs backwards" not in _check(gear_speed_rad_s=creep).reason
     assert _check(gear_speed_rad_s=-back).status == INVALID  # a reverse-running gear likewise
     # a ring-down at rest dithers about zero: judged by its dither, not as running backwards
     dither = np.array([1e-6, -1.1e-6, 1.2e-6, -1e-6])

@@ -264,3 +264,31 @@ def test_points_that_resolve_to_one_case_run_it_once(tmp_path):
     df = pd.read_csv(out / "summary.csv")
     assert list(df["point"]) == [0, 1, 2] and df["case_hash"][0] == df["case_hash"][1]
     assert df["force_max_N"][0] == df["force_max_N"][1] != df["force_max_N"][2]
+
+
+@pytest.mark.parametrize("design", ["grid", "speed_curve"])
+def test_mesh_frequency_on_a_torque_drive_is_refused(tmp_path, design):
+    # a torque drive's speed follows from the torques: the points ran at the motor curve's
+    # speed while their rows claimed the swept ones (dynamic factor 1.615 in every row)
+    path = tmp_path / "tq.yaml"
+    path.write_text(f"base: {ROOT / 'cases' / 'seed.yaml'}\ndesign: {design}\n"
+                    "set: {drive.type: torque, drive.speed: null, drive.torque: 1e5}\n"
+                    "parameters:\n  mesh_frequency: [100 Hz, 200 Hz]\n")
+    with pytest.raises(CaseError, match="parameters.mesh_frequency: sets the pinion speed "
+                                        r"\(drive.speed\), which a torque drive does not"):
+        load_study(path)
+
+
+@pytest.mark.parametrize("override, key, fragment", [
+    ("drive.type=torque", "drive.speed", "only applies to drive types 'speed' and 'shaft'"),
+    ("drive.reference_speed=100", "drive.reference_speed", "only applies to drive type "
+                                                           "'torque', not 'speed'"),
+])
+def test_drive_keys_of_another_drive_type_are_refused(override, key, fragment):
+    # a leftover drive.speed set a torque drive's f_z and steady window (141.7 Hz, not 305)
+    from gearcli.case.load import load_case
+
+    extra = ["drive.torque=1e5"] if "torque" in override else []
+    with pytest.raises(CaseError) as err:
+        load_case(ROOT / "cases" / "seed.yaml", [override, *extra])
+    assert key in str(err.value) and fragment in str(err.value)
