@@ -181,6 +181,8 @@ def _limit_message(err: dict, loc: Loc) -> str | None:
         dim = getattr(getattr(meta, "func", None), "dim", None) or dim
     if limit is None:
         return None
+    if isinstance(limit, int) and not isinstance(limit, bool):  # counts, seeds: exact
+        return f"expected {op} {limit}"
     if dim is None:  # a plain number (a coefficient): the bound as written, not pydantic's
         return f"expected {op} {float(limit):g}"  # fixed-point 0.000000000000023
     return f"expected {op} {float(limit) / dim.factor:g} {dim.default}"

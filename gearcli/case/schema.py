@@ -373,7 +373,8 @@ class PitchDeviation(Section):
     iso1328_grade: Annotated[int, Strict()] | None = Field(
         None, ge=1, le=11, description="ISO 1328-1 grade 1..11"
     )
-    seed: Annotated[int, Strict()] = Field(0, description="random seed for the grade (0)")
+    seed: Annotated[int, Strict()] = Field(0, ge=0, le=2**32 - 1,
+                                           description="random seed for the grade (0)")
 
     @model_validator(mode="after")
     def _one_source(self):

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import display_units, format_value, handle_errors
+from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
 
 
 @app.command()
@@ -46,10 +46,9 @@ def mesh(
 
     if load is not None and not load > 0.0:
         raise CaseError(f"--load must be a force > 0 N, got {load}")
-    from gearcli.io.files import check_new_file
     from gearcli.io.outdir import check_target
 
-    check_new_file(plot, force, "--plot")
+    check_figure_path("--plot", plot, force)
     if out is not None:
         check_target(out, force)  # before the work, not after
     analysis = api.mesh(case, set_, load_N=load, harris=harris)

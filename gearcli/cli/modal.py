@@ -9,6 +9,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import (
+    check_figure_path,
     display_units,
     format_value,
     handle_errors,
@@ -45,10 +46,9 @@ def modal(
 
     from gearcli import api
     from gearcli.errors import CheckFailed
-    from gearcli.io.files import check_new_file
     from gearcli.pipeline.modal import save_campbell_plot
 
-    check_new_file(plot, force, "--plot")
+    check_figure_path("--plot", plot, force)
     units = display_units()
     speeds = option_quantities(speed_range, "ANGULAR_VELOCITY", "--speed-range")
     modal_result = api.modal(case, set_, None if speeds is None else

@@ -495,3 +495,24 @@ def test_a_stress_window_shorter_than_a_mesh_cycle_is_refused(tmp_path):
     r = invoke("stress", out, "--window", "0", "0.0005")  # f_z = 141.7 Hz: 7.06 ms a cycle
     assert r.exit_code == 1
     assert "is shorter than one mesh cycle (1/f_z = 0.00706 s)" in error_line(r)
+
+
+@pytest.mark.parametrize("command", ["mesh", "modal"])
+@pytest.mark.parametrize("name", ["figure.txt", "figure"])
+def test_mesh_and_modal_plots_need_a_figure_format(tmp_path, command, name):
+    # .txt ended in matplotlib's ValueError (exit 3); no suffix wrote a PNG without one
+    r = invoke(command, SEED, "--plot", tmp_path / name)
+    assert r.exit_code == 1
+    assert "expected a file name ending in .png, .svg or .pdf" in error_line(r)
+    assert not (tmp_path / name).exists()
+
+
+@pytest.mark.parametrize("seed, expected", [("-3", "expected >= 0"),
+                                            ("99999999999", "expected <= 4294967295")])
+def test_pitch_deviation_seed_is_bounded(tmp_path, seed, expected):
+    # a negative seed reached numpy's random generator (exit 3)
+    r = invoke("simulate", SEED, "-o", tmp_path / "o", "--set",
+               "errors.pitch_deviation.pinion.iso1328_grade=11", "--set",
+               f"errors.pitch_deviation.pinion.seed={seed}")
+    assert r.exit_code == 1
+    assert f"errors.pitch_deviation.pinion.seed: got {seed}; {expected}" in error_line(r)
