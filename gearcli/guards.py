@@ -136,11 +136,12 @@ _POWER = re.compile(r"(\*\*|\^)\s*(\(\s*[-+]?\s*" + _NUMBER + r"\s*\)|[-+]?\s*" 
 _LEADING_NUMBER = re.compile(r"^\s*\(?\s*[-+]?\s*(?:\d|\.\d)")
 
 
-def check_unit_text(text: str, need_number: bool) -> None:
+def check_unit_text(text: str, need_number: bool, example: str = "10 mm") -> None:
     """Refuse a string pint must not evaluate: too long, or with a large or chained power.
 
     ``need_number``: the string is a quantity ("10 mm"), so it must start with a number; a
-    unit alone ("mm") would otherwise be read as 1 mm.
+    unit alone ("mm") would otherwise be read as 1 mm. ``example``: a quantity of the field's
+    dimension for the messages.
 
     Raises
     ------
@@ -149,7 +150,7 @@ def check_unit_text(text: str, need_number: bool) -> None:
     """
     if len(text) > MAX_UNIT_CHARS:
         raise ValueError(f"expected a number with units of at most {MAX_UNIT_CHARS} "
-                         f"characters, e.g. '10 mm' (got {len(text):,} characters)")
+                         f"characters, e.g. '{example}' (got {len(text):,} characters)")
     pos = 0
     while (m := _POWER.search(text, pos)) is not None:
         exponent = m.group(2)
@@ -166,8 +167,8 @@ def check_unit_text(text: str, need_number: bool) -> None:
                              f"{clip(text[m.start():m.end()].strip())!r}")
         pos = m.end()
     if need_number and not _LEADING_NUMBER.match(text):
-        raise ValueError("expected a number with units, e.g. '10 mm' (no number in front: a "
-                         "unit alone is not a value)")
+        raise ValueError(f"expected a number with units, e.g. '{example}' (no number in front: "
+                         "a unit alone is not a value)")
 
 
 def _powered_group(text: str, op: int) -> bool:

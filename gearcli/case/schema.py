@@ -199,7 +199,10 @@ class Contact(Section):
         if value == "derived":
             return value
         exponent = info.data.get("exponent", 1.5)
-        k = checked_quantity(value, units.contact_stiffness_dim(exponent))
+        try:
+            k = checked_quantity(value, units.contact_stiffness_dim(exponent))
+        except ValueError as exc:  # UnitError is one: say the word the field also takes
+            raise ValueError(f"{exc}; or 'derived' (ISO 6336-1)") from None
         if not k > 0.0:
             raise ValueError("expected a contact stiffness > 0 (or 'derived')")
         return k

@@ -23,7 +23,7 @@ def checked_quantity(value: Any, dim: Dim) -> float:
     string must start with a number ("mm" alone is not 1 mm) and have small, unchained
     powers (pint never returns from "9**9**9**9")."""
     if isinstance(value, str):
-        guards.check_unit_text(value, need_number=True)
+        guards.check_unit_text(value, need_number=True, example=f"10 {dim.default}")
     return units.parse_quantity(value, dim)
 
 

@@ -42,6 +42,21 @@ _FINDING_KEYS = {
 }
 
 
+# Other keys that change what a finding checks: when a --set changed one of them (and not the
+# key above), the error names that override, the user's edit ("{gear}": the finding's gear).
+_FINDING_LEVERS = {
+    "pointed_tip": (("gears", "{gear}", "thickness_allowance"), ("gears", "{gear}", "teeth"),
+                    ("gears", "module"), ("gears", "rack", "addendum")),
+    "undercut": (("gears", "{gear}", "teeth"), ("gears", "rack", "dedendum")),
+    "centre_distance": (("gears", "pinion", "profile_shift"), ("gears", "gear", "profile_shift"),
+                        ("gears", "pinion", "teeth"), ("gears", "gear", "teeth"),
+                        ("gears", "module")),
+    "contact_ratio": (("gears", "pinion", "profile_shift"), ("gears", "gear", "profile_shift"),
+                      ("gears", "pinion", "tip_shortening"), ("gears", "gear", "tip_shortening"),
+                      ("gears", "pinion", "teeth"), ("gears", "gear", "teeth")),
+}
+
+
 # When several errors hold, report the root cause first (a wrong centre distance also breaks
 # clearance and contact ratio).
 _ROOT_CAUSE_ORDER = [
@@ -186,6 +201,11 @@ def _located(loaded: LoadedCase, finding: Finding, more: int):
         loc = _interference_key(loaded, gear)
     if loc[-1] == "centre_distance" and loaded.case.gears.centre_distance is None:
         loc = ("gears",)
+    overridden = loaded.source.overridden
+    if loc not in overridden:
+        levers = (tuple(k.format(gear=gear) for k in lever)
+                  for lever in _FINDING_LEVERS.get(finding.code, ()))
+        loc = next((lever for lever in levers if lever in overridden), loc)
     text = finding.message + (f" (+{more} more)" if more else "")
     return loaded.error_at(loc, text)
 

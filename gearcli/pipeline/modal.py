@@ -50,6 +50,8 @@ class ModalCheck:
     limit: str
     passed: bool
     note: str = ""
+    #: False when the check could not apply (the note says why): it passes, shown "not checked"
+    checked: bool = True
 
 
 @dataclass
@@ -146,7 +148,7 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     lo, hi = speed_range_deg_s
     if not (0.0 <= lo < hi <= MAX_SPEED_DEG_S):
         raise CaseError(f"--speed-range: got {lo:g} {hi:g} deg/s; expected 0 <= A < B <= "
-                        f"{MAX_SPEED_DEG_S:g}")
+                        f"{MAX_SPEED_DEG_S:g} deg/s ({MAX_SPEED_DEG_S / 6.0:g} rpm)")
     out = ModalAnalysis(loaded, geo, system, mesh, result, orders, cross, case_deg_s,
                         (lo, hi))
     if case_deg_s:
@@ -158,10 +160,12 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
 def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
     name, lim = "resonance_margin_percent", f">= {limit:g} %"
     if res.case_speed_deg_s is None:
-        return ModalCheck(name, None, lim, True, "no case speed (torque drive without "
-                          "drive.reference_speed): see the crossing speeds")
+        why = ("a torque drive without drive.reference_speed" if res.system.drive == "torque"
+               else "the pinion does not turn")
+        return ModalCheck(name, None, lim, True, f"not checked: no case speed ({why}); see the "
+                          "crossing speeds", checked=False)
     if not res.margins:
-        return ModalCheck(name, None, lim, True, "no elastic mode")
+        return ModalCheck(name, None, lim, True, "not checked: no elastic mode", checked=False)
     near = res.margins[0]
     note = (f"nearest: {near.order} = {near.excitation_Hz:.1f} Hz vs mode {near.mode} "
             f"{near.mode_Hz:.1f} Hz")
@@ -170,7 +174,10 @@ def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
     if no_peak:
         note += (f"; mode(s) {', '.join(map(str, no_peak))} have no resonant peak (damping "
                  f"ratio >= {NO_PEAK_DAMPING_RATIO:.3f}) and are not checked")
-    ok = not peaked or peaked[0].margin_percent >= limit
+    if not peaked:
+        return ModalCheck(name, near.margin_percent, lim, True, "not checked: no mode has a "
+                          "resonant peak; " + note, checked=False)
+    ok = peaked[0].margin_percent >= limit
     if peaked and not ok:
         p = peaked[0]
         note += f"; violated by {p.order} vs mode {p.mode} ({p.margin_percent:.1f} %)"
@@ -237,7 +244,7 @@ def modal_document(res: ModalAnalysis) -> dict:
                                    "margin_percent": x.margin_percent,
                                    "resonant_peak": x.has_peak} for x in res.margins],
         "checks": [{"name": c.name, "value": c.value, "limit": c.limit, "passed": c.passed,
-                    "note": c.note} for c in res.checks],
+                    "checked": c.checked, "note": c.note} for c in res.checks],
         "passed": res.passed,
     }
 

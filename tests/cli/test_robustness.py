@@ -516,3 +516,29 @@ def test_pitch_deviation_seed_is_bounded(tmp_path, seed, expected):
                f"errors.pitch_deviation.pinion.seed={seed}")
     assert r.exit_code == 1
     assert f"errors.pitch_deviation.pinion.seed: got {seed}; {expected}" in error_line(r)
+
+
+@pytest.mark.parametrize("override, fragment", [
+    # the pointed tip named profile_shift, the shift sum the whole gears section (file line)
+    ("gears.pinion.thickness_allowance=7", "--set gears.pinion.thickness_allowance=7: "
+                                           "gears.pinion.thickness_allowance: got 7; pinion: tip "
+                                           "thickness"),
+    ("gears.gear.profile_shift=-0.9", "--set gears.gear.profile_shift=-0.9: "
+                                      "gears.gear.profile_shift: got -0.9; profile shift sum"),
+    # a misspelt 'derived' and a bad time: examples of the field's own dimension
+    ("contact.stiffness=Derived", "e.g. '10 N/mm^1.5' (no number in front: a unit alone is "
+                                  "not a value); or 'derived' (ISO 6336-1)"),
+    ("run.end_time=NaN", "run.end_time: got 'NaN'; expected a number with units, e.g. '10 s'"),
+])
+def test_geometry_and_quantity_errors_name_what_the_user_changed(tmp_path, override, fragment):
+    r = invoke("simulate", SEED, "-o", tmp_path / "o", "--set", override)
+    assert r.exit_code == 1
+    assert fragment in error_line(r)
+
+
+def test_modal_margin_without_a_speed_is_not_checked_and_says_why():
+    r = invoke("modal", SEED, "--json", "--set", "drive.speed=0")
+    assert r.exit_code == 0, r.output
+    check = json.loads(r.stdout)["checks"][0]
+    assert check["checked"] is False
+    assert check["note"].startswith("not checked: no case speed (the pinion does not turn)")
