@@ -59,12 +59,44 @@ def _overrides(set_) -> list[str]:
     if isinstance(set_, str):  # one "key.path=value" text, not a sequence of characters
         return [set_]
     if set_ is not None and not isinstance(set_, Mapping):
+        if isinstance(set_, bytes) or not hasattr(set_, "__iter__"):
+            raise CaseError(f"set={set_!r:.60}: expected a mapping {{'key.path': value}}, a "
+                            "'key.path=value' text or a sequence of such texts")
         return [str(item) for item in set_]
     out = []
     for key, value in (set_ or {}).items():
-        text = value if isinstance(value, str) else json.dumps(value)
+        try:
+            text = value if isinstance(value, str) else json.dumps(value, allow_nan=False)
+        except (TypeError, ValueError):
+            raise CaseError(f"set[{key!r}]: got {value!r:.60}; expected a number, a text "
+                            "(with units) or a list of them") from None
         out.append(f"{key}={text}")
     return out
+
+
+def _quantities(values, dim, what: str, count: int) -> tuple[float, ...]:
+    """``count`` values given as numbers (in ``dim``'s case-file unit) or texts with units, in
+    internal units, as the command line's options take them; anything else a CaseError."""
+    from gearcli import units
+
+    items = (values,) if count == 1 else values
+    if count > 1 and (isinstance(values, str | bytes) or not hasattr(values, "__len__")):
+        items = None
+    if items is None or len(items) != count or any(isinstance(v, bool) for v in items):
+        shape = "a value" if count == 1 else f"{count} values"
+        raise CaseError(f"{what}={values!r:.60}: expected {shape}, each a number in "
+                        f"{dim.default} or a text with units")
+    try:
+        return units.parse_quantities(items, dim)
+    except (units.UnitError, TypeError, ValueError) as exc:
+        raise CaseError(f"{what} {exc}; expected numbers in {dim.default} or texts with "
+                        "units") from None
+
+
+def _callable_or_none(value, what: str):
+    if value is not None and not callable(value):
+        raise TypeError(f"{what}={value!r:.60}: expected a callable or None")
+    return value
 
 
 def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the CLI's --set)
@@ -253,7 +285,8 @@ def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
     """
     from gearcli.pipeline.simulate import run_simulation
 
-    if status:
+    _callable_or_none(progress, "progress")
+    if _callable_or_none(status, "status"):
         status("loading the case")
     sim = Simulation(run_simulation(load_case(case, set), progress=progress, zoom=zoom,
                                     status=status))
@@ -266,6 +299,9 @@ def _folder_of(run, stack) -> Path:
     if isinstance(run, Simulation):
         tmp = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="gearcli-")))
         return run.save(tmp / "run")
+    if not isinstance(run, str | os.PathLike):
+        raise CaseError(f"run={run!r:.60}: expected a Simulation or the path of a results "
+                        "folder of gearcli simulate")
     return Path(run)
 
 
@@ -334,16 +370,11 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
     """
     import contextlib
 
+    from gearcli import units
     from gearcli.pipeline.analyze import analyze as run_analysis
 
     if window is not None:
-        from gearcli import units
-        try:
-            window = units.parse_quantities(window, units.TIME)
-        except (units.UnitError, TypeError) as exc:
-            raise CaseError(f"window {exc}; expected (T0, T1) in s or with units") from None
-        if len(window) != 2:
-            raise CaseError(f"window: {len(window)} values; expected (T0, T1)")
+        window = _quantities(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
         return Analysis(run_analysis(_folder_of(run, stack), window, strict))
 
@@ -408,10 +439,17 @@ def modal(case, set=None,  # noqa: A002
     case : str, Path, mapping or LoadedCase
     set : overrides as in :func:`load_case`
     speed_range_deg_s : (float, float), optional
-        Pinion speed range of the Campbell diagram [deg/s] (default 0 .. 1.5 x case speed).
+        Pinion speed range of the Campbell diagram [deg/s], or texts with units ("6000 rpm");
+        default 0 .. 1.5 x case speed.
     """
+    import math
+
+    from gearcli import units
     from gearcli.pipeline.modal import run_modal
 
+    if speed_range_deg_s is not None:
+        speed_range_deg_s = tuple(math.degrees(v) for v in _quantities(
+            speed_range_deg_s, units.ANGULAR_VELOCITY, "speed_range_deg_s", 2))
     return Modal(run_modal(load_case(case, set), speed_range_deg_s=speed_range_deg_s))
 
 
@@ -473,8 +511,9 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
     ----------
     case : str, Path, mapping or LoadedCase
     set : overrides as in :func:`load_case`
-    load_N : float, optional
-        Static normal force [N] (default: the case's load torque / r_b2).
+    load_N : float or str, optional
+        Static normal force [N], or a text with units ("2 kN"); default: the case's load
+        torque / r_b2.
     harris : bool
         Also the Harris map (STE peak-to-peak against 0.1 .. 2 x the load).
     options
@@ -484,8 +523,13 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
     -------
     Mesh
     """
+    from gearcli import units
     from gearcli.pipeline.mesh import run_mesh
 
+    if load_N is not None:
+        (load_N,) = _quantities(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
+    if not isinstance(harris, bool):
+        raise CaseError(f"harris={harris!r:.60}: expected True or False")
     return Mesh(run_mesh(load_case(case, set), load_N=load_N, harris=harris, **options))
 
 
@@ -530,8 +574,9 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
     ----------
     run : Simulation or str or Path
         A simulation, or a results folder of `gearcli simulate`.
-    window : (float, float), optional
-        Window of the maxima [s] (default the steady window).
+    window : (T0, T1), optional
+        Window of the maxima: numbers [s] or texts with units ("250 ms"); default the steady
+        window.
     require_limits : bool
         Raise CaseError when the case lacks the fatigue limits for safety factors.
 
@@ -541,8 +586,11 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
     """
     import contextlib
 
+    from gearcli import units
     from gearcli.pipeline.stress import compute_stress
 
+    if window is not None:
+        window = _quantities(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
         return Stress(compute_stress(_folder_of(run, stack), window,
                                      require_limits=require_limits))

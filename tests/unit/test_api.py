@@ -238,3 +238,32 @@ def test_sweep_refuses_a_bad_worker_count(jobs):
 def test_sweep_refuses_what_is_no_study():
     with pytest.raises(CaseError, match="expected the path of a study file"):
         gearcli.sweep({"parameters": {"gears.module": [10]}})
+
+
+@pytest.mark.parametrize("call, match", [
+    # each raised a raw TypeError/ValueError from deep inside (third adversarial run)
+    (lambda: gearcli.mesh(SEED, load_N=True), "load_N=True: expected a value"),
+    (lambda: gearcli.mesh(SEED, load_N="5 mm"), "load_N '5 mm'"),
+    (lambda: gearcli.mesh(SEED, harris="no"), "harris='no': expected True or False"),
+    (lambda: gearcli.modal(SEED, speed_range_deg_s=600.0), "expected 2 values"),
+    (lambda: gearcli.analyze(123), "run=123: expected a Simulation or the path"),
+    (lambda: gearcli.stress("somewhere", window=(None, None)), "window"),
+    (lambda: gearcli.analyze("somewhere", window=0.2), "window=0.2: expected 2 values"),
+    (lambda: gearcli.geometry(SEED, set=1), "set=1: expected a mapping"),
+    (lambda: gearcli.load_case(SEED, set={"run.end_time": object()}),
+     r"set\['run.end_time'\]: got <object"),
+    (lambda: gearcli.load_case(SEED, set={"run.end_time": float("nan")}),
+     r"set\['run.end_time'\]: got nan"),
+])
+def test_api_bad_arguments_are_case_errors(call, match):
+    with pytest.raises(CaseError, match=match):
+        call()
+
+
+def test_api_takes_quantities_with_units_like_the_command_line():
+    m = gearcli.mesh(SEED, load_N="2 kN")
+    assert m.summary.force_N == pytest.approx(2000.0)
+    modal = gearcli.modal(SEED, speed_range_deg_s=("0 rpm", "6000 rpm"))
+    assert modal.result.speed_range_deg_s == pytest.approx((0.0, 36000.0))
+    with pytest.raises(TypeError, match="progress=1: expected a callable"):
+        gearcli.simulate(SEED, progress=1)
