@@ -66,12 +66,20 @@ def _overrides(set_) -> list[str]:
     out = []
     for key, value in (set_ or {}).items():
         try:
-            text = value if isinstance(value, str) else json.dumps(value, allow_nan=False)
+            text = value if isinstance(value, str) else json.dumps(
+                value, allow_nan=False, default=_plain)
         except (TypeError, ValueError):
             raise CaseError(f"set[{key!r}]: got {value!r:.60}; expected a number, a text "
                             "(with units) or a list of them") from None
         out.append(f"{key}={text}")
     return out
+
+
+def _plain(value):
+    """numpy scalars (np.int64(18), np.float32(2.0)) as the Python numbers they hold."""
+    if hasattr(value, "item") and getattr(value, "shape", None) == ():
+        return value.item()
+    raise TypeError(type(value).__name__)
 
 
 def _quantities(values, dim, what: str, count: int) -> tuple[float, ...]:
@@ -89,8 +97,7 @@ def _quantities(values, dim, what: str, count: int) -> tuple[float, ...]:
     try:
         return units.parse_quantities(items, dim)
     except (units.UnitError, TypeError, ValueError) as exc:
-        raise CaseError(f"{what} {exc}; expected numbers in {dim.default} or texts with "
-                        "units") from None
+        raise CaseError(f"{what} {exc}") from None
 
 
 def _callable_or_none(value, what: str):
@@ -640,6 +647,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     if not isinstance(study, Study | str | os.PathLike):
         raise CaseError(f"sweep({study!r:.60}): expected the path of a study file (str or "
                         "Path) or a loaded Study")
+    _callable_or_none(progress, "progress")
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
     with contextlib.ExitStack() as stack:
         if out is None:

@@ -154,15 +154,18 @@ def _time_function_validator(dim: Dim):
                 value = repr(float(value))
             if unit_given and isinstance(value, str) and not is_expression(value):
                 # a constant is in the mapping's unit, as an expression is (this is also how
-                # a case is written back: {function: "52.36", unit: "rad/s"})
+                # a case is written back: {function: "52.36", unit: "rad/s"}); "1e3*0.5" and
+                # "(500)" are numbers too
+                constant = (f"{value} {unit}" if value.lstrip().startswith("(")
+                            else f"({value}) {unit}")
                 try:
-                    float(value)
+                    checked_quantity(constant, dim)
                 except ValueError:
                     raise ValueError(
                         f"expected a number or an expression as the function of a mapping "
                         f"with 'unit' ({value!r} carries its own unit besides unit {unit!r}: "
                         "drop one of them)") from None
-                value = f"{value} {unit}"
+                value = constant
         if isinstance(value, bool) or not isinstance(value, int | float | str):
             raise ValueError(
                 f"expected a {dim.name} ({dim.default}): a number, a string with units, or an "

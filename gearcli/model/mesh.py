@@ -43,6 +43,12 @@ class MeshMode:
     natural_frequency_Hz: float
     damping_ratio: float
 
+    @property
+    def loaded_deflection_mm(self) -> float:
+        """The static deflection under load, 0 without load (``static_deflection_mm`` is then
+        the power law's linearisation point, 1 % of d_max: no deflection of the teeth)."""
+        return self.static_deflection_mm if self.static_force_N > 0.0 else 0.0
+
 
 def mesh_mode(
     static_force_N: float,

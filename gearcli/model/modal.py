@@ -70,12 +70,26 @@ RIGID_TOLERANCE = 1e-9
 #: is round-off of a free rigid-body root.
 LIVE_ROOT_FRACTION = 1e-9
 
-#: A complex root pair with |λ| below this fraction of the largest |λ| is round-off of the
-#: double zero root of a free rigid-body mode: that root is defective (a Jordan block, angle and
-#: speed), and round-off ε splits it into a pair of size ~√ε |A| (Golub & Van Loan, Matrix
-#: Computations, 4th ed., §7.2.2: a perturbation ε of a defective eigenvalue of multiplicity 2
-#: moves it by O(ε^(1/2))), i.e. 1e-8 of the largest root, above LIVE_ROOT_FRACTION.
+#: The double zero root of a free rigid-body mode is defective (a Jordan block: angle and
+#: speed), and round-off ε splits it into a pair ±r, real or imaginary, of size ~√ε |A|
+#: (Golub & Van Loan, Matrix Computations, 4th ed., §7.2.2: a perturbation ε of a defective
+#: eigenvalue of multiplicity 2 moves it by O(ε^(1/2))), ~1e-8 of the largest root, above
+#: LIVE_ROOT_FRACTION. Two roots below this fraction of the largest |λ| that sum to ~0 are
+#: that pair (:func:`roundoff_pairs`); a genuine decay root -c/J has no opposite partner.
 DEFECTIVE_ROOT_FRACTION = 1e-6
+
+
+def roundoff_pairs(lam, scale: float) -> set[int]:
+    """Indices of the roots that are round-off of a defective double zero root (see
+    DEFECTIVE_ROOT_FRACTION): pairs below DEFECTIVE_ROOT_FRACTION * ``scale`` with
+    |λ_i + λ_j| < 0.1 |λ_i|."""
+    small = [j for j in range(len(lam)) if abs(lam[j]) <= DEFECTIVE_ROOT_FRACTION * scale]
+    out: set[int] = set()
+    for a in small:
+        for b in small:
+            if a < b and abs(lam[a] + lam[b]) < 0.1 * max(abs(lam[a]), abs(lam[b])):
+                out.update((a, b))
+    return out
 
 #: Natural frequencies this close (relative) are one repeated frequency.
 REPEATED_TOLERANCE = 1e-6
@@ -308,9 +322,11 @@ class ModalResult:
         """Smallest decay rate -Re λ [1/s] over the damped roots (a damped rigid-body mode
         too: a motor curve or a viscous load on a torque drive); None if nothing decays.
         Free rigid-body roots (round-off around 0) are skipped."""
-        scale = max((abs(lam) for lam in self.eigenvalues), default=0.0)
-        rates = [-lam.real for lam in self.eigenvalues
-                 if -lam.real > LIVE_ROOT_FRACTION * scale]
+        lam = self.eigenvalues
+        scale = max((abs(x) for x in lam), default=0.0)
+        noise = roundoff_pairs(lam, scale)
+        rates = [-x.real for j, x in enumerate(lam)
+                 if j not in noise and -x.real > LIVE_ROOT_FRACTION * scale]
         return min(rates) if rates else None
 
 
@@ -487,8 +503,9 @@ def linear_modes(system: LinearSystem) -> ModalResult:
         return _mac(vec[:n, j], phi[:, i].astype(complex))
 
     pair: dict[int, int] = {}  # undamped mode -> index of its complex root
-    cplx = [j for j in live if lam[j].imag > 1e-12 * lam_scale
-            and abs(lam[j]) > DEFECTIVE_ROOT_FRACTION * lam_scale]
+    noise = roundoff_pairs(lam, lam_scale)
+    live = [j for j in live if j not in noise]
+    cplx = [j for j in live if lam[j].imag > 1e-12 * lam_scale]
     if cplx and elastic:
         from scipy.optimize import linear_sum_assignment  # ~0.3 s to import: only here
 

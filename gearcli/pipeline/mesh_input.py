@@ -22,15 +22,11 @@ if TYPE_CHECKING:
 _PATH_POINTS = 401
 
 
-def final_load_torque_Nmm(case: Case) -> float:
-    """The load torque [N*mm] at the end of its ramps (at the end of the run if it has none)."""
-    final = case.load.torque.pp.final_value()
-    return final if final is not None else float(case.load.torque.pp(case.run.end_time))
-
-
 def static_force_N(case: Case, geo: GeometryResult) -> float:
     """F_n,static [N] of the load torque at the end of its ramps (docs/theory.md §7)."""
-    return static_normal_force_N(final_load_torque_Nmm(case), geo.geometry.gear.r_b_mm)
+    final = case.load.torque.pp.final_value()
+    torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
+    return static_normal_force_N(torque, geo.geometry.gear.r_b_mm)
 
 
 def iso_stiffness(case: Case, geo: GeometryResult, force_N: float | None = None):

@@ -160,7 +160,9 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
 def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
     name, lim = "resonance_margin_percent", f">= {limit:g} %"
     if res.case_speed_deg_s is None:
+        speed = res.loaded.case.drive.speed
         why = ("a torque drive without drive.reference_speed" if res.system.drive == "torque"
+               else "drive.speed has no constant final value" if speed.pp.final_value() is None
                else "the pinion does not turn")
         return ModalCheck(name, None, lim, True, f"not checked: no case speed ({why}); see the "
                           "crossing speeds", checked=False)

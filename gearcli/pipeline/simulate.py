@@ -162,7 +162,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     check_run_size(loaded, geo)  # before anything is sized by the run
     check_load(loaded)
     ki = build_kernel_input(case, geo)
-    check_static_deflection(loaded, geo, ki.mesh.static_deflection_mm)
+    check_static_deflection(loaded, geo, ki.mesh.loaded_deflection_mm)
     compiling = announce_compilation(notice)  # a refused run compiles nothing: no notice
     last_ramp = last_ramp_s(case)
     # the natural frequencies of `gearcli modal` (one model): settling time, summary, margins
@@ -255,12 +255,10 @@ def validity_of(res: SimulationResult):
     k = res.kernel
     w = k.column("t_s") >= res.window.t0_s
     free_pinion = res.kernel_input.params[P.drive_mode] != DRIVE_SPEED
-    mesh = res.kernel_input.mesh
     return check_validity(
         penetration_max_mm=k.extremum("penetration_max_mm"),
-        # without load the power law's linearisation point (1 % of d_max, model/mesh.py) is
-        # no static deflection: the guard is the thickness bound alone (validity.py, item 1)
-        static_deflection_mm=mesh.static_deflection_mm if mesh.static_force_N > 0.0 else 0.0,
+        # without load the guard is the thickness bound alone (validity.py, item 1)
+        static_deflection_mm=res.kernel_input.mesh.loaded_deflection_mm,
         module_mm=res.geometry.geometry.module_mm,
         gear_speed_rad_s=k.column("omega2_rad_s")[w],
         pinion_speed_rad_s=k.column("omega1_rad_s")[w] if free_pinion else None,
@@ -318,13 +316,12 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
 
 
 def check_load(loaded: LoadedCase) -> None:
-    """Refuse a load torque that ends negative: the load would drive the gear and the pair run
-    on its coast flanks, while the static force, the dynamic factor and the checks are those of
-    the drive flanks (docs/theory.md §7). A load that is negative only on the way (a reversal
-    inside a time function) runs."""
-    from gearcli.pipeline.mesh_input import final_load_torque_Nmm
-
-    torque = final_load_torque_Nmm(loaded.case)
+    """Refuse a load torque that is negative where the run ends: the load would drive the gear
+    and the pair run on its coast flanks, while the static force, the dynamic factor and the
+    checks are those of the drive flanks (docs/theory.md §7). A load that is negative only on
+    the way (a reversal inside a time function, or after the run) runs."""
+    case = loaded.case
+    torque = float(case.load.torque.pp(case.run.end_time))  # where the run ends
     if torque < 0.0:
         raise loaded.error_at(("load", "torque"), (
             f"the load torque ends at {torque:g} N*mm: a negative load drives the gear, so the "

@@ -104,7 +104,7 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
         w = (t >= t0) & (t <= t1)
         bound = float(max(delta[w].max(), (-delta[w] - j_n).max(), 0.0))
         status, reason = check_validity(
-            penetration_max_mm=bound, static_deflection_mm=ki.mesh.static_deflection_mm,
+            penetration_max_mm=bound, static_deflection_mm=ki.mesh.loaded_deflection_mm,
             module_mm=res.geometry.geometry.module_mm, gear_speed_rad_s=omega2[w],
             pinion_speed_rad_s=omega1[w] if free_pinion else None, window_s=t1 - t0,
             teeth=(z1, res.geometry.geometry.gear.teeth), energy_relative_residual=residual)

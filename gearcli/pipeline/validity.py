@@ -86,9 +86,9 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
         worst = float(omega[np.argmin(forward * omega)])
         if forward * worst < -REVERSAL_FRACTION * abs(mean):
             return Validity(INVALID, (
-                f"the {name} turns backwards in the steady window (speed {np.degrees(worst):.4g}"
-                f" deg/s against its mean of {np.degrees(mean):.4g} deg/s): the model assumes "
-                "a forward-running pair"))
+                f"the {name} reverses in the steady window (speed {np.degrees(worst):.4g} deg/s "
+                f"against its mean of {np.degrees(mean):.4g} deg/s): the model assumes a "
+                "forward-running pair"))
     if not energy_relative_residual <= ENERGY_RESIDUAL_LIMIT:
         return Validity(INVALID, (
             f"energy balance residual {energy_relative_residual:.3g} of the largest energy term "

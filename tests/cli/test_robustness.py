@@ -332,6 +332,11 @@ def test_a_contact_too_soft_for_the_load_is_refused(tmp_path, override, fragment
     line = error_line(r)
     assert fragment in line and "beyond the contact model's range of 0.7854 mm" in line, line
     assert not (tmp_path / "o").exists()
+    # without load there is no static deflection to refuse (the linearisation point at 1 % of
+    # d_max, here 0.79 mm, was taken for one)
+    r = invoke("simulate", SEED, "-o", tmp_path / "z", "--quiet", "--set", "load.torque=0",
+               "--set", "contact.penetration_depth=79", "--set", "run.end_time=0.2")
+    assert "static deflection" not in r.output, r.output
 
 
 def test_a_load_that_ends_negative_is_refused_and_a_reversal_on_the_way_runs(tmp_path):
@@ -344,6 +349,10 @@ def test_a_load_that_ends_negative_is_refused_and_a_reversal_on_the_way_runs(tmp
     assert not (tmp_path / "o").exists()
     r = invoke("simulate", SEED, "-o", tmp_path / "s", "--quiet", "--set", "run.end_time=0.2",
                "--set", "load.torque=STEP(time, 0, -1e5, 0.1, 2e5)")
+    assert r.exit_code == 0, r.output
+    # negative only after the run ends: judged where the run ends, not after the last ramp
+    r = invoke("simulate", SEED, "-o", tmp_path / "a", "--quiet", "--set", "run.end_time=0.2",
+               "--set", "load.torque=STEP(time, 0, 0, 0.1, 4.5e5) - STEP(time, 1, 0, 2, 9e5)")
     assert r.exit_code == 0, r.output
 
 
@@ -536,9 +545,11 @@ def test_geometry_and_quantity_errors_name_what_the_user_changed(tmp_path, overr
     assert fragment in error_line(r)
 
 
-def test_modal_margin_without_a_speed_is_not_checked_and_says_why():
-    r = invoke("modal", SEED, "--json", "--set", "drive.speed=0")
+@pytest.mark.parametrize("speed, why", [("0", "the pinion does not turn"),
+                                        ("300*time", "drive.speed has no constant final value")])
+def test_modal_margin_without_a_speed_is_not_checked_and_says_why(speed, why):
+    r = invoke("modal", SEED, "--json", "--set", f"drive.speed={speed}")
     assert r.exit_code == 0, r.output
     check = json.loads(r.stdout)["checks"][0]
     assert check["checked"] is False
-    assert check["note"].startswith("not checked: no case speed (the pinion does not turn)")
+    assert check["note"].startswith(f"not checked: no case speed ({why})")

@@ -109,7 +109,7 @@ def test_speed_reversal_and_energy_residual_are_invalid():
     back = np.array([50.0, 20.0, -0.5, 30.0])  # mean 24.9: -0.5 is 2 % of it
     assert _check(gear_speed_rad_s=np.array([50.0, 20.0, -0.2, 30.0])).status == OK  # 0.8 %
     v = _check(gear_speed_rad_s=back)
-    assert v.status == INVALID and v.reason.startswith("the gear turns backwards")
+    assert v.status == INVALID and v.reason.startswith("the gear reverses")
     assert "speed -28.65 deg/s against its mean of 1425 deg/s" in v.reason  # signs as they are
     # backwards throughout (a load larger than a torque drive): judged against the sign of
     # its own mean this passed, and the run reported a dynamic factor

@@ -267,3 +267,10 @@ def test_api_takes_quantities_with_units_like_the_command_line():
     assert modal.result.speed_range_deg_s == pytest.approx((0.0, 36000.0))
     with pytest.raises(TypeError, match="progress=1: expected a callable"):
         gearcli.simulate(SEED, progress=1)
+    with pytest.raises(TypeError, match="progress=1: expected a callable"):
+        gearcli.sweep(ROOT / "cases" / "studies" / "table5.yaml", progress=1)
+    import numpy as np  # numpy scalars are numbers (np.int64 from a DataFrame, say)
+
+    case = gearcli.load_case(SEED, set={"gears.pinion.teeth": np.int64(18),
+                                        "run.end_time": np.float32(0.5)}).case
+    assert case.gears.pinion.teeth == 18 and case.run.end_time == 0.5

@@ -105,6 +105,10 @@ def test_a_constant_in_a_mapping_takes_its_unit_and_round_trips():
     mapped = load_case_text(text.replace("speed: STEP(time, 0, 0, 1, 3000)",
                                          'speed: {function: "500", unit: rpm}')).case
     assert mapped.drive.speed.pp(1.0) == pytest.approx(plain.drive.speed.pp(1.0), rel=1e-15)
+    for number in ("1e3*0.5", "(500)"):  # numbers too, not "carries its own unit"
+        other = load_case_text(text.replace("speed: STEP(time, 0, 0, 1, 3000)",
+                                            f'speed: {{function: "{number}", unit: rpm}}')).case
+        assert other.drive.speed.pp(1.0) == pytest.approx(plain.drive.speed.pp(1.0), rel=1e-15)
     assert plain.drive.speed.pp(1.0) == pytest.approx(math.radians(3000.0), rel=1e-12)  # rad/s
     again = load_case_text(json.dumps(_resolved(plain))).case
     assert again.drive.speed.pp(1.0) == plain.drive.speed.pp(1.0)
