@@ -67,3 +67,10 @@ def nominal_pinion_speed(case: Case) -> float | None:
     if d.speed is not None:
         return d.speed.pp.final_value()
     return None
+
+
+def gear_side_damping(case: Case) -> tuple[float, float]:
+    """(c_v + c_2 [N*mm*s/rad], c_q [N*mm*s²/rad²]): the speed-dependent torques the gear's
+    side resists (the load's viscous and quadratic terms and the gear bearing's damping;
+    docs/theory.md §6.3, §7.3)."""
+    return case.load.viscous + case.bearings.gear.damping, case.load.quadratic

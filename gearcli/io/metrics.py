@@ -27,7 +27,7 @@ METRICS: dict[str, Metric] = {
     "speed_ratio_error_percent": Metric("speed ratio error", "%"),
     "gear_speed_fluctuation_percent": Metric("gear speed fluctuation, peak to peak / mean",
                                              "%"),
-    "force_static_N": Metric("static normal force T_load/r_b2", "N"),
+    "force_static_N": Metric("static normal force T/r_b2", "N"),
     "force_mean_N": Metric("normal force, mean", "N"),
     "force_rms_N": Metric("normal force, RMS", "N"),
     "force_max_N": Metric("normal force, maximum", "N"),

@@ -10,8 +10,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli.case.build import gear_side_damping
 from gearcli.case.schema import Case
-from gearcli.model.mesh import MeshMode, mesh_mode, static_normal_force_N, tooth_mesh_mode
+from gearcli.model.mesh import (
+    MeshMode,
+    mesh_mode,
+    resisted_torque_Nmm,
+    static_normal_force_N,
+    tooth_mesh_mode,
+)
 from gearcli.model.stiffness import derived_pair_stiffness
 from gearcli.pipeline.geometry import GeometryResult
 
@@ -23,10 +30,19 @@ _PATH_POINTS = 401
 
 
 def static_force_N(case: Case, geo: GeometryResult) -> float:
-    """F_n,static [N] of the load torque at the end of its ramps (docs/theory.md §7)."""
+    """F_n,static [N]: the steady torque the gear's side resists, over r_b2 (docs/theory.md
+    §7.3): the load torque at the end of its ramps plus, at the nominal gear speed ω2 (the
+    nominal pinion speed z1/z2; none known: left out), the load's viscous and quadratic terms
+    and the gear bearing's damping, c_v ω2 + c_q ω2² + c_2 ω2 (the gear's equation of motion,
+    §6.3, at constant speed)."""
     final = case.load.torque.pp.final_value()
     torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
+    omega1 = geo.pinion_speed_rad_s
+    if omega1:
+        torque = resisted_torque_Nmm(torque, omega1 / geo.geometry.ratio,
+                                     *gear_side_damping(case))
     return static_normal_force_N(torque, geo.geometry.gear.r_b_mm)
+
 
 
 def iso_stiffness(case: Case, geo: GeometryResult, force_N: float | None = None):

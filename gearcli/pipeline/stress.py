@@ -10,8 +10,9 @@ Reads the per-pair forces and roll positions that `gearcli simulate` wrote (time
 
 per slot and per sample; maxima per tooth over the analysis window (the pair in slot j at mesh
 cycle n has pinion tooth (n − j) mod z1 and gear tooth (n − j) mod z2); the static ISO 6336-2/-3
-nominal values for the static load F_n = T_load/r_b2, dynamic-to-static ratios, and safety
-factors S_H = σ_Hlim/σ_H,max, S_F = σ_Flim Y_ST/σ_F,max when the case gives the material limits.
+nominal values for the static load F_n = T/r_b2 (docs/theory.md §7.3), dynamic-to-static
+ratios, and safety factors S_H = σ_Hlim/σ_H,max, S_F = σ_Flim Y_ST/σ_F,max when the case gives
+the material limits.
 
 Outputs (atomic): ``DIR/stress.csv`` (time histories) and ``DIR/stress.json``.
 Stresses in N/mm² = MPa.

@@ -117,7 +117,7 @@ def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_
 
 def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, window_s=None,
                zoom_s=None, f_z_Hz: float | None = None, zoom_data=None) -> Figure:
-    """Normal mesh force [N] with the static force T_load/r_b2 (scalar or per sample) and the
+    """Normal mesh force [N] with the static force (scalar or per sample) and the
     true maximum from the solver steps, over the run and zoomed (``zoom_s``) around it.
     ``zoom_data`` = (t [s], force [N], static [N] or None): the solver's dense output for the
     zoom (else the zoom shows the output samples)."""
@@ -126,7 +126,8 @@ def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, win
     fig, (ax, zx) = _figure(2)
     _shade_window(ax, window_s)
     ax.plot(t, f / 1e3, color=FORCE, lw=0.35, label="total normal force (output samples)")
-    ax.plot(t, stat / 1e3, color=STATIC, lw=1.2, ls="--", label="static force T_load / r_b2")
+    ax.plot(t, stat / 1e3, color=STATIC, lw=1.2, ls="--",
+            label="static force (resisted torque / r_b2)")
     has_max = force_max_N is not None and force_max_t_s is not None
     if has_max:
         ax.plot(force_max_t_s, force_max_N / 1e3, "*", color=PEAK, ms=11, mec="white", mew=0.6,
@@ -168,7 +169,7 @@ def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, win
                      + (f"{force_max_N / s_ref:.2f} × the static {s_ref / 1e3:.2f} kN"
                         if s_ref > 0.0 else "without a static load (no dynamic factor)"))
     else:
-        fig.suptitle("Mesh force against the static force T_load / r_b2")
+        fig.suptitle("Mesh force against the static force")
     return fig
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.case.build import pair_spec
+from gearcli.case.build import gear_side_damping, pair_spec
 from gearcli.case.load import load_case_text
 from gearcli.errors import GearcliError, ResultsError
 from gearcli.io.results import StoredRun, read_columns, read_json, read_run
@@ -32,6 +32,9 @@ class ReportData:
     zoom: dict = None  # type: ignore[assignment]
     #: display units of the tables and figures (gearcli/display_units.py)
     units: str = "engineering"
+    #: the gear side's speed-dependent resisting torque coefficients (c_v + c_2, c_q) of the
+    #: stored case (pipeline/mesh_input.gear_side_damping), for the static force line
+    gear_side_damping: tuple[float, float] = (0.0, 0.0)
 
     @property
     def folder(self) -> Path:
@@ -115,7 +118,7 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
     if (run.folder / "zoom.csv").is_file():
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
     return ReportData(run, analysis, spectrum, geometry, error, stress, stress_series, zoom,
-                      units)
+                      units, gear_side_damping(loaded.case))
 
 
 #: Non-numeric entries of analysis.json's metrics, by kind; every other entry is a number or null.

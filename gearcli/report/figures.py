@@ -62,7 +62,8 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                   s.get("force_max_t_s") if f_max == s.get("force_max_N") else None)
     force_zoom = None if t_max is None else (t_max - 1.5 * period, t_max + 1.5 * period)
     r_b2 = data.geometry.gear.r_b_mm if data.geometry else None
-    static = c["load_torque_Nmm"] / r_b2 if r_b2 else m.get("force_static_N", s["force_static_N"])
+    static = (_static_force(c, r_b2, data.gear_side_damping) if r_b2
+              else m.get("force_static_N", s["force_static_N"]))
     slots = {f"slot {k[len('force_slot'):-2]}": v for k, v in dense.items()
              if k.startswith("force_slot") and k.endswith("_N")}
     jobs = [
@@ -70,10 +71,12 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
          "the gear speed against its kinematic value ω1·z1/z2 over 6 mesh cycles.",
          lambda: plots.plot_speeds(t, c["omega1_rad_s"], c["omega2_rad_s"], teeth, window,
                                    (start, start + 6 * period), f_z, data.units)),
-        ("force", "Total normal mesh force with the static force T_load/r_b2; the marker is the "
+        ("force", "Total normal mesh force with the static force (the gear side's resisting "
+         "torque over r_b2: the load torque and its speed-dependent terms); the marker is the "
          "true maximum taken from the solver's own steps (the output samples may miss it).",
          lambda: plots.plot_force(t, c["force_total_N"], static, f_max, t_max, window,
-                                  force_zoom, f_z, zoom_data=_zoom_of(zc, force_zoom, r_b2))),
+                                  force_zoom, f_z, zoom_data=_zoom_of(
+                                      zc, force_zoom, r_b2, data.gear_side_damping))),
         ("mesh_cycles", f"{ZOOM_CYCLES} mesh cycles in the steady window: the force carried in "
          "each pair slot (a slot is one base pitch of the line of action; a tooth pair moves "
          "through the slots as the gears turn), their sum, and the number of pairs in contact.",
@@ -82,7 +85,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
         ("dte", "Dynamic transmission error δ = r_b1·θ1 − r_b2·θ2 (deflection of the mesh "
          f"along the line of action) over the run and over {ZOOM_CYCLES} mesh cycles.",
          lambda: plots.plot_dte(t, c["delta_mm"], window, mesh_zoom, f_z, units=data.units,
-                                zoom_data=_zoom_of(zc, mesh_zoom, None, "delta_mm"))),
+                                zoom_data=_zoom_of(zc, mesh_zoom, None, column="delta_mm"))),
         ("spectra", "Hann-windowed amplitude spectra of the steady window (spectrum.csv): mesh "
          "harmonics k·f_z (dashed, measured amplitude circled) and shaft sidebands (dotted). "
          "Triangles on the top edge mark where harmonics above the Nyquist frequency f_s/2 "
@@ -163,16 +166,33 @@ def _stress(data: ReportData):
               f"z2 = {geo.gear.teeth})")
 
 
-def _zoom_of(zoom: dict, span, r_b2, column: str = "force_total_N"):
+def _static_force(columns: dict, r_b2: float, damping: tuple[float, float]):
+    """The static force line [N] of the samples in ``columns``: the torque the gear's side
+    resists at each sample's speed over r_b2 (model/mesh.resisted_torque_Nmm)."""
+    from gearcli.model.mesh import resisted_torque_Nmm
+
+    return resisted_torque_Nmm(columns["load_torque_Nmm"], columns["omega2_rad_s"],
+                               *damping) / r_b2
+
+
+def _zoom_of(zoom: dict, span, r_b2, damping=(0.0, 0.0), column: str = "force_total_N"):
     """(t, values, static force or None) of the dense zoom table over ``span``, or None when
     the table does not cover it (the plots then zoom into the output samples)."""
     t = zoom.get("t_s")
     if t is None or span is None or t.size == 0:
         return None
-    inside = (t >= span[0] - 1e-12) & (t <= span[1] + 1e-12)
-    if inside.sum() < 2 or t[inside][0] > span[0] + 1e-9 or t[inside][-1] < span[1] - 1e-9:
+    inside = (t >= span[0]) & (t <= span[1])
+    ti = t[inside]
+    if ti.size < 3:
         return None
-    static = zoom["load_torque_Nmm"][inside] / r_b2 if r_b2 else None
+    # covered: no gap wider than 1.5 dense steps inside, at either end included (the table
+    # holds separate stretches, and its times are rounded: no sample need sit on the span's
+    # ends, which the measured f_z places)
+    gaps = np.diff(np.concatenate(([span[0]], ti, [span[1]])))
+    if gaps.max() > 1.5 * float(np.median(np.diff(ti))):
+        return None
+    static = (_static_force({k: zoom[k][inside] for k in ("load_torque_Nmm", "omega2_rad_s")},
+                            r_b2, damping) if r_b2 else None)
     return t[inside], zoom[column][inside], static
 
 

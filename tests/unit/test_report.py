@@ -294,3 +294,23 @@ def test_results_rows_use_the_metric_registrys_labels(md_report):
     # keys the registry knows were labelled from their names ("force max t [s]")
     _, text = md_report
     assert "| time of the maximum force |" in text and "force max t" not in text
+
+
+def test_zooms_use_the_dense_table_when_it_covers_the_span():
+    """zoom.csv holds stretches at 128 points per nominal mesh period, with times rounded to 10
+    digits; the report's spans come from the measured f_z, so no sample sits on their ends.
+    Requiring one within 1e-9 s of each end made every force zoom fall back to the output
+    samples (third adversarial run)."""
+    from gearcli.report.figures import _zoom_of
+
+    period = 1.0 / 141.7
+    t = np.round(np.concatenate([np.linspace(1.0, 1.0 + 4 * period, 513),
+                                 np.linspace(4.9, 5.0, 1812)]), 10)
+    zoom = {"t_s": t, "force_total_N": np.ones_like(t), "load_torque_Nmm": np.ones_like(t),
+            "omega2_rad_s": np.ones_like(t)}
+    span = (1.0 + 0.5 * period + 1.234e-6, 1.0 + 3.5 * period - 2.1e-6)
+    got = _zoom_of(zoom, span, 100.0)
+    assert got is not None and got[0][0] >= span[0] and got[0][-1] <= span[1]
+    assert len(got[0]) > 3 * 128 - 2
+    assert _zoom_of(zoom, (1.0 + 3 * period, 4.95), 100.0) is None  # across the gap
+    assert _zoom_of(zoom, (0.99, 1.0 + period), 100.0) is None  # starts before the table
