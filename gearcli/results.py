@@ -113,6 +113,7 @@ class AnalysisMetrics(_Document):
     contact_loss_fraction: float = _field("contact_loss_fraction")
     coast_impacts: int = _field("coast_impacts", 0)
     friction_loss_W: float | None = _field("friction_loss_W", None)
+    damping_loss_W: float | None = _field("damping_loss_W", None)
     input_power_W: float | None = _field("input_power_W", None)
     mesh_efficiency: float | None = _field("mesh_efficiency", None)
     drive_torque_mean_Nmm: float | None = _field("drive_torque_mean_Nmm", None)

@@ -101,8 +101,9 @@ def _save_order_map(result, path: Path, units: str) -> None:
 ANALYZE_KEYS = ("gear_speed_mean_deg_s", "speed_ratio_error_percent",
                 "gear_speed_fluctuation_percent", "force_mean_N", "force_rms_N", "force_max_N",
                 "force_static_N", "dynamic_factor", "dte_peak_to_peak_mm", "dte_rms_mm",
-                "contact_loss_fraction", "coast_impacts", "friction_loss_W", "mesh_efficiency",
-                "gear_mesh_frequency_Hz", "mesh_natural_frequency_Hz", "mesh_damping_ratio")
+                "contact_loss_fraction", "coast_impacts", "friction_loss_W", "damping_loss_W",
+                "mesh_efficiency", "gear_mesh_frequency_Hz", "mesh_natural_frequency_Hz",
+                "mesh_damping_ratio")
 
 
 def print_checks(doc: dict, units: str = "engineering") -> None:

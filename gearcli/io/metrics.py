@@ -43,6 +43,7 @@ METRICS: dict[str, Metric] = {
     "pairs_in_contact_mean": Metric("tooth pairs in contact, mean", "–"),
     "input_power_W": Metric("input power", "W"),
     "friction_loss_W": Metric("friction loss", "W"),
+    "damping_loss_W": Metric("mesh damping loss", "W"),
     "mesh_efficiency": Metric("mesh efficiency", "–"),
     "drive_torque_mean_Nmm": Metric("drive torque, mean", "N*mm"),
     "drive_torque_ripple_Nmm": Metric("drive torque, peak to peak", "N*mm"),

@@ -143,9 +143,18 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
     static = s["force_static_N"]
     ratio = float(w1.mean() / w2.mean())
     coast = c("force_coast_N")[sel] > 0.0
-    # powers: N*mm/s = mW; friction power is never positive (it is a loss)
-    p_fric_W = -float(c("friction_power_mW")[sel].mean()) * 1e-3
-    p_in_W = float(np.mean(c("drive_torque_Nmm")[sel] * w1)) * 1e-3
+    # mean powers over the window from the solver's energy integrals (exact, unlike sample
+    # means of the spiky instantaneous powers): mJ/s = mW
+    t_w = c("t_s")[sel]
+    span_s = float(t_w[-1] - t_w[0])
+
+    def mean_power_W(column: str) -> float:
+        e = c(column)[sel]
+        return float(e[-1] - e[0]) / span_s * 1e-3 if span_s > 0 else math.nan
+
+    p_fric_W = mean_power_W("loss_friction_mJ")
+    p_damp_W = mean_power_W("loss_damping_mJ")
+    p_in_W = mean_power_W("work_in_mJ")
     torque = c("drive_torque_Nmm")[sel]
     return {
         "window_s": [win.t0_s, win.t1_s],
@@ -172,8 +181,12 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
         "contact_loss_fraction": float(np.mean(force <= 0.0)),
         "coast_impacts": int(np.count_nonzero(coast[1:] & ~coast[:-1]) + int(coast[0])),
         "friction_loss_W": p_fric_W,
+        "damping_loss_W": p_damp_W,
         "input_power_W": p_in_W,
-        "mesh_efficiency": 1.0 - p_fric_W / p_in_W if p_in_W > 0 else None,
+        # the mesh's dissipation (friction and contact/mesh damping) against the input; without
+        # a load there is no useful output to rate (docs/theory.md §7)
+        "mesh_efficiency": 1.0 - (p_fric_W + p_damp_W) / p_in_W
+        if p_in_W > 0 and static > 0 else None,
         "drive_torque_mean_Nmm": float(torque.mean()),
         "drive_torque_ripple_Nmm": float(np.ptp(torque)),
         "mesh_natural_frequency_Hz": s["mesh_natural_frequency_Hz"],

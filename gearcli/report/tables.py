@@ -241,7 +241,7 @@ RESULT_KEYS = (
     "speed_ratio_error_percent", "gear_speed_fluctuation_percent", "force_static_N",
     "force_mean_N", "force_rms_N", "force_max_N", "force_min_N", "dynamic_factor",
     "dte_mean_mm", "dte_peak_to_peak_mm", "dte_rms_mm", "contact_loss_fraction",
-    "coast_impacts", "input_power_W", "friction_loss_W", "mesh_efficiency",
+    "coast_impacts", "input_power_W", "friction_loss_W", "damping_loss_W", "mesh_efficiency",
     "drive_torque_mean_Nmm", "drive_torque_ripple_Nmm", "gear_mesh_frequency_Hz",
     "pinion_shaft_Hz", "gear_shaft_Hz", "mesh_natural_frequency_Hz", "mesh_damping_ratio",
     "resonance_margins_percent", "output_rate_Hz", "frequency_resolution_Hz", "samples",
