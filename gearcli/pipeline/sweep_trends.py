@@ -40,6 +40,8 @@ NO_EFFECT_PERCENT = 0.1
 def parameter_levels(df, study: Study, column: str, metric: str) -> tuple[np.ndarray, np.ndarray]:
     """(levels, metric per level) isolating the parameter ``column`` (see the module doc)."""
     ok = df[df["status"] == "ok"]
+    if study.design == "grid":
+        ok = _matched(ok, study, column, metric)
     if study.design == "one_at_a_time":
         varied = ok[ok["point"].isin(_points_varying(study, column))]
         base = ok[ok["point"] == 0]
@@ -56,6 +58,22 @@ def parameter_levels(df, study: Study, column: str, metric: str) -> tuple[np.nda
         return levels, np.array([y[x == v].mean() for v in levels])
     order = np.argsort(x, kind="stable")
     return x[order], y[order]
+
+
+def _matched(ok, study: Study, column: str, metric: str):
+    """The grid's rows whose combination of the other parameters ran (with a number for
+    ``metric``) at every level of ``column``: averages per level over unmatched combinations
+    would mix the other parameters' effects into this one's (a failed or invalid point)."""
+    import pandas as pd
+
+    others = [p.column for p in study.parameters if p.column != column]
+    numeric = (pd.to_numeric(ok[column], errors="coerce").notna()
+               & pd.to_numeric(ok[metric], errors="coerce").notna())
+    ok = ok[numeric]
+    if not others or ok.empty:
+        return ok
+    levels = ok[column].nunique()
+    return ok[ok.groupby(others, dropna=False)[column].transform("nunique") == levels]
 
 
 def _concat(a, b):
@@ -94,7 +112,8 @@ def trend_rows(df, study: Study) -> list[dict]:
                 change = 100.0 * (last - first) / abs(first) if first != 0.0 else math.nan
                 ratio = last / first if first != 0.0 else math.nan
                 spread = 100.0 * np.ptp(y) / (float(np.mean(np.abs(y))) or 1.0)
-                rho = float(spearmanr(x, y).statistic) if np.ptp(y) > 0 else 0.0
+                # rounded: Spearman's rho of 5 levels is 0.8 exactly, computed 0.7999999999999999
+                rho = round(float(spearmanr(x, y).statistic), 12) if np.ptp(y) > 0 else 0.0
                 if spread < NO_EFFECT_PERCENT or not math.isfinite(rho):
                     direction = "no effect"
                 elif abs(rho) >= MONOTONIC_RHO:
@@ -233,8 +252,9 @@ def _trend_lines(df, study: Study, p, metric: str):
 
 
 def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N803
-    """Dynamic factor and DTE RMS against f_z, one curve per combination of the other
-    parameters, with the mesh natural frequency f_n and f_n/2, f_n/3 marked."""
+    """Dynamic factor and DTE standard deviation against f_z, one curve per combination of
+    the other parameters, with the mesh natural frequency f_n and f_n/2, f_n/3 marked, and the
+    points outside the model's validity or failed as crosses on the axis."""
     ok = df[df["status"] == "ok"]
     others = [p.column for p in study.parameters if p is not speed]
     groups = ok.groupby(others, dropna=False) if others else [((), ok)]
@@ -248,6 +268,10 @@ def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N8
         axes[0].plot(g[speed.column], g["dynamic_factor"], "o-", ms=3, label=label)
         axes[1].plot(g[speed.column], g["dte_rms_mm"], "o-", ms=3, label=label)
         f_ns += list(g["mesh_natural_frequency_Hz"].dropna())
+    for status, g in df[df["status"] != "ok"].groupby("status"):
+        for ax in axes:  # no metrics to plot: a cross on the f_z axis says where
+            ax.plot(g[speed.column], np.full(len(g), 0.02), "x", color="tab:red",
+                    transform=ax.get_xaxis_transform(), label=f"{status} ({len(g)} points)")
     if f_ns:
         f_n = float(np.median(f_ns))
         for ax in axes:
@@ -256,7 +280,7 @@ def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N8
                            label=f"f_n/{k} = {f_n / k:.0f} Hz" if k > 1 else
                            f"f_n = {f_n:.0f} Hz")
     axes[0].set_ylabel("dynamic factor")
-    axes[1].set_ylabel("DTE RMS [mm]")
+    axes[1].set_ylabel("DTE standard deviation [mm]")
     axes[1].set_xlabel("gear-mesh frequency f_z [Hz]")
     for ax in axes:
         ax.grid(alpha=0.3)

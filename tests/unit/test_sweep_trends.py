@@ -55,3 +55,31 @@ def test_grid_plots_one_line_per_combination_of_the_others():
     by_label = {label: list(y) for label, _, y in lines}
     assert by_label == {"contact.max_damping [N*s/mm] = 1": [1.0, 3.0],
                         "contact.max_damping [N*s/mm] = 5": [3.0, 1.0]}
+
+
+def test_grid_trend_uses_only_combinations_that_ran_at_every_level():
+    # third adversarial run: one invalid point made the max_damping "trend" an average of 3
+    # points at one level against 4 at the other, +8.6 % where matched pairs went both ways
+    study = _study("  gears.face_width: [\"60 mm\", \"100 mm\"]\n"
+                   "  contact.max_damping: [\"1 N*s/mm\", \"5 N*s/mm\", \"9 N*s/mm\"]\n")
+    damping = "contact.max_damping [N*s/mm]"
+    values = {(60.0, 1.0): 1.0, (60.0, 5.0): 1.0, (60.0, 9.0): 1.0,
+              (100.0, 1.0): 2.0, (100.0, 5.0): 2.0, (100.0, 9.0): 2.0}
+    df = _frame(study, [values[(pt.values[COL], pt.values[damping])] for pt in study.points])
+    bad = (df[COL] == 100.0) & (df[damping] == 9.0)
+    df.loc[bad, "status"] = "invalid"  # the 100 mm combination misses the 9 N*s/mm level
+    row = next(r for r in trend_rows(df, study)
+               if r["parameter"] == damping and r["metric"] == "dynamic_factor")
+    assert row["direction"] == "no effect" and row["change_percent"] == pytest.approx(0.0)
+    row = next(r for r in trend_rows(df, study)
+               if r["parameter"] == COL and r["metric"] == "dynamic_factor")
+    assert row["change_percent"] == pytest.approx(100.0)  # the 1 and 5 N*s/mm pairs: 1 -> 2
+
+
+def test_a_rank_correlation_of_exactly_the_threshold_is_monotonic():
+    # 5 levels with two swaps: rho = 1 - 6·4/(5·24) = 0.8 exactly, computed 0.7999999999999999
+    study = _study("  gears.face_width: [\"60 mm\", \"70 mm\", \"80 mm\", \"90 mm\", "
+                   "\"100 mm\"]\n")
+    row = next(r for r in trend_rows(_frame(study, [2.0, 1.0, 4.0, 3.0, 5.0]), study)
+               if r["metric"] == "dynamic_factor")
+    assert row["spearman_rho"] == pytest.approx(0.8) and row["direction"] == "increases"
