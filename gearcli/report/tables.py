@@ -381,6 +381,16 @@ def stress_table(data: ReportData) -> Table | None:
                          f"{peak['tooth']}, {peak['zone']}", fmt(ref[ref_key]),
                          fmt(g[ratio_key]), fmt(safety.get(s_key))))
             status.append("")
+    note = str(st.get("ratio_definition", ""))
+    window = st.get("window_s")
+    if window:  # gearcli stress has its own window: say which, and when it is not analyze's
+        note = (f"Peaks in the window {fmt(window[0])}-{fmt(window[1])} s of gearcli stress "
+                f"({st.get('window_reason', '')})" + (
+                    f", not the analysis window {fmt(data.window_s[0])}-"
+                    f"{fmt(data.window_s[1])} s of the tables above"
+                    if data.window_s and any(abs(a - b) > 1e-9 for a, b in
+                                             zip(window, data.window_s, strict=True)) else "")
+                + (". " + note if note else "."))
     return Table("Stresses (ISO 6336 from the dynamic pair forces; MPa)",
                  ("gear", "stress", "peak", "where", "static ISO", "ratio", "safety"), rows,
-                 note=str(st.get("ratio_definition", "")), status=status)
+                 note=note, status=status)

@@ -208,3 +208,21 @@ def test_report_gains_a_stress_section(relieved_dir):
     assert result.exit_code == 0, result.output
     text = (relieved_dir / "report.md").read_text()
     assert "## Stress" in text and "contact σ\\_H" in text
+
+
+def test_report_says_when_the_stress_window_is_not_the_analysis_window(tmp_path):
+    # the stress table said "peak dynamic stress in the window" with peaks outside the window
+    # the analysis tables above it used (third adversarial run)
+    from typer.testing import CliRunner
+
+    from gearcli.cli import app
+    from tests.conftest import ROOT
+
+    run, out = CliRunner(), tmp_path / "r"
+    assert run.invoke(app, ["simulate", str(ROOT / "cases" / "iso_pair.yaml"), "-o", str(out),
+                            "-q", "--set", "run.end_time=0.6"]).exit_code == 0
+    assert run.invoke(app, ["analyze", str(out), "--window", "0.3", "0.5"]).exit_code in (0, 4)
+    assert run.invoke(app, ["stress", str(out)]).exit_code in (0, 4)
+    assert run.invoke(app, ["report", str(out), "--format", "md"]).exit_code in (0, 4)
+    text = (out / "report.md").read_text()
+    assert "of gearcli stress (" in text and "not the analysis window 0.3-0.5 s" in text
