@@ -72,7 +72,8 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     args = (tables.tables, tables.x_lo, tables.x_hi, g.p_b_mm, slots, law)
     try:
         result = loaded_mesh(*args, force, cycles=cycles, points_per_cycle=points_per_cycle)
-        harris = harris_map(*args, force, cycles=1, points_per_cycle=100) if harris else None
+        harris = (harris_map(*args, force, cycles=1, points_per_cycle=points_per_cycle)
+                  if harris else None)  # the same roll grid: its row at the load is the STE
     except ValueError as exc:  # model.ltca: no equilibrium within its deflection range
         where = f"--load {load_N:g} N" if load_N is not None else f"{force:.6g} N"
         raise (loaded.error(("load", "torque"), f"{exc} at {where}; expected a load the teeth "

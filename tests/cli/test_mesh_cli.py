@@ -2,6 +2,7 @@
 
 import json
 
+import pytest
 from typer.testing import CliRunner
 
 from gearcli.cli import app
@@ -51,3 +52,19 @@ def test_bore_outside_the_body_compliance_fit_is_noted(tmp_path):
         assert bool(hit) == noted, notes
         if noted:
             assert "h_fi = r_f/r_int = 12.00" in hit[0] and "extrapolated" in hit[0]
+
+
+def test_harris_map_at_the_case_load_is_the_static_transmission_error():
+    # the map was computed on a coarser roll grid (100 points per cycle against 200), so with
+    # tip relief its row at the case load missed the STE's peak (2.1016 against 2.1079 µm)
+    relief = "{amount: 0.006, length: 4}"
+    r = runner.invoke(app, ["mesh", str(SEED).replace("seed.yaml", "iso_pair.yaml"), "--json",
+                            "--harris", "--set", f"modifications.tip_relief.pinion={relief}",
+                            "--set", f"modifications.tip_relief.gear={relief}"])
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    loads = doc["harris"]["force_N"]
+    i = min(range(len(loads)), key=lambda j: abs(loads[j] - doc["force_N"]))
+    assert loads[i] == pytest.approx(doc["force_N"], rel=1e-12)  # 1.0 x the load, to round-off
+    assert doc["harris"]["ste_peak_to_peak_um"][i] == pytest.approx(
+        doc["ste"]["peak_to_peak_um"], rel=1e-9)  # the same equilibria at a load 1e-16 apart
