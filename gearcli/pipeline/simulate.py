@@ -368,7 +368,9 @@ def summarize(res: SimulationResult) -> dict:
         "window_reason": res.window.reason,
         "samples_in_window": int(w.sum()),
         "output_rate_Hz": ki.output_rate_Hz,
-        "gear_mesh_frequency_Hz": ki.gear_mesh_frequency_Hz,
+        # measured over the window, as analysis.json's (the nominal one, from the case's speed
+        # or reference_speed, sizes the run: output rate, zoom, settling)
+        "gear_mesh_frequency_Hz": g.pinion.teeth * abs(float(omega1.mean())) / (2.0 * math.pi),
         "pinion_speed_mean_deg_s": math.degrees(float(omega1.mean())),
         "gear_speed_mean_deg_s": math.degrees(float(omega2.mean())),
         "speed_ratio_mean": float(omega1.mean() / omega2.mean()),

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from typer.testing import CliRunner
 
 from gearcli.cli import app
@@ -46,3 +47,12 @@ def test_run_drivetrain_report_is_readable(tmp_path):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["scalars"]["modes"][0]["rigid_body"] is True
     assert summary["scalars"]["modes"][0]["damping_ratio"] is None
+    # one meaning of f_z in both files: measured over the window (the torque drive runs at its
+    # motor curve's speed, not at reference_speed; summary.json said 141.667 Hz, analysis
+    # 139.887 Hz)
+    analysis = json.loads((out / "analysis.json").read_text())
+    # (a sample on the window's edge may fall either side of the CSV's rounded time: the
+    # speed fluctuates by ~1 %, one sample of thousands moves the mean by ~1e-6)
+    assert summary["scalars"]["gear_mesh_frequency_Hz"] == pytest.approx(
+        analysis["metrics"]["gear_mesh_frequency_Hz"], rel=1e-4)
+    assert abs(summary["scalars"]["gear_mesh_frequency_Hz"] - 141.667) > 1.0  # not nominal
