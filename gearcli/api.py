@@ -228,7 +228,9 @@ class Simulation:
 
     def save(self, folder: str | Path, force: bool = False, format: str = "csv") -> Path:  # noqa: A002
         """Write the results folder `gearcli simulate -o` writes (atomically; an existing
-        folder only with ``force``). ``format``: "csv" or "parquet" for the time series."""
+        folder only with ``force``). ``format``: "csv" or "parquet" for the time series. The
+        dense zoom table (zoom.csv, the report's zooms) only when the simulation was made with
+        ``zoom=True``."""
         from gearcli.pipeline.outputs import write_simulation
 
         return write_simulation(self.result, folder, force, self.overrides, format)
