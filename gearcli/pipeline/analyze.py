@@ -186,7 +186,7 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
         # the mesh's dissipation (friction and contact/mesh damping) against the input; without
         # a load there is no useful output to rate (docs/theory.md §7)
         "mesh_efficiency": 1.0 - (p_fric_W + p_damp_W) / p_in_W
-        if p_in_W > 0 and static > 0 else None,
+        if p_in_W > 0 and mean_power_W("work_load_mJ") > 0 else None,
         "drive_torque_mean_Nmm": float(torque.mean()),
         "drive_torque_ripple_Nmm": float(np.ptp(torque)),
         "mesh_natural_frequency_Hz": s["mesh_natural_frequency_Hz"],

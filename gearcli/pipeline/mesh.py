@@ -49,7 +49,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
              points_per_cycle: int = 200) -> MeshAnalysis:
     """Loaded tooth contact of a case at its static normal force (or ``load_N`` [N]) over
     ``cycles`` mesh cycles; the Harris map (``harris``) at 20 loads from 0.1 to 2 times it,
-    100 positions per mesh cycle each."""
+    one mesh cycle each on the same roll grid (``points_per_cycle``)."""
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
     case = loaded.case
     geo = run_geometry(loaded)

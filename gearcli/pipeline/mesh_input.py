@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gearcli.case.build import gear_side_damping
 from gearcli.case.schema import Case
 from gearcli.model.mesh import (
     MeshMode,
@@ -30,18 +29,22 @@ _PATH_POINTS = 401
 
 
 def static_force_N(case: Case, geo: GeometryResult) -> float:
-    """F_n,static [N]: the steady torque the gear's side resists, over r_b2 (docs/theory.md
-    §7.3): the load torque at the end of its ramps plus, at the nominal gear speed ω2 (the
-    nominal pinion speed z1/z2; none known: left out), the load's viscous and quadratic terms
-    and the gear bearing's damping, c_v ω2 + c_q ω2² + c_2 ω2 (the gear's equation of motion,
-    §6.3, at constant speed)."""
+    """F_n [N] of the load torque at the end of its ramps, T_load/r_b2: the operating load of
+    the contact model (linearisation, tolerances, validity; docs/theory.md §7.3). The dynamic
+    factor's static force adds the speed-dependent terms measured in the run
+    (:func:`static_reference_N`)."""
     final = case.load.torque.pp.final_value()
     torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
-    omega1 = geo.pinion_speed_rad_s
-    if omega1:
-        torque = resisted_torque_Nmm(torque, omega1 / geo.geometry.ratio,
-                                     *gear_side_damping(case))
     return static_normal_force_N(torque, geo.geometry.gear.r_b_mm)
+
+
+def static_reference_N(load_force_N: float, r_b2_mm: float, omega2_rad_s: float,
+                       damping: tuple[float, float]) -> float:
+    """The static force of the dynamic factor [N]: the torque the gear's side resists at the
+    steady gear speed ω2 [rad/s] (load torque + (c_v + c_2) ω2 + c_q ω2², :func:`gearcli.model.
+    mesh.resisted_torque_Nmm`) over r_b2, from the load's force T_load/r_b2 [N] and
+    ``damping`` = case.build.gear_side_damping (docs/theory.md §7.3)."""
+    return resisted_torque_Nmm(load_force_N * r_b2_mm, omega2_rad_s, *damping) / r_b2_mm
 
 
 

@@ -352,6 +352,8 @@ def check_static_deflection(loaded: LoadedCase, geo: GeometryResult,
 
 def summarize(res: SimulationResult) -> dict:
     """Key scalars over the steady window (internal units; names carry them)."""
+    from gearcli.case.build import gear_side_damping
+    from gearcli.pipeline.mesh_input import static_reference_N
     from gearcli.pipeline.modal import modes_summary
 
     k, ki, g = res.kernel, res.kernel_input, res.geometry.geometry
@@ -363,6 +365,8 @@ def summarize(res: SimulationResult) -> dict:
     omega2 = k.column("omega2_rad_s")[w]
     mm = ki.mesh
     mesh_f, mesh_zeta = mesh_mode_of(res)
+    f_static = static_reference_N(mm.static_force_N, g.gear.r_b_mm, float(omega2.mean()),
+                                  gear_side_damping(res.loaded.case))
     return {
         "window_s": [res.window.t0_s, res.window.t1_s],
         "window_reason": res.window.reason,
@@ -380,8 +384,8 @@ def summarize(res: SimulationResult) -> dict:
         "force_max_N": k.extremum("force_total_max_N"),
         "force_max_t_s": k.extremum("force_total_max_t_s"),
         "force_min_N": k.extremum("force_total_min_N"),
-        "force_static_N": mm.static_force_N,
-        "dynamic_factor": k.extremum("force_total_max_N") / mm.static_force_N
+        "force_static_N": f_static,
+        "dynamic_factor": k.extremum("force_total_max_N") / f_static
         if mm.static_force_N > 0 else None,
         "dte_mean_mm": float(delta.mean()),
         "dte_peak_to_peak_mm": float(np.ptp(delta)),

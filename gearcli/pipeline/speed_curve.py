@@ -94,7 +94,11 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
     t = k.column("t_s")
     force, delta = k.column("force_total_N"), k.column("delta_mm")
     omega1, omega2 = k.column("omega1_rad_s"), k.column("omega2_rad_s")
-    f_static = ki.mesh.static_force_N
+    from gearcli.case.build import gear_side_damping
+    from gearcli.pipeline.mesh_input import static_reference_N
+
+    damping = gear_side_damping(res.loaded.case)
+    r_b2 = res.geometry.geometry.gear.r_b_mm
     j_n = ki.params[P.backlash_n]
     free_pinion = ki.params[P.drive_mode] != DRIVE_SPEED
     residual = res.summary["energy_balance"]["relative_residual"]
@@ -109,11 +113,15 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
             pinion_speed_rad_s=omega1[w] if free_pinion else None, window_s=t1 - t0,
             teeth=(z1, res.geometry.geometry.gear.teeth), energy_relative_residual=residual)
         f_max = float(force[w].max())
+        # each level's own static force: the resisted torque at its gear speed (§7.3)
+        f_static = static_reference_N(ki.mesh.static_force_N, r_b2, float(omega2[w].mean()),
+                                      damping)
         valid = status == "ok"
         rows.append({
             "point": first_point + i, "direction": direction, "mesh_frequency [Hz]": fz,
             "pinion_speed [rpm]": fz / z1 * 60.0, "resonance_ratio": fz / f_n_Hz,
-            "dynamic_factor": f_max / f_static if valid and f_static > 0 else math.nan,
+            "dynamic_factor": f_max / f_static if valid and ki.mesh.static_force_N > 0
+            else math.nan,
             "force_max_N": f_max if valid else math.nan,
             "dte_peak_to_peak_mm": float(np.ptp(delta[w])) if valid else math.nan,
             "contact_loss_fraction": float(np.mean(force[w] <= 0.0)) if valid else math.nan,
