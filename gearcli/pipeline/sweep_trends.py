@@ -126,9 +126,12 @@ def trend_rows(df, study: Study) -> list[dict]:
                            direction=direction)
             else:
                 levels = {float(v) for v in p.numbers if math.isfinite(v)}
+                held = (" at one combination of the other parameters" if study.design == "grid"
+                        and len(study.parameters) > 1 else "")
                 row.update(direction="not varied (fewer than 2 numeric levels)"
                            if len(levels) < 2 else
-                           "no trend: fewer than 2 of its levels ran (see the failed points)")
+                           f"no trend: fewer than 2 of its levels ran{held} (see the failed or "
+                           "invalid points)")
             rows.append(row)
     return rows
 
