@@ -16,7 +16,7 @@ def schema(
     results: bool = typer.Option(False, "--results",
                                  help="The JSON Schema of a result document instead of the "
                                       "case's (--kind)."),
-    kind: str = typer.Option("summary", "--kind", metavar="summary|analysis|stress|modal|mesh",
+    kind: str | None = typer.Option(None, "--kind", metavar="summary|analysis|stress|modal|mesh",
                              help="With --results: summary.json, analysis.json, stress.json, "
                                   "gearcli modal --json or gearcli mesh --json."),
     study: bool = typer.Option(False, "--study",
@@ -27,6 +27,13 @@ def schema(
     a study file.
 
     Example: gearcli schema --results --kind analysis > analysis.schema.json"""
+    from gearcli.errors import OutputError
+
+    if kind is not None and not results:  # it printed the case's schema without a word
+        raise OutputError(f"--kind {kind}: applies to --results only (the JSON Schema of a "
+                          "result document)")
+    if study and results:
+        raise OutputError("--study and --results: expected one of them")
     if study:
         import json
 
@@ -37,9 +44,9 @@ def schema(
     if results:
         import json
 
-        from gearcli.errors import OutputError
         from gearcli.results import KINDS, json_schema
 
+        kind = kind or "summary"
         if kind not in KINDS:
             raise OutputError(f"--kind {kind}: expected one of {', '.join(KINDS)}")
         typer.echo(json.dumps(json_schema(kind), indent=2))

@@ -380,8 +380,12 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
         raise OutputError(f"{path}: exists and is not a file; remove it or choose another "
                           "output folder")
     columns = summary_columns(study)
-    if force and path.is_file():
+    if force and path.is_file():  # starting over: the old points' folders go with their rows
         path.unlink()
+        if (out / "points").is_dir():
+            import shutil
+
+            shutil.rmtree(out / "points")
     earlier = read_summary(path, columns)
     by_hash: dict[str, list] = {}  # points that resolve to one case ("10 mm", "0.01 m")
     for p in study.points:

@@ -130,8 +130,8 @@ def trend_rows(df, study: Study) -> list[dict]:
                         and len(study.parameters) > 1 else "")
                 row.update(direction="not varied (fewer than 2 numeric levels)"
                            if len(levels) < 2 else
-                           f"no trend: fewer than 2 of its levels ran{held} (see the failed or "
-                           "invalid points)")
+                           f"no trend: fewer than 2 of its levels have a value{held} (failed "
+                           "or invalid points, or a spectral line not resolved)")
             rows.append(row)
     return rows
 

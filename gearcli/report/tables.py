@@ -84,6 +84,13 @@ def gears_table(data: ReportData) -> Table:
          qty(w.get("face_width") or g["face_width"], u)),
         ("profile shift x", fmt(p.get("profile_shift", 0.0)), fmt(w.get("profile_shift", 0.0))),
     ]
+    # the tooth-form and body settings a case may give (shown when either gear sets one)
+    for label, key in (("thickness allowance", "thickness_allowance"),
+                       ("tip shortening", "tip_shortening"), ("tip rounding", "tip_rounding"),
+                       ("bore diameter", "bore_diameter")):
+        values = [gear.get(key) for gear in (p, w)]
+        if any(v is not None and _setting(v, u) not in ("0", "0 mm", "0 m") for v in values):
+            rows.append((label, *(_setting(v, u) if v is not None else "–" for v in values)))
     if geo is not None:
         for label, attr in (("reference diameter d", "d_mm"), ("tip diameter d_a", "d_a_mm"),
                             ("base diameter d_b", "d_b_mm"), ("root diameter d_f", "d_f_mm")):
@@ -215,6 +222,8 @@ def _setting(value, u: str) -> str:
     units ``u``, numbers with 4 significant digits (never Python's repr)."""
     if isinstance(value, dict):
         return "; ".join(f"{k.replace('_', ' ')} {_setting(v, u)}" for k, v in value.items())
+    if isinstance(value, str) and unit_of(value) == "rad":  # angles as the case takes them
+        return _deg(value)
     if isinstance(value, str) and unit_of(value):
         return qty(value, u)
     return fmt(value)
@@ -227,7 +236,7 @@ def modifications_table(data: ReportData) -> Table | None:
         for kind, pair in (data.case.get(group) or {}).items():
             for gear, spec in (pair or {}).items():
                 if spec is not None:
-                    text = ", ".join(f"{k} = {fmt(v) if not isinstance(v, str) else v}"
+                    text = ", ".join(f"{k} = {_setting(v, data.units)}"
                                      for k, v in spec.items() if v is not None)
                     rows.append((f"{gear} {kind.replace('_', ' ')}", text))
     return Table("Profile modifications and errors", ("item", "setting"), rows) if rows else None

@@ -553,3 +553,11 @@ def test_modal_margin_without_a_speed_is_not_checked_and_says_why(speed, why):
     check = json.loads(r.stdout)["checks"][0]
     assert check["checked"] is False
     assert check["note"].startswith(f"not checked: no case speed ({why})")
+
+
+def test_schema_kind_needs_results():
+    # `schema --kind analysis` printed the case's schema with exit 0
+    r = invoke("schema", "--kind", "analysis")
+    assert r.exit_code == 1 and "--kind analysis: applies to --results only" in error_line(r)
+    assert invoke("schema", "--study", "--results").exit_code == 1
+    assert json.loads(invoke("schema", "--results").stdout)["title"] == "gearcli summary.json"

@@ -27,6 +27,12 @@ def test_sweep_writes_summary_trends_and_plots(tmp_path):
         assert (out / name).exists(), name
     res = runner.invoke(app, ["sweep", str(study), "-o", str(out)])
     assert res.exit_code == 0 and "0 run, 2 already done" in res.output
+    # --force starts over: the old points' folders go with their rows (they stayed, no longer
+    # matching summary.csv)
+    other = write_study(tmp_path, "parameters:\n  mesh_frequency: [\"150 Hz\"]\n", "b.yaml")
+    res = runner.invoke(app, ["sweep", str(other), "-o", str(out), "--force"])
+    assert res.exit_code == 0, res.output
+    assert not (out / "points").exists()
 
 
 def test_bad_study_is_one_line_exit_1(tmp_path):

@@ -314,3 +314,22 @@ def test_zooms_use_the_dense_table_when_it_covers_the_span():
     assert len(got[0]) > 3 * 128 - 2
     assert _zoom_of(zoom, (1.0 + 3 * period, 4.95), 100.0) is None  # across the gap
     assert _zoom_of(zoom, (0.99, 1.0 + period), 100.0) is None  # starts before the table
+
+
+def test_case_tables_show_tooth_form_settings_and_angles_in_degrees(tmp_path):
+    # tip rounding was in no table (though "the tables show the values used") and the runout
+    # phase printed in rad where the case takes degrees (fourth adversarial run)
+    from typer.testing import CliRunner
+
+    from gearcli.cli import app
+    from tests.conftest import SEED
+
+    out = tmp_path / "r"
+    r = CliRunner().invoke(app, ["run", str(SEED), "-o", str(out), "-q", "--format", "md",
+                                 "--set", "run.end_time=0.3", "--set",
+                                 "gears.pinion.tip_rounding=1", "--set",
+                                 "errors.runout.pinion={eccentricity: 0.01, phase: 30}"])
+    assert r.exit_code in (0, 4), r.output
+    text = (out / "report.md").read_text()
+    assert "| tip rounding | 1 mm | 0 mm |" in text
+    assert "| pinion runout | eccentricity = 0.01 mm, phase = 30 deg |" in text

@@ -250,7 +250,7 @@ def test_a_parameter_whose_other_level_failed_is_not_called_unvaried(tmp_path):
     r = runner.invoke(app, ["sweep", str(path), "-o", str(out), "-j", "1", "-q"])
     assert r.exit_code == 4, r.output
     text = (out / "trends.md").read_text()
-    assert "fewer than 2 of its levels ran" in text and "not varied" not in text
+    assert "fewer than 2 of its levels have a value" in text and "not varied" not in text
 
 
 def test_points_that_resolve_to_one_case_run_it_once(tmp_path):
