@@ -190,3 +190,12 @@ def read_columns(path: Path, key: str, rows: int | None = None) -> dict[str, np.
     if data.shape[1] != len(names) or not np.all(np.isfinite(data)):
         raise ResultsError(f"{path}: malformed rows (wrong column count or non-finite values)")
     return {n: data[:, i] for i, n in enumerate(names)}
+
+
+def window_mask(t_s, t0_s: float, t1_s: float):
+    """The samples of a stored run inside the window [t0, t1] [s]. The CSV keeps times to 10
+    significant digits (core/csvtext.py), so a sample on the window's edge may be stored up to
+    5e-10 of its value away: the edges get that much room, and CSV and Parquet copies of a run
+    select the same samples."""
+    room = 1e-9 * max(abs(t0_s), abs(t1_s), 1e-3)
+    return (t_s >= t0_s - room) & (t_s <= t1_s + room)

@@ -15,7 +15,7 @@ import numpy as np
 
 from gearcli.case.load import load_case_text
 from gearcli.errors import ResultsError
-from gearcli.io.results import StoredRun, read_run
+from gearcli.io.results import StoredRun, read_run, window_mask
 from gearcli.model.modal import has_resonant_peak
 from gearcli.pipeline.geometry import run_geometry
 from gearcli.pipeline.spectrum import (
@@ -74,7 +74,7 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
     rate = s["output_rate_Hz"]
     f_z = s["gear_mesh_frequency_Hz"]
     win = _window(t, s, window, f_z, geo)
-    sel = (t >= win.t0_s - 1e-12) & (t <= win.t1_s + 1e-12)
+    sel = window_mask(t, win.t0_s, win.t1_s)
     metrics = _metrics(run, sel, win, geo, s)
     n1 = metrics["pinion_speed_mean_deg_s"] / 360.0
     n2 = metrics["gear_speed_mean_deg_s"] / 360.0

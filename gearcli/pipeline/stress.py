@@ -30,7 +30,7 @@ import numpy as np
 from gearcli.case.load import load_case_text
 from gearcli.errors import CaseError, ResultsError
 from gearcli.io.metrics import json_number
-from gearcli.io.results import StoredRun, read_run
+from gearcli.io.results import StoredRun, read_run, window_mask
 from gearcli.model.contact_point import contact_points
 from gearcli.model.geometry import PairGeometry
 from gearcli.model.rating import (
@@ -79,7 +79,7 @@ class StressResult:
     @property
     def in_window(self) -> np.ndarray:
         t0, t1 = self.window_s
-        return (self.t_s >= t0 - 1e-12) & (self.t_s <= t1 + 1e-12)
+        return window_mask(self.t_s, t0, t1)
 
 
 def _column_set(run: StoredRun) -> int:
