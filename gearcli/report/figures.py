@@ -51,10 +51,14 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
     # the solver's dense output (>= 100 points per mesh period) for the zooms, where stored
     zc = data.zoom or {}
     zt = zc.get("t_s")
+    dense = c
     if zt is not None:
         last = zt[-1]
-        mesh_zoom = (last - ZOOM_CYCLES * period, last)
-    dense = zc if zt is not None else c
+        end_zoom = (last - ZOOM_CYCLES * period, last)
+        # the dense table holds the last mesh periods at the nominal f_z: where the measured
+        # f_z is lower (a run that never settles) it does not cover them, and the samples do
+        if _zoom_of(zc, end_zoom, None, column="delta_mm") is not None:
+            mesh_zoom, dense = end_zoom, zc
     teeth = (int(data.case["gears"]["pinion"]["teeth"]), int(data.case["gears"]["gear"]["teeth"]))
     s, m = data.scalars, data.metrics
     f_max = m.get("force_max_N", s.get("force_max_N"))
