@@ -129,8 +129,10 @@ def flank(f, kin, app, model, slot_force, scratch, full):
       computes their forces.
       Potential V_j = k_j p_j^2 / 2 with k_j depending on x1_j: the generalized forces are
       -dV/ds, Q_s1 = -(F_j dp/ds1 + p_j^2/2 dk/dx sigma), Q_s2 = -F_j dp/ds2 (dx1/ds1 = sigma),
-      so the elastic mesh conserves energy with a position-dependent stiffness; the damping
-      dissipation is (F_j - k_j p_j) pdot_j as for IMPACT.
+      so the elastic mesh conserves energy with a position-dependent stiffness. The damping
+      part F_j - F_el,j acts along the mesh deflection (generalized forces -F_d sigma on s1,
+      +F_d sigma on s2), so its dissipation F_d v >= 0 (a pair clamped at F_j = 0: its
+      damping cancels F_el,j along p_j, dissipating -F_el,j pdot_j).
 
     Returns
     -------
@@ -290,26 +292,31 @@ def flank(f, kin, app, model, slot_force, scratch, full):
             ff_sum += fr
             fpow += fp
     if n_touch > 0:  # tooth law, second pass: damping shared by elastic force (docstring)
+        v_mesh = sigma * kin.deltadot + lat_rate  # the mesh deflection rate [mm/s]
         # damping force per unit elastic force [-]
-        damp = prm[P.mesh_damping] * (sigma * kin.deltadot + lat_rate) \
-            / max(fel_sum, prm[P.damping_force_ref])
+        damp = prm[P.mesh_damping] * v_mesh / max(fel_sum, prm[P.damping_force_ref])
         for m in range(n_touch):
             pen = scratch[SC.pen, m]
-            pdot = scratch[SC.pdot, m]
             fel = scratch[SC.k, m] * pen
             force = max(0.0, fel + fel * damp)
             pot += 0.5 * fel * pen
-            pdamp += (force - fel) * pdot
             # the position-dependent stiffness's generalized force, dV/dx1 dx1/ds1
             q1 -= 0.5 * pen * pen * scratch[SC.dk, m] * sigma
-            if force <= 0.0:
+            if force <= 0.0:  # clamped: the damping cancels the elastic force along p
+                pdamp -= fel * scratch[SC.pdot, m]
                 continue
+            # the damping part acts along the mesh deflection (d(sigma delta)/ds1 = sigma,
+            # /ds2 = -sigma), the coordinate whose rate it opposes: it dissipates
+            # F_d v_mesh = c_m v_mesh^2 w_j >= 0 (on the pair's own rate, which holds its gap
+            # closure under relief, extended contact or errors, it could also feed energy in)
+            fd = force - fel
+            pdamp += fd * v_mesh
             if full:
                 slot_force[f, int(scratch[SC.slot, m])] = force
             f_sum += force
             n_contact += 1
-            q1 -= force * scratch[SC.dp1, m]
-            q2 -= force * scratch[SC.dp2, m]
+            q1 -= fel * scratch[SC.dp1, m] + fd * sigma
+            q2 -= fel * scratch[SC.dp2, m] - fd * sigma
             if use_friction:
                 fr, fm1, fm2, fp = _friction(prm, scratch[SC.x1, m], omega1, omega2, slide,
                                              force, mu_s, mu_d)
