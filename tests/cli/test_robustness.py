@@ -561,3 +561,18 @@ def test_schema_kind_needs_results():
     assert r.exit_code == 1 and "--kind analysis: applies to --results only" in error_line(r)
     assert invoke("schema", "--study", "--results").exit_code == 1
     assert json.loads(invoke("schema", "--results").stdout)["title"] == "gearcli summary.json"
+
+
+def test_round_off_coast_contact_is_no_impact_warning():
+    # zero backlash left the coast flanks touching at 1.7e-8 N: "coast force up to 0 N"
+    from gearcli.pipeline.simulate import COAST_FORCE_FRACTION, run_simulation
+
+    res = run_simulation(ROOT / "cases" / "iso_pair.yaml", ["run.end_time=0.3"], zoom=False)
+    warned = any(w.startswith("coast-flank impacts") for w in res.warnings)
+    assert warned == (res.summary["coast_force_max_N"]
+                      > COAST_FORCE_FRACTION * res.kernel_input.mesh.static_force_N)
+    # near resonance without backlash the coast flanks are hit: 11 kN
+    hit = run_simulation(ROOT / "cases" / "iso_pair.yaml", [
+        "run.end_time=0.4", 'drive.speed={function: "STEP(time,0,0,0.2,4900)", unit: rpm}'],
+        zoom=False)
+    assert any(w.startswith("coast-flank impacts: coast force up to 1.1") for w in hit.warnings)
