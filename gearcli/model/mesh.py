@@ -21,13 +21,16 @@ from dataclasses import dataclass
 from gearcli.core.stepfunc import step as adams_step  # Adams STEP (one implementation)
 
 
-def resisted_torque_Nmm(load_torque_Nmm, omega2_rad_s, linear_Nmms_rad: float,
-                        quadratic_Nmms2_rad2: float):
-    """The torque the gear's side resists at a steady speed ω2 [rad/s]: the load torque plus the
-    speed-dependent terms (c_v + c_2) |ω2| + c_q ω2² [N*mm] (the gear's equation of motion at
-    constant speed, docs/theory.md §6.3, §7.3). Scalars or arrays."""
+def static_reference_N(load_torque_Nmm, r_b2_mm: float, omega2_rad_s,
+                       damping: tuple[float, float]):
+    """The dynamic factor's static force [N]: the torque the gear's side resists at a steady
+    gear speed ω2 [rad/s], T_load + (c_v + c_2) |ω2| + c_q ω2² [N*mm] (the gear's equation of
+    motion at constant speed, docs/theory.md §6.3, §7.3), over r_b2 [mm]. ``damping`` =
+    (c_v + c_2 [N*mm*s/rad], c_q [N*mm*s²/rad²]), case.build.gear_side_damping. Scalars or
+    arrays."""
+    linear, quadratic = damping
     w = abs(omega2_rad_s)
-    return load_torque_Nmm + linear_Nmms_rad * w + quadratic_Nmms2_rad2 * w * w
+    return (load_torque_Nmm + linear * w + quadratic * w * w) / r_b2_mm
 
 
 def static_normal_force_N(load_torque_Nmm: float, r_b2_mm: float) -> float:
@@ -41,7 +44,7 @@ def static_normal_force_N(load_torque_Nmm: float, r_b2_mm: float) -> float:
 class MeshMode:
     """Linearised mesh at the operating load (internal units)."""
 
-    static_force_N: float  #: F_s = T / r_b2, T the resisted torque (resisted_torque_Nmm)
+    static_force_N: float  #: F_s = T_load / r_b2, the contact model's operating load
     static_deflection_mm: float  #: p_s per pair
     pair_stiffness_N_mm: float  #: k_pair = e k p_s^(e-1), one pair
     mesh_stiffness_N_mm: float  #: mean over the mesh cycle, ε_α k_pair

@@ -129,6 +129,7 @@ SAINSOT_H_MIN = 1.4
 #: 0.42e6 at 11.5, 0.13e6 at 23).
 SAINSOT_H_MAX = 7.0
 
+
 class ContactOutsideTooth(ValueError):
     """A contact point asked for lies beyond the tooth's profile (for the dynamics: a
     deflection so large that the extended tables reach past the tip, pipeline/mesh_input)."""

@@ -11,13 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from gearcli.case.schema import Case
-from gearcli.model.mesh import (
-    MeshMode,
-    mesh_mode,
-    resisted_torque_Nmm,
-    static_normal_force_N,
-    tooth_mesh_mode,
-)
+from gearcli.model.mesh import MeshMode, mesh_mode, static_normal_force_N, tooth_mesh_mode
 from gearcli.model.stiffness import derived_pair_stiffness
 from gearcli.pipeline.geometry import GeometryResult
 
@@ -32,20 +26,10 @@ def static_force_N(case: Case, geo: GeometryResult) -> float:
     """F_n [N] of the load torque at the end of its ramps, T_load/r_b2: the operating load of
     the contact model (linearisation, tolerances, validity; docs/theory.md §7.3). The dynamic
     factor's static force adds the speed-dependent terms measured in the run
-    (:func:`static_reference_N`)."""
+    (model.mesh.static_reference_N)."""
     final = case.load.torque.pp.final_value()
     torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
     return static_normal_force_N(torque, geo.geometry.gear.r_b_mm)
-
-
-def static_reference_N(load_force_N: float, r_b2_mm: float, omega2_rad_s: float,
-                       damping: tuple[float, float]) -> float:
-    """The static force of the dynamic factor [N]: the torque the gear's side resists at the
-    steady gear speed ω2 [rad/s] (load torque + (c_v + c_2) ω2 + c_q ω2², :func:`gearcli.model.
-    mesh.resisted_torque_Nmm`) over r_b2, from the load's force T_load/r_b2 [N] and
-    ``damping`` = case.build.gear_side_damping (docs/theory.md §7.3)."""
-    return resisted_torque_Nmm(load_force_N * r_b2_mm, omega2_rad_s, *damping) / r_b2_mm
-
 
 
 def iso_stiffness(case: Case, geo: GeometryResult, force_N: float | None = None):

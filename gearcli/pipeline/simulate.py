@@ -353,7 +353,7 @@ def check_static_deflection(loaded: LoadedCase, geo: GeometryResult,
 def summarize(res: SimulationResult) -> dict:
     """Key scalars over the steady window (internal units; names carry them)."""
     from gearcli.case.build import gear_side_damping
-    from gearcli.pipeline.mesh_input import static_reference_N
+    from gearcli.model.mesh import static_reference_N
     from gearcli.pipeline.modal import modes_summary
 
     k, ki, g = res.kernel, res.kernel_input, res.geometry.geometry
@@ -365,7 +365,8 @@ def summarize(res: SimulationResult) -> dict:
     omega2 = k.column("omega2_rad_s")[w]
     mm = ki.mesh
     mesh_f, mesh_zeta = mesh_mode_of(res)
-    f_static = static_reference_N(mm.static_force_N, g.gear.r_b_mm, float(omega2.mean()),
+    r_b2 = g.gear.r_b_mm
+    f_static = static_reference_N(mm.static_force_N * r_b2, r_b2, float(omega2.mean()),
                                   gear_side_damping(res.loaded.case))
     return {
         "window_s": [res.window.t0_s, res.window.t1_s],

@@ -33,7 +33,7 @@ class ReportData:
     #: display units of the tables and figures (gearcli/display_units.py)
     units: str = "engineering"
     #: the gear side's speed-dependent resisting torque coefficients (c_v + c_2, c_q) of the
-    #: stored case (pipeline/mesh_input.gear_side_damping), for the static force line
+    #: stored case (case/build.gear_side_damping), for the static force line
     gear_side_damping: tuple[float, float] = (0.0, 0.0)
 
     @property

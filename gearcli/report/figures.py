@@ -172,11 +172,10 @@ def _stress(data: ReportData):
 
 def _static_force(columns: dict, r_b2: float, damping: tuple[float, float]):
     """The static force line [N] of the samples in ``columns``: the torque the gear's side
-    resists at each sample's speed over r_b2 (model/mesh.resisted_torque_Nmm)."""
-    from gearcli.model.mesh import resisted_torque_Nmm
+    resists at each sample's speed over r_b2 (model/mesh.static_reference_N)."""
+    from gearcli.model.mesh import static_reference_N
 
-    return resisted_torque_Nmm(columns["load_torque_Nmm"], columns["omega2_rad_s"],
-                               *damping) / r_b2
+    return static_reference_N(columns["load_torque_Nmm"], r_b2, columns["omega2_rad_s"], damping)
 
 
 def _zoom_of(zoom: dict, span, r_b2, damping=(0.0, 0.0), column: str = "force_total_N"):
