@@ -48,16 +48,17 @@ class Model(NamedTuple):
 
 
 class Work(NamedTuple):
-    """Scratch arrays of the time loop (allocated once per chunk by timeloop.run)."""
+    """Scratch arrays of the time loop (allocated once per chunk by timeloop.new_work)."""
 
     y: np.ndarray  #: (n_state,) state at t, layout.S
-    dy: np.ndarray  #: (n_state,) a derivative evaluation
     ys: np.ndarray  #: (n_state,) stage / sample state
     y_new: np.ndarray  #: (n_state,) state at t + h
     aux: np.ndarray  #: (N_AUX,) auxiliary results of the last full RHS evaluation, layout.A
     slot_force: np.ndarray  #: (N_FAMILIES, n_slots) force of every pair slot [N]
     scratch: np.ndarray  #: (N_SCRATCH, n_slots) pairs in contact of one flank family, layout.SC
-    K: np.ndarray  #: (N_STAGES + 1, n_state) Runge-Kutta stages, K[0] = f(t, y)
+    #: (N_STAGES + 2, n_state) Runge-Kutta stages, K[0] = f(t, y), and a scratch row
+    K: np.ndarray
+    dy: np.ndarray  #: (n_state,) the scratch row of K (samples, the starting step's trial)
     atol: np.ndarray  #: (N_STATE,) absolute tolerance per state
 
 

@@ -48,7 +48,7 @@ from gearcli.core.layout import (
     P,
 )
 from gearcli.core.records import finish_extrema, init_extrema
-from gearcli.core.timeloop import run
+from gearcli.core.timeloop import new_work, run
 
 
 class KernelResult(NamedTuple):
@@ -263,7 +263,7 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
     status, i_out = STATUS_OK, 0
     for end in chunk_ends(t0, t_end):
         prm[P.t_end] = end
-        status, i_out = run(model, out, LAYOUT_KEY, i_out)
+        status, i_out = run(model, new_work(prm), out, LAYOUT_KEY, i_out)
         if status == STATUS_STALE_CACHE:
             raise RuntimeError(STATUS_MESSAGES[STATUS_STALE_CACHE])
         if status != STATUS_OK:

@@ -21,6 +21,6 @@ jit_noalloc = jit(_nrt=False)
 #: The same, inlined into every caller at numba-IR level. For the right-hand side and its
 #: pieces: a call that passes a dozen arrays (7-11 machine words each) costs about as much as
 #: the physics inside, and LLVM does not inline functions that large by itself. Use it only for
-#: functions with few call sites (timeloop._attempt is the hot one): each inlined copy adds
-#: compile time.
+#: functions with few call sites (timeloop.run evaluates the right-hand side at one place):
+#: each inlined copy adds compile time.
 jit_noalloc_inline = jit(_nrt=False, inline="always")

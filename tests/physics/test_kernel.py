@@ -31,7 +31,7 @@ from gearcli.core.friction import adams_mu
 from gearcli.core.gaptable import hermite
 from gearcli.core.integrate import kernel_model, kernel_out, simulate
 from gearcli.core.stepfunc import step
-from gearcli.core.timeloop import run
+from gearcli.core.timeloop import new_work, run
 from gearcli.model.timefunction import PiecewisePolynomial as PP
 
 # --- seed-like pair (docs/theory.md §9) -----------------------------------------------------------
@@ -503,7 +503,8 @@ def test_stale_compiled_layout_is_refused():
     t_out = kw.pop("t_out")
     model = kernel_model(prm, tables, **kw)
     out = kernel_out(model, t_out)
-    assert run(model, out, layout.LAYOUT_KEY + 1, 0)[0] == layout.STATUS_STALE_CACHE
+    assert run(model, new_work(model.prm), out, layout.LAYOUT_KEY + 1, 0)[0] \
+        == layout.STATUS_STALE_CACHE
     assert np.isnan(out.series).all()  # nothing was integrated
 
 
