@@ -113,7 +113,7 @@ def cyclic_gc_paused():
 
 
 #: What the first run's compilation takes (bench/RESULTS.md, issue 16; 2-core machine) [s].
-COMPILE_TIME_S = 30
+COMPILE_TIME_S = 15
 
 
 def last_ramp_s(case) -> float:
