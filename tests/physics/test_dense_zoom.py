@@ -46,3 +46,37 @@ def test_zoom_is_the_same_trajectory(res):
 def test_sweep_points_skip_the_zoom():
     r = run_simulation(SEED, [*FAST[:2], "run.end_time=0.3"], zoom=False)
     assert r.zoom == {}
+
+
+def test_samples_do_not_steer_the_steps():
+    """The zoom's premise, exactly: the time loop evaluates the right-hand side at one call
+    site for the stages, the output samples (dense output inside a step, Euler inside a hop
+    over a loaded table end), the hop ends and each chunk's start (core/timeloop.run), and a
+    sample must leave the steps untouched. The seed with rigid engagement (every entry and
+    exit a loaded table end: a force jump the loop hops over, docs/theory.md §6.8) and
+    friction, over 2.5 s: two chunks (integrate.chunk_ends). Same process and compiled code,
+    so the comparison is exact."""
+    from gearcli.core.integrate import chunk_ends, simulate
+
+    r = run_simulation(SEED, [*FAST[:2], "run.end_time=2.5", "contact.engagement=rigid"],
+                       zoom=False)
+    ki = r.kernel_input
+    assert len(chunk_ends(0.0, 2.5)) == 2
+
+    def run(times):
+        return simulate(ki.params.copy(), ki.tables.tables, t_out=times, drive_pp=ki.drive_pp,
+                        load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp, **ki.arrays)
+
+    times = np.linspace(0.0, 2.5, 50001)  # ~2.8 samples per mesh period
+    fine, coarse = run(times), run(times[::500])
+    assert fine.ok and coarse.ok
+    c = fine.counters
+    for name in ("accepted_steps", "rejected_steps", "rhs_evaluations"):
+        assert c[name] == coarse.counters[name], name
+    # RHS evaluations: 6 per step attempt, 1 at each chunk's start, 1 for the starting step
+    # size, 1 at the end of every hop: the run hopped over table ends
+    hops = c["rhs_evaluations"] - 6 * (c["accepted_steps"] + c["rejected_steps"]) - 2 - 1
+    assert hops > 100
+    assert c["output_evaluations"] > 100 * coarse.counters["output_evaluations"]
+    assert np.array_equal(fine.series[::500], coarse.series, equal_nan=True)
+    assert np.array_equal(fine.slot_force[::500], coarse.slot_force, equal_nan=True)
