@@ -25,7 +25,7 @@ from gearcli.core.layout import (
     F,
     P,
 )
-from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
+from gearcli.core.nrt import jit_noalloc_inline
 
 
 @jit_noalloc_inline
@@ -34,23 +34,18 @@ def table_of(family, gear):
     return family * N_GEARS + gear
 
 
-@jit_noalloc
-def error_bound(prm, tooth_offsets, t1, t2):
+def error_bound(prm, tooth_offsets, t1, t2) -> float:
     """Largest overlap [mm] runout and tooth offsets can add on one flank family.
 
     ``|ecc1| + |ecc2| + max_i(-Ft1[i]) + max_i(-Ft2[i])`` (rows ``t1``, ``t2`` of the offsets).
     """
     bound = abs(prm[P.ecc1]) + abs(prm[P.ecc2])
     for row, z in ((t1, int(prm[P.z1])), (t2, int(prm[P.z2]))):
-        worst = -math.inf
-        for i in range(z):
-            worst = max(worst, -tooth_offsets[row, i])
-        bound += worst
-    return bound
+        bound += np.max(-tooth_offsets[row, :z]) if z > 0 else -math.inf
+    return float(bound)
 
 
-@jit_noalloc
-def overlap_bound(prm, tables, tooth_offsets, t1, t2):
+def overlap_bound(prm, tables, tooth_offsets, t1, t2) -> float:
     """Upper bound [mm] of ``-G1(x1) - G2(x2) - e1 - e2 - Ft1 - Ft2`` of one flank family
     (tables and offset rows ``t1``, ``t2``).
 
@@ -61,8 +56,7 @@ def overlap_bound(prm, tables, tooth_offsets, t1, t2):
         + error_bound(prm, tooth_offsets, t1, t2)
 
 
-@jit_noalloc
-def end_gap_bound(tables, g1, g2, h):
+def end_gap_bound(tables, g1, g2, h) -> float:
     """Lower bound [mm] of ``G1(x1) + G2(x2)`` when either position sits on a table end.
 
     ``min(G1(x_lo), G1(x_hi)) + min G2`` or the same with the tables swapped (``min G`` from
@@ -70,38 +64,26 @@ def end_gap_bound(tables, g1, g2, h):
     ``sigma delta - offset`` minus this (events.py); extended tables open a gap of about the
     tabulation cap there, so no crossing of theirs is loaded.
     """
-    n = tables.shape[2]
-    end1 = min(tables[g1, TABLE_GAP, 0], tables[g1, TABLE_GAP, n - 1]) \
-        + table_floor(tables, g2, h)
-    end2 = min(tables[g2, TABLE_GAP, 0], tables[g2, TABLE_GAP, n - 1]) \
-        + table_floor(tables, g1, h)
-    return min(end1, end2)
+    end1 = min(tables[g1, TABLE_GAP, 0], tables[g1, TABLE_GAP, -1]) + table_floor(tables, g2, h)
+    end2 = min(tables[g2, TABLE_GAP, 0], tables[g2, TABLE_GAP, -1]) + table_floor(tables, g1, h)
+    return float(min(end1, end2))
 
 
-@jit_noalloc
-def zero_run(tables, k):
+def zero_run(tables, k) -> tuple[int, int]:
     """First and last grid index of the longest run of grid points of table ``k`` where the
-    value and the slope are both zero (``(0, -1)`` if none): the Hermite cubic vanishes
-    identically between them."""
-    best_lo = 0
-    best_hi = -1
-    start = -1
-    n = tables.shape[2]
-    for i in range(n + 1):
-        zero = i < n and tables[k, TABLE_GAP, i] == 0.0 and tables[k, TABLE_SLOPE, i] == 0.0
-        if zero:
-            if start < 0:
-                start = i
-        elif start >= 0:
-            if i - 1 - start > best_hi - best_lo:
-                best_lo = start
-                best_hi = i - 1
-            start = -1
-    return best_lo, best_hi
+    value and the slope are both zero (the first of equally long ones; ``(0, -1)`` if none):
+    the Hermite cubic vanishes identically between them."""
+    zero = (tables[k, TABLE_GAP] == 0.0) & (tables[k, TABLE_SLOPE] == 0.0)
+    if not zero.any():
+        return 0, -1
+    edges = np.diff(np.concatenate(([0], zero.astype(np.int8), [0])))
+    starts = np.flatnonzero(edges == 1)
+    lasts = np.flatnonzero(edges == -1) - 1
+    j = int(np.argmax(lasts - starts))  # the first longest
+    return int(starts[j]), int(lasts[j])
 
 
-@jit_noalloc
-def _zero_interval(prm, tables, k, h):
+def _zero_interval(prm, tables, k, h) -> tuple[float, float]:
     """[lo, hi] [mm] inside table ``k``'s zero run, one grid step in from its ends (a position
     there falls in an interval of the run whatever the rounding of its grid index, and the
     cubic is exactly 0); an empty interval when there is no run of at least 3 points."""
@@ -111,31 +93,25 @@ def _zero_interval(prm, tables, k, h):
     return math.inf, -math.inf
 
 
-@jit_noalloc
-def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family):
+def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family) -> None:
     """The table- and offset-dependent constants: ``derived`` entries error_bound,
     tooth_offsets_used, tooth_factors_used, teeth_tracked, grid_step and reciprocals;
-    ``family`` columns overlap, end_gap and the zero runs."""
+    ``family`` columns overlap, end_gap and the zero runs.
+
+    Plain numpy, run once per run: compiled, these seven small functions cost the first run
+    ~1.1 s of compilation and every later run a cache load (bench/RESULTS.md, session 9)."""
     h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
     bound = -math.inf
     for f in range(N_FAMILIES):
-        t1 = table_of(f, PINION)
-        t2 = table_of(f, GEAR)
+        t1 = f * N_GEARS + PINION  # table_of(f, PINION), uncompiled
+        t2 = f * N_GEARS + GEAR
         family[f, F.overlap] = overlap_bound(prm, tables, tooth_offsets, t1, t2)
         family[f, F.end_gap] = end_gap_bound(tables, t1, t2, h)
-        lo, hi = _zero_interval(prm, tables, t1, h)
-        family[f, F.zero_lo1] = lo
-        family[f, F.zero_hi1] = hi
-        lo, hi = _zero_interval(prm, tables, t2, h)
-        family[f, F.zero_lo2] = lo
-        family[f, F.zero_hi2] = hi
+        family[f, F.zero_lo1], family[f, F.zero_hi1] = _zero_interval(prm, tables, t1, h)
+        family[f, F.zero_lo2], family[f, F.zero_hi2] = _zero_interval(prm, tables, t2, h)
         bound = max(bound, error_bound(prm, tooth_offsets, t1, t2))
     derived[D.error_bound] = bound
-    used = 0.0
-    for row in range(tooth_offsets.shape[0]):
-        for i in range(tooth_offsets.shape[1]):
-            if tooth_offsets[row, i] != 0.0:
-                used = 1.0
+    used = 1.0 if np.any(tooth_offsets != 0.0) else 0.0
     derived[D.tooth_offsets_used] = used
     derived[D.tooth_factors_used] = 1.0 if tooth_factors.size > 0 else 0.0
     derived[D.teeth_tracked] = max(used, derived[D.tooth_factors_used])

@@ -15,6 +15,8 @@ for the Hermite basis h00, h10, h01, h11; any numerical-analysis text (e.g. Burd
 
 import math
 
+import numpy as np
+
 from gearcli.core.layout import TABLE_GAP, TABLE_SLOPE
 from gearcli.core.nrt import jit_noalloc
 
@@ -68,20 +70,18 @@ def hermite(tables, k, x_lo, x_hi, h, inv_h, x):
     return True, value, slope
 
 
-@jit_noalloc
-def table_floor(tables, k, h):
-    """Lower bound [mm] of the Hermite interpolant of table ``k`` over its whole grid.
+def table_floor(tables, k, h) -> float:
+    """Lower bound [mm] of the Hermite interpolant of table ``k`` over its whole grid (set-up,
+    plain numpy).
 
     On each interval ``G = y0 h00 + y1 h01 + h (m0 h10 + m1 h11)`` (slopes m [-], spacing
     ``h`` [mm]) with ``h00 + h01 = 1``, ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on
     [0, 1], so ``G >= min(y0, y1) - 4/27 h (|m0| + |m1|)``.
     """
-    floor = math.inf
-    for i in range(tables.shape[2] - 1):
-        lo = min(tables[k, TABLE_GAP, i], tables[k, TABLE_GAP, i + 1]) \
-            - 4.0 / 27.0 * h * (abs(tables[k, TABLE_SLOPE, i]) + abs(tables[k, TABLE_SLOPE, i + 1]))
-        floor = min(floor, lo)
-    return floor
+    gap = tables[k, TABLE_GAP]
+    slope = np.abs(tables[k, TABLE_SLOPE])
+    lows = np.minimum(gap[:-1], gap[1:]) - 4.0 / 27.0 * h * (slope[:-1] + slope[1:])
+    return float(lows.min()) if lows.size else math.inf
 
 
 @jit_noalloc
