@@ -6,6 +6,8 @@ energy sum 1/2 J omega^2 + 1/2 m v^2 of the bodies [t*mm^2/s^2 = N*mm = mJ].
 
 import math
 
+import numpy as np
+
 from gearcli.core.layout import DRIVE_FLANKS, N_FAMILIES, N_STATE_BASE, SX, A, C, P, S, X
 from gearcli.core.nrt import jit_noalloc
 
@@ -81,23 +83,18 @@ def write_row(series, slot_series, i, t, y, aux, slot_force, prm):
             slot_series[f, i, j] = slot_force[f, j]
 
 
-@jit_noalloc
-def init_extrema(extrema, slot_extrema):
-    """Start values: -inf for maxima, +inf for minima (NaN'ed by :func:`finish_extrema`)."""
-    for k in range(extrema.shape[0]):
-        extrema[k] = math.nan
-    extrema[X.force_total_max_N] = -math.inf
-    extrema[X.force_total_min_N] = math.inf
-    extrema[X.force_coast_max_N] = -math.inf
-    extrema[X.delta_max_mm] = -math.inf
-    extrema[X.delta_min_mm] = math.inf
-    extrema[X.penetration_max_mm] = -math.inf
-    extrema[X.bearing_force_max_1_N] = -math.inf
-    extrema[X.bearing_force_max_2_N] = -math.inf
-    for j in range(slot_extrema.shape[1]):
-        slot_extrema[SX.force_max_N, j] = -math.inf
-        slot_extrema[SX.force_max_t_s, j] = math.nan
-        slot_extrema[SX.force_min_N, j] = math.inf
+def init_extrema(extrema, slot_extrema) -> None:
+    """Start values: -inf for maxima, +inf for minima (NaN'ed by :func:`finish_extrema`).
+    Plain numpy, like :func:`finish_extrema`: once per run, not worth a compilation."""
+    extrema[:] = math.nan
+    for k in (X.force_total_max_N, X.force_coast_max_N, X.delta_max_mm, X.penetration_max_mm,
+              X.bearing_force_max_1_N, X.bearing_force_max_2_N):
+        extrema[k] = -math.inf
+    for k in (X.force_total_min_N, X.delta_min_mm):
+        extrema[k] = math.inf
+    slot_extrema[SX.force_max_N] = -math.inf
+    slot_extrema[SX.force_max_t_s] = math.nan
+    slot_extrema[SX.force_min_N] = math.inf
 
 
 @jit_noalloc
@@ -143,13 +140,7 @@ def update_extrema(extrema, slot_extrema, t, y, aux, slot_force, lateral):
             slot_extrema[SX.force_min_N, j] = fj
 
 
-@jit_noalloc
-def finish_extrema(extrema, slot_extrema):
+def finish_extrema(extrema, slot_extrema) -> None:
     """Replace the +-inf start values that no step touched by NaN."""
-    for k in range(extrema.shape[0]):
-        if math.isinf(extrema[k]):
-            extrema[k] = math.nan
-    for r in range(slot_extrema.shape[0]):
-        for j in range(slot_extrema.shape[1]):
-            if math.isinf(slot_extrema[r, j]):
-                slot_extrema[r, j] = math.nan
+    extrema[np.isinf(extrema)] = math.nan
+    slot_extrema[np.isinf(slot_extrema)] = math.nan
