@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from gearcli.core.gaptable import table_floor
+from gearcli.core.gaptable import table_floors
 from gearcli.core.layout import (
     FAMILY_PARAMS,
     FLANK_FAMILIES,
@@ -45,27 +45,25 @@ def error_bound(prm, tooth_offsets, t1, t2) -> float:
     return float(bound)
 
 
-def overlap_bound(prm, tables, tooth_offsets, t1, t2) -> float:
+def overlap_bound(prm, floors, tooth_offsets, t1, t2) -> float:
     """Upper bound [mm] of ``-G1(x1) - G2(x2) - e1 - e2 - Ft1 - Ft2`` of one flank family
-    (tables and offset rows ``t1``, ``t2``).
+    (tables and offset rows ``t1``, ``t2``; ``floors``: gaptable.table_floors).
 
     A pair of the family can only touch when ``sigma delta - offset`` exceeds minus this.
     """
-    h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
-    return -table_floor(tables, t1, h) - table_floor(tables, t2, h) \
-        + error_bound(prm, tooth_offsets, t1, t2)
+    return float(-floors[t1] - floors[t2] + error_bound(prm, tooth_offsets, t1, t2))
 
 
-def end_gap_bound(tables, g1, g2, h) -> float:
+def end_gap_bound(tables, g1, g2, floors) -> float:
     """Lower bound [mm] of ``G1(x1) + G2(x2)`` when either position sits on a table end.
 
-    ``min(G1(x_lo), G1(x_hi)) + min G2`` or the same with the tables swapped (``min G`` from
-    :func:`gearcli.core.gaptable.table_floor`). A pair crossing a table end overlaps by at most
-    ``sigma delta - offset`` minus this (events.py); extended tables open a gap of about the
-    tabulation cap there, so no crossing of theirs is loaded.
+    ``min(G1(x_lo), G1(x_hi)) + min G2`` or the same with the tables swapped (``min G``:
+    ``floors`` from :func:`gearcli.core.gaptable.table_floors`). A pair crossing a table end
+    overlaps by at most ``sigma delta - offset`` minus this (events.py); extended tables open a
+    gap of about the tabulation cap there, so no crossing of theirs is loaded.
     """
-    end1 = min(tables[g1, TABLE_GAP, 0], tables[g1, TABLE_GAP, -1]) + table_floor(tables, g2, h)
-    end2 = min(tables[g2, TABLE_GAP, 0], tables[g2, TABLE_GAP, -1]) + table_floor(tables, g1, h)
+    end1 = min(tables[g1, TABLE_GAP, 0], tables[g1, TABLE_GAP, -1]) + floors[g2]
+    end2 = min(tables[g2, TABLE_GAP, 0], tables[g2, TABLE_GAP, -1]) + floors[g1]
     return float(min(end1, end2))
 
 
@@ -101,12 +99,13 @@ def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family) ->
     Plain numpy, run once per run: compiled, these seven small functions cost the first run
     ~1.1 s of compilation and every later run a cache load (bench/RESULTS.md, session 9)."""
     h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
+    floors = table_floors(tables, h)
     bound = -math.inf
     for f in range(N_FAMILIES):
         t1 = f * N_GEARS + PINION  # table_of(f, PINION), uncompiled
         t2 = f * N_GEARS + GEAR
-        family[f, F.overlap] = overlap_bound(prm, tables, tooth_offsets, t1, t2)
-        family[f, F.end_gap] = end_gap_bound(tables, t1, t2, h)
+        family[f, F.overlap] = overlap_bound(prm, floors, tooth_offsets, t1, t2)
+        family[f, F.end_gap] = end_gap_bound(tables, t1, t2, floors)
         family[f, F.zero_lo1], family[f, F.zero_hi1] = _zero_interval(prm, tables, t1, h)
         family[f, F.zero_lo2], family[f, F.zero_hi2] = _zero_interval(prm, tables, t2, h)
         bound = max(bound, error_bound(prm, tooth_offsets, t1, t2))

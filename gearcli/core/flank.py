@@ -256,7 +256,8 @@ def flank(f, kin, app, model, slot_force, scratch, full):
         dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
         pdot = dp1 * v1 + dp2 * v2 + lat_rate
         if tooth_law:
-            _, kj, dkj = hermite(model.pair_stiffness, f, x_lo, x_hi, h_grid, inv_h, x1)
+            # int(f): the family as a run-time int, one compiled hermite for every call
+            _, kj, dkj = hermite(model.pair_stiffness, int(f), x_lo, x_hi, h_grid, inv_h, x1)
             if use_factors:  # this pair's teeth: the factor is constant along its path
                 fac = model.tooth_stiffness_factor[PINION, i1] \
                     * model.tooth_stiffness_factor[GEAR, i2]

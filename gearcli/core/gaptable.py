@@ -70,18 +70,18 @@ def hermite(tables, k, x_lo, x_hi, h, inv_h, x):
     return True, value, slope
 
 
-def table_floor(tables, k, h) -> float:
-    """Lower bound [mm] of the Hermite interpolant of table ``k`` over its whole grid (set-up,
-    plain numpy).
+def table_floors(tables, h) -> np.ndarray:
+    """Lower bound [mm] of the Hermite interpolant of every table over its whole grid (set-up,
+    plain numpy; one entry per table of ``tables``).
 
     On each interval ``G = y0 h00 + y1 h01 + h (m0 h10 + m1 h11)`` (slopes m [-], spacing
     ``h`` [mm]) with ``h00 + h01 = 1``, ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on
     [0, 1], so ``G >= min(y0, y1) - 4/27 h (|m0| + |m1|)``.
     """
-    gap = tables[k, TABLE_GAP]
-    slope = np.abs(tables[k, TABLE_SLOPE])
-    lows = np.minimum(gap[:-1], gap[1:]) - 4.0 / 27.0 * h * (slope[:-1] + slope[1:])
-    return float(lows.min()) if lows.size else math.inf
+    gap = tables[:, TABLE_GAP]
+    slope = np.abs(tables[:, TABLE_SLOPE])
+    lows = np.minimum(gap[:, :-1], gap[:, 1:]) - 4.0 / 27.0 * h * (slope[:, :-1] + slope[:, 1:])
+    return lows.min(axis=1) if lows.shape[1] else np.full(tables.shape[0], math.inf)
 
 
 @jit_noalloc

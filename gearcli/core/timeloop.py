@@ -274,6 +274,9 @@ def run(model, w, out, layout_key, i_first):
         theta_offset = resume[R.theta_offset]
     _init(model, w, resume, fresh)
 
+    # Loop state. bool(False) and int(0) are run-time types: numba types a call before it has
+    # seen the loop's later assignments, and with a literal start value (False, 0) it would
+    # compile the callee once more for that literal (bench/RESULTS.md, session 9).
     status = STATUS_OK
     i_out = i_first
     span = t_end - t
@@ -283,14 +286,14 @@ def run(model, w, out, layout_key, i_first):
     h_min = 0.0
     h_step = 0.0  # the step being attempted [s]
     t_new = t
-    s = 0  # its stage
+    s = int(0)  # noqa: UP018  (its stage; run-time type, see above)
     cut = False
     err = 0.0
     factor = 1.0
     runaway = False
     hop = 0.0
     t_hop = t
-    rejected_before = False
+    rejected_before = bool(False)  # noqa: UP018
     nonfinite_last = False
     predict = True  # predict the next discontinuity before the next step
     t_event = math.inf
@@ -299,7 +302,7 @@ def run(model, w, out, layout_key, i_first):
     h_cut = math.inf  # size of the last step cut short by a crossing [s]
     phase = PH_START
     ts = t  # time [s], state (ys) and row of K of the next evaluation
-    row = 0
+    row = int(0)  # noqa: UP018
     full = True
     for i in range(n_state):
         ys[i] = y[i]
@@ -327,7 +330,7 @@ def run(model, w, out, layout_key, i_first):
                 for i in range(n_state):
                     y_new[i] = ys[i]
                 err = error_norm(y, y_new, K, h_step, first, count, atol, rtol)
-                if not (math.isfinite(err) and _all_finite(y_new) and _row_finite(K, N_STAGES)):
+                if not (math.isfinite(err) and _all_finite(y_new) and _row_finite(K, s)):
                     counters[N.rejected_steps] += 1
                     h = h_step * MIN_FACTOR
                     rejected_before = True
@@ -383,7 +386,7 @@ def run(model, w, out, layout_key, i_first):
                 extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y) \
                     + aux[A.contact_energy] + aux[A.spring_energy]
             extrema[X.t_reached_s] = t
-            if not (_all_finite(y) and _row_finite(K, 0) and _all_finite(aux)):
+            if not (_all_finite(y) and _row_finite(K, row) and _all_finite(aux)):
                 return STATUS_NAN, i_first
             if t >= ext_start:
                 update_extrema(out.extrema, out.slot_extrema, t, y, aux, w.slot_force, lateral)
@@ -397,7 +400,9 @@ def run(model, w, out, layout_key, i_first):
                 # starting step size (HNW II.4; scipy select_initial_step): controlled
                 # components only, one trial evaluation at t + h0
                 d0 = scaled_rms(y, y, first, count, atol, rtol)
-                d1 = scaled_rms(K[0], y, first, count, atol, rtol)
+                for i in range(n_state):
+                    dy[i] = K[0, i]  # (a row of K would compile scaled_rms a second time)
+                d1 = scaled_rms(dy, y, first, count, atol, rtol)
                 h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
                 h0 = min(h0, span)
                 ts = t + h0

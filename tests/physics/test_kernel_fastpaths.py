@@ -14,7 +14,7 @@ import pytest
 
 from gearcli.core import layout
 from gearcli.core.derive import derive, end_gap_bound, zero_run
-from gearcli.core.gaptable import hermite, table_floor
+from gearcli.core.gaptable import hermite, table_floors
 from gearcli.core.layout import COAST_FLANKS, DRIVE_FLANKS, D, F, P
 
 
@@ -60,9 +60,10 @@ def test_derive_zero_runs_end_gaps_and_offset_flag():
             assert family[f, hi] == pytest.approx(4.0 - h, abs=1e-12)
     assert derived[D.tooth_offsets_used] == 0.0
     # table ends at x = -1 (G = 1) and x = 5 (G = 1); the floor of the Hermite cubic <= 0
-    expected = 1.0 + table_floor(tables, 1, h)
+    floors = table_floors(tables, h)
+    expected = 1.0 + floors[1]
     assert family[DRIVE_FLANKS, F.end_gap] == pytest.approx(expected)
-    assert end_gap_bound(tables, 0, 1, h) == pytest.approx(expected)
+    assert end_gap_bound(tables, 0, 1, floors) == pytest.approx(expected)
     assert derived[D.inv_exponent_plus_1] == pytest.approx(1.0 / 2.5)
     offsets[1, 3] = 1e-3
     derive(prm, tables, offsets, derived, family)
