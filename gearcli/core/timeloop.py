@@ -117,7 +117,7 @@ ROW_DY = N_STAGES + 1
 
 def new_work(prm) -> Work:
     """Work arrays of :func:`run` for the model with parameter vector ``prm`` (Python side,
-    allocated once per run; every chunk initialises them again).
+    zeros, allocated for every chunk by :func:`gearcli.core.integrate.simulate`).
 
     The vectors and the rows of K live in one block, each on its own 128-byte boundary.
     Allocated one by one (or K packed with 72-byte rows) the same compiled code ran 1.3-1.5
@@ -200,11 +200,14 @@ def run(model, w, out, layout_key, i_first):
     depend on how often a progress display looks in.
 
     The loop evaluates the right-hand side at exactly one place, the top of its body; what the
-    evaluation is for is the phase (``PH_*``): a stage of a step attempt, an output sample, the
-    end of a hop, the start. One call site means one inlined copy of the right-hand side in the
-    compiled code: a second copy for the samples, hops and the start (a compiled helper, as it
-    was before) made the first run's compilation 1.5 times as long (bench/RESULTS.md, session
-    9), and as calls the stages cost ~60 % more run time (they pass a dozen arrays).
+    evaluation is for is the phase (``PH_*``): a stage of a step attempt, an output sample
+    (inside a step or a hop), the end of a hop, the start, the starting step size's trial. One
+    call site means one inlined copy of the right-hand side in the compiled code: a second copy
+    for the samples, hops and the start (a compiled helper, as it was before) made the first
+    run's compilation 1.5 times as long (bench/RESULTS.md, session 9). A call instead of the
+    inlined copy passes a dozen arrays every time (the step attempt as a call per step cost
+    ~14 % more run time on the seed, A/B when the loop was written; ``flank`` as a call 63 %,
+    bench/RESULTS.md session 6).
     Allocation-free (numba's reference counting off, nrt.jit_noalloc), so the caller allocates
     ``w`` (:func:`new_work`) and this is the entry point itself: a compiled wrapper that
     allocates would re-optimise the whole loop in its own library.
@@ -215,7 +218,8 @@ def run(model, w, out, layout_key, i_first):
         Read-only data of the run (internal units); ``prm`` holds ``t_start``, ``t_end`` of
         this chunk; ``derived`` and ``family`` from :func:`gearcli.core.derive.derive`.
     w : gearcli.core.bundles.Work
-        Work arrays from :func:`new_work` (scratch; their contents on entry do not matter).
+        Work arrays from :func:`new_work`, as it makes them (zeros: the loop reads the
+        ``aux`` entries of bodies the model does not have, which nothing writes).
     out : gearcli.core.bundles.Out
         Output times (non-decreasing, whole run: rows ``i_first ..`` with ``t_out <= t_end``
         are written by this chunk), output rows, running extrema (start values from
@@ -316,8 +320,8 @@ def run(model, w, out, layout_key, i_first):
             counters[N.rhs_evaluations] += 1
             # Stages 2 .. 5 go straight to the next evaluation; stage 6 and the first stage
             # of an attempt are prepared at the end of the loop body. One place for all six
-            # is the same arithmetic but ran 4-5 % slower (code layout: seed and iso_pair,
-            # three A/B rounds each, bench/RESULTS.md session 9).
+            # is the same arithmetic but ran 4-5 % slower than this (code layout: seed and
+            # iso_pair, three A/B rounds each, bench/RESULTS.md session 9).
             if s < N_STAGES - 1:
                 s += 1
                 stage_state(y, K, s, h_step, ys, first)
