@@ -7,7 +7,7 @@ CASE   ?= cases/seed.yaml
 OUT    ?= out/seed
 JOBS   ?= auto
 
-.PHONY: install warm demo test test-fast bench lint clean browser
+.PHONY: install warm demo test test-fast bench bench-ab lint clean browser
 
 install: $(STAMP)
 
@@ -55,6 +55,11 @@ test-fast: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python bench/run.py
+
+# Kernel A/B against another revision, alternating rounds (bench/ab.py): make bench-ab BASE=HEAD~3
+BASE ?= HEAD
+bench-ab: $(STAMP)
+	$(BIN)/python bench/ab.py --base $(BASE)
 
 lint: $(STAMP)
 	$(BIN)/ruff check gearcli tests bench examples

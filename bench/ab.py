@@ -1,0 +1,85 @@
+"""Kernel A/B against another revision: the solver's time on a few cases, alternating rounds.
+
+Run from the repository root with the project's venv:
+
+    .venv/bin/python bench/ab.py [--base REV] [--rounds 3] [--runs 9]
+
+Exports ``REV`` (default ``HEAD``) with ``git archive`` into a temporary folder and times
+``SimulationResult.wall_time_s`` (the compiled kernel call with its set-up) of the same cases
+with that tree and with the working tree, one child process per side and round, alternating,
+so that a noisy neighbour slows both alike: median and minimum of ``--runs`` runs after one
+warm-up (which compiles when the cache has no code for that tree yet). Prints a table only;
+copy what you measured into bench/RESULTS.md. Times are host- and load-dependent, so they
+belong here, never in tests.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+#: (label, case file, overrides): the seed (IMPACT, extended engagement, friction), the seed
+#: with rigid engagement (event hops), the tooth law at two speeds.
+CASES = (
+    ("seed", "cases/seed.yaml", []),
+    ("seed rigid", "cases/seed.yaml", ["contact.engagement=rigid"]),
+    ("seed rigid, no friction", "cases/seed.yaml",
+     ["contact.engagement=rigid", "friction.enabled=false"]),
+    ("iso_pair", "cases/iso_pair.yaml", []),
+    ("iso_pair 2500 rpm", "cases/iso_pair.yaml", ["drive.speed=2500 rpm"]),
+)
+
+_CHILD = """
+import json, statistics, sys
+from gearcli.pipeline.simulate import run_simulation
+runs, cases = int(sys.argv[1]), json.loads(sys.argv[2])
+out = {}
+for label, path, overrides in cases:
+    times = [run_simulation(path, overrides, zoom=False, notice=None).wall_time_s
+             for _ in range(runs + 1)][1:]
+    out[label] = [statistics.median(times), min(times)]
+print(json.dumps(out))
+"""
+
+
+def side(tree: Path, runs: int) -> dict:
+    cases = [(label, str(ROOT / path), overrides) for label, path, overrides in CASES]
+    env = {**os.environ, "PYTHONPATH": str(tree)}
+    done = subprocess.run([sys.executable, "-c", _CHILD, str(runs), json.dumps(cases)],
+                          env=env, cwd=tree, capture_output=True, text=True, check=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--base", default="HEAD", help="revision to compare with (git rev)")
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--runs", type=int, default=9, help="timed runs per case and round")
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory(prefix="gearcli-ab-") as tmp:
+        base = Path(tmp)
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", args.base, "gearcli"],
+                                 capture_output=True, check=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(base)], input=archive, check=True)
+        rows: dict[str, list[str]] = {label: [] for label, _, _ in CASES}
+        for _ in range(args.rounds):
+            before, after = side(base, args.runs), side(ROOT, args.runs)
+            for label in rows:
+                (b, _), (a, _) = before[label], after[label]
+                rows[label].append(f"{1e3 * b:.2f} / {1e3 * a:.2f} ({100 * (a / b - 1):+.1f} %)")
+    print(f"kernel A/B, median of {args.runs} runs in ms: {args.base} / working tree")
+    print("| case | " + " | ".join(f"round {i + 1}" for i in range(args.rounds)) + " |")
+    print("|---|" + "---|" * args.rounds)
+    for label, cells in rows.items():
+        print(f"| {label} | " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    main()
