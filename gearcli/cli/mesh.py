@@ -23,7 +23,7 @@ def mesh(
     out: Path | None = typer.Option(None, "-o", "--out", help="Write mesh.json, mesh.csv, "
                                     "mesh.png and manifest.json into this folder."),
     force: bool = typer.Option(False, "--force", help="Replace an earlier results folder "
-                               "or --plot file."),
+                               "(files gearcli did not write stay) or --plot file."),
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),

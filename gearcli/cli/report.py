@@ -45,7 +45,8 @@ def run(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     out: Path = typer.Option(..., "-o", "--out", help="Results folder."),
     set_: list[str] = typer.Option([], "--set", help="Override a case value: key.path=value."),
-    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder."),
+    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder "
+                               "(files gearcli did not write stay)."),
     fmt: str = typer.Option("html", "--format", help="Report format: html or md."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors and the report path."),
 ) -> None:

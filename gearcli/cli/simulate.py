@@ -23,7 +23,8 @@ def simulate(
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."
     ),
-    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder."),
+    force: bool = typer.Option(False, "--force", help="Replace an earlier results folder "
+                               "(files gearcli did not write stay)."),
     quiet: bool = typer.Option(False, "--quiet", "-q",
                                help="No progress, no summary table, no warnings (summary.json "
                                "keeps them)."),

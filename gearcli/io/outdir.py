@@ -2,7 +2,10 @@
 
 Files are written into a hidden temporary folder beside the target, which replaces the target
 only when everything is written. Existing results are replaced only with ``force``; a folder
-that holds other files is never replaced. The earlier folder is swapped out in one step where
+that holds other files is never replaced. ``force`` replaces gearcli's results, never the
+user's files: whatever else an earlier results folder holds (notes, a figure written there
+with ``--plot``) is copied into the new folder before the swap (:data:`RESULT_NAMES`). The
+earlier folder is swapped out in one step where
 the system allows it (Linux ``renameat2(RENAME_EXCHANGE)``), else moved aside, the new one moved
 in, the old one deleted. A failure or a signal (SIGTERM, SIGHUP, Ctrl-C: see
 :func:`gearcli.cli.common.handle_errors`) removes the temporary folder; the folder gets the
@@ -24,6 +27,19 @@ from gearcli.io.files import umask
 
 #: A folder holding this file is a gearcli result folder.
 MARKER = "manifest.json"
+
+#: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py),
+#: analyze (analysis_io.ANALYSIS_FILES), stress (stress.STRESS_FILES), report, mesh -o
+#: (pipeline/mesh.py) and speed-curve studies (pipeline/speed_curve.py). With ``force`` these
+#: go with the earlier results and everything else is carried over into the new folder;
+#: tests/cli/test_force_keeps_user_files.py checks the list against what the commands write
+#: (a name missing here would only be carried over, stale, never lost).
+RESULT_NAMES = frozenset({
+    MARKER, "summary.json", "timeseries.csv", "timeseries.parquet", "zoom.csv",
+    "analysis.json", "spectrum.csv", "harmonics.csv", "stress.csv", "stress.json",
+    "report.html", "report.md", "figures", "mesh.json", "mesh.csv", "mesh.png",
+    "summary.csv", "speed_curve.json", "speed_curve.png",
+})
 
 
 def check_target(target: str | Path, force: bool) -> Path:
@@ -111,12 +127,39 @@ def _alive(pid: int) -> bool:
     return True
 
 
+def user_entries(folder: Path) -> list[Path]:
+    """The entries at the top of a results folder that gearcli did not write (sorted)."""
+    return sorted(q for q in folder.iterdir() if q.name not in RESULT_NAMES)
+
+
+def _carry_over(old: Path, new: Path) -> None:
+    """Copy the user's entries of the earlier results folder ``old`` into ``new`` (copies, so
+    that ``old`` stays complete until the swap; links stay links)."""
+    for q in user_entries(old):
+        dest = new / q.name
+        if dest.exists() or dest.is_symlink():
+            continue  # cannot happen with RESULT_NAMES complete; never overwrite new results
+        try:
+            if q.is_symlink():
+                os.symlink(os.readlink(q), dest)
+            elif q.is_dir():
+                shutil.copytree(q, dest, symlinks=True)
+            else:
+                shutil.copy2(q, dest)
+        except OSError as exc:
+            raise OutputError(f"{old}: cannot carry {q.name} (not written by gearcli) over into "
+                              f"the new results ({exc}); the earlier results are unchanged; "
+                              "move it out and run again") from None
+
+
 def _install(tmp: Path, p: Path) -> None:
-    """Move the finished ``tmp`` to ``p``; an earlier ``p`` is removed only afterwards."""
+    """Move the finished ``tmp`` to ``p``; an earlier ``p`` is removed only afterwards, and
+    what else it held is carried over first (:func:`_carry_over`)."""
     try:
         if not p.exists():
             os.replace(tmp, p)
             return
+        _carry_over(p, tmp)
         if _exchange(tmp, p):  # p is now the new folder, tmp the old one
             shutil.rmtree(tmp, ignore_errors=True)
             return
