@@ -361,7 +361,7 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=9, help="timed solver runs (median), >= 7")
     ap.add_argument("--ref-runs", type=int, default=3, help="timed scipy reference runs")
     ap.add_argument("--no-cold", dest="cold", action="store_false",
-                    help="skip the empty-cache end-to-end run (~20-30 s)")
+                    help="skip the empty-cache end-to-end run (~15 s)")
     ap.add_argument("--rounds", type=int, default=7,
                     help="alternating rounds of the start-up commands (medians, minima)")
     ap.add_argument("--no-importtime", dest="importtime", action="store_false",
