@@ -4,7 +4,8 @@ Files are written into a hidden temporary folder beside the target, which replac
 only when everything is written. Existing results are replaced only with ``force``; a folder
 that holds other files is never replaced. ``force`` replaces gearcli's results, never the
 user's files: whatever else an earlier results folder holds (notes, a figure written there
-with ``--plot``) is copied into the new folder before the swap (:data:`RESULT_NAMES`). The
+with ``--plot``; :data:`RESULT_NAMES`) is moved into the new folder right after the swap,
+keeping owners, modes and links, and the new folder gets the earlier one's mode. The
 earlier folder is swapped out in one step where
 the system allows it (Linux ``renameat2(RENAME_EXCHANGE)``), else moved aside, the new one moved
 in, the old one deleted. A failure or a signal (SIGTERM, SIGHUP, Ctrl-C: see
@@ -18,7 +19,10 @@ import contextlib
 import ctypes
 import ctypes.util
 import os
+import re
 import shutil
+import stat
+import sys
 import tempfile
 from pathlib import Path
 
@@ -31,9 +35,9 @@ MARKER = "manifest.json"
 #: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py),
 #: analyze (analysis_io.ANALYSIS_FILES), stress (stress.STRESS_FILES), report, mesh -o
 #: (pipeline/mesh.py) and speed-curve studies (pipeline/speed_curve.py). With ``force`` these
-#: go with the earlier results and everything else is carried over into the new folder;
+#: go with the earlier results and everything else moves into the new folder;
 #: tests/cli/test_force_keeps_user_files.py checks the list against what the commands write
-#: (a name missing here would only be carried over, stale, never lost).
+#: (a name missing here would only be moved over, stale, never lost).
 RESULT_NAMES = frozenset({
     MARKER, "summary.json", "timeseries.csv", "timeseries.parquet", "zoom.csv",
     "analysis.json", "spectrum.csv", "harmonics.csv", "stress.csv", "stress.json",
@@ -87,27 +91,62 @@ def atomic_dir(target: str | Path, force: bool):
         check_target(p, force)  # nothing else appeared there meanwhile
         _install(tmp, p)
     except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
+        _discard(tmp)
         raise
 
 
+def _discard(tmp: Path) -> None:
+    """Remove the temporary folder of a failed write, unless it holds the user's files (after
+    the swap of :func:`_install` it is the earlier folder: what could not be moved stays)."""
+    try:
+        if tmp.is_dir() and not tmp.is_symlink() and not user_entries(tmp):
+            _remove_tree(tmp)
+    except OSError:
+        pass
+
+
 def remove_stale(parent: Path, name: str) -> list[Path]:
-    """Remove the temporary folders ``.NAME.PID.*.tmp`` (and ``*.tmp.old``) that a killed
-    gearcli left beside ``parent/NAME`` (kill -9 cannot be cleaned up at the time): those whose
-    process ``PID`` is gone. Folders of a running process, or not named so, are left alone.
-    Returns the removed paths."""
+    """Remove the temporary folders ``.NAME.PID.XXXXXXXX.tmp`` (and ``.tmp.old``) that a
+    killed gearcli left beside ``parent/NAME`` (kill -9 cannot be cleaned up at the time):
+    those whose process ``PID`` is gone and that hold gearcli's results only. Folders of a
+    running process, of another target (``.NAME.2024.PID.X.tmp`` belongs to ``NAME.2024``),
+    or holding anything else (the user's files of a replaced folder, see :func:`_install`)
+    are left alone. Returns the removed paths."""
+    pattern = re.compile(rf"\.{re.escape(name)}\.(\d+)\.[A-Za-z0-9_]+\.tmp(\.old)?")
     removed = []
     for q in parent.glob(f".{glob_escape(name)}.*.tmp*"):
-        rest = q.name[len(name) + 2:]
-        pid_text = rest.split(".", 1)[0]
-        if not (q.is_dir() and pid_text.isdigit() and (q.name.endswith(".tmp")
-                                                       or q.name.endswith(".tmp.old"))):
+        m = pattern.fullmatch(q.name)
+        if m is None or not q.is_dir() or q.is_symlink() or _alive(int(m.group(1))):
             continue
-        if _alive(int(pid_text)):
+        try:
+            if user_entries(q):
+                continue
+        except OSError:
             continue
-        shutil.rmtree(q, ignore_errors=True)
+        _remove_tree(q)
         removed.append(q)
     return removed
+
+
+def _remove_tree(q: Path) -> None:
+    """Delete a folder of gearcli's results, also where a read-only folder inside (or the
+    folder itself) would stop ``shutil.rmtree``: write permission is added where needed."""
+    def retry(func, path, _exc):
+        try:
+            parent = os.path.dirname(path)
+            os.chmod(parent, os.stat(parent).st_mode | 0o700)
+            if os.path.isdir(path) and not os.path.islink(path):
+                os.chmod(path, os.stat(path).st_mode | 0o700)
+            func(path)
+        except OSError:
+            pass
+
+    with contextlib.suppress(OSError):
+        os.chmod(q, os.stat(q).st_mode | 0o700)
+    if sys.version_info >= (3, 12):
+        shutil.rmtree(q, onexc=retry)
+    else:  # onerror: deprecated from 3.12 on
+        shutil.rmtree(q, onerror=retry)
 
 
 def glob_escape(text: str) -> str:
@@ -132,48 +171,62 @@ def user_entries(folder: Path) -> list[Path]:
     return sorted(q for q in folder.iterdir() if q.name not in RESULT_NAMES)
 
 
-def _carry_over(old: Path, new: Path) -> None:
-    """Copy the user's entries of the earlier results folder ``old`` into ``new`` (copies, so
-    that ``old`` stays complete until the swap; links stay links)."""
+def _move_user_entries(old: Path, new: Path) -> list[str]:
+    """Move the user's entries of the replaced results folder ``old`` into ``new`` (renames
+    in one folder: owners, modes, links and hard links stay); returns the names that could not
+    be moved."""
+    left = []
     for q in user_entries(old):
         dest = new / q.name
-        if dest.exists() or dest.is_symlink():
-            continue  # cannot happen with RESULT_NAMES complete; never overwrite new results
         try:
-            if q.is_symlink():
-                os.symlink(os.readlink(q), dest)
-            elif q.is_dir():
-                shutil.copytree(q, dest, symlinks=True)
-            else:
-                shutil.copy2(q, dest)
-        except OSError as exc:
-            raise OutputError(f"{old}: cannot carry {q.name} (not written by gearcli) over into "
-                              f"the new results ({exc}); the earlier results are unchanged; "
-                              "move it out and run again") from None
+            if dest.exists() or dest.is_symlink():
+                raise FileExistsError(q.name)  # never over a new result
+            os.replace(q, dest)
+        except OSError:
+            left.append(q.name)
+    return left
+
+
+def _keep_mode(old: Path, new: Path) -> None:
+    """Give ``new`` the permission bits and group of the folder it replaces (best effort: a
+    group the user does not belong to stays the default)."""
+    with contextlib.suppress(OSError):
+        st = old.stat()
+        os.chmod(new, stat.S_IMODE(st.st_mode))
+        if new.stat().st_gid != st.st_gid:
+            os.chown(new, -1, st.st_gid)
 
 
 def _install(tmp: Path, p: Path) -> None:
-    """Move the finished ``tmp`` to ``p``; an earlier ``p`` is removed only afterwards, and
-    what else it held is carried over first (:func:`_carry_over`)."""
+    """Move the finished ``tmp`` to ``p``. An earlier ``p`` is swapped out whole, then the
+    user's entries in it move into the new folder and only gearcli's earlier results are
+    deleted; entries that cannot be moved stay in the swapped-out folder, which is then kept
+    (and named in the error)."""
     try:
         if not p.exists():
             os.replace(tmp, p)
             return
-        _carry_over(p, tmp)
+        _keep_mode(p, tmp)
         if _exchange(tmp, p):  # p is now the new folder, tmp the old one
-            shutil.rmtree(tmp, ignore_errors=True)
-            return
-        old = tmp.with_name(tmp.name + ".old")
-        os.replace(p, old)
-        try:
-            os.replace(tmp, p)
-        except BaseException:
-            os.replace(old, p)  # put the earlier results back
-            raise
-        shutil.rmtree(old, ignore_errors=True)
+            old = tmp
+        else:
+            old = tmp.with_name(tmp.name + ".old")
+            os.replace(p, old)
+            try:
+                os.replace(tmp, p)
+            except BaseException:
+                os.replace(old, p)  # put the earlier results back
+                raise
     except OSError as exc:
         raise OutputError(f"{p}: cannot move the new results into place ({exc.strerror}); "
                           "the earlier results are unchanged") from None
+    with contextlib.suppress(OSError):  # moving out of a read-only earlier folder
+        os.chmod(old, os.stat(old).st_mode | 0o700)
+    left = _move_user_entries(old, p)
+    if left:
+        raise OutputError(f"{p}: new results written, but {len(left)} of your files could not "
+                          f"be moved over from the earlier folder; they are in {old}")
+    _remove_tree(old)
 
 
 _RENAME_EXCHANGE = 2

@@ -1,7 +1,7 @@
 """--force replaces gearcli's results, never the user's files (io/outdir.py): whatever else an
-earlier results folder holds is carried over into the new one; and the list of what gearcli
+earlier results folder holds moves into the new one; and the list of what gearcli
 writes (outdir.RESULT_NAMES) covers every file the commands write, so that no stale result is
-carried over as if it were the user's."""
+moved over as if it were the user's."""
 
 from __future__ import annotations
 

@@ -38,3 +38,52 @@ def test_folders_of_live_processes_and_foreign_names_are_kept(tmp_path):
     gone.mkdir()
     assert remove_stale(tmp_path, "run") == [gone]
     assert mine.is_dir() and foreign.is_dir() and other.is_dir()
+
+
+def _dead_pid() -> int:
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    return dead.pid
+
+
+def test_a_dotted_target_name_is_not_mistaken_for_a_pid(tmp_path):
+    """``.out.2024.PID.X.tmp`` belongs to the target ``out.2024``: a write to ``out`` must
+    not read 2024 as a dead process and delete another run's live folder."""
+    live = tmp_path / f".out.2024.{os.getpid()}.abc.tmp"
+    live.mkdir()
+    assert remove_stale(tmp_path, "out") == []
+    assert live.is_dir()
+
+
+def test_a_stale_folder_holding_user_files_is_kept(tmp_path):
+    """After a swap, the earlier folder holds the user's files until they are moved: a kill
+    in between must not lose them to the next write's clean-up."""
+    old = tmp_path / f".run.{_dead_pid()}.xyz.tmp"
+    old.mkdir()
+    (old / "summary.json").write_text("{}")
+    (old / "notes.txt").write_text("mine")
+    assert remove_stale(tmp_path, "run") == []
+    assert (old / "notes.txt").read_text() == "mine"
+
+
+def test_replacing_keeps_the_folder_mode_and_moves_read_only_user_folders(tmp_path):
+    target = tmp_path / "run"
+    with atomic_dir(target, False) as tmp:
+        (tmp / "manifest.json").write_text("{}")
+        (tmp / "stress.json").write_text("{}")
+    (target / "ro").mkdir()
+    (target / "ro" / "data").write_text("k")
+    os.chmod(target / "ro", 0o555)
+    os.chmod(target, 0o750)
+    inode = (target / "ro").stat().st_ino
+    try:
+        with atomic_dir(target, True) as tmp:
+            (tmp / "manifest.json").write_text('{"new": 1}')
+        assert (target / "manifest.json").read_text() == '{"new": 1}'
+        assert not (target / "stress.json").exists()  # the earlier run's result goes
+        assert (target / "ro").stat().st_ino == inode  # moved, not copied
+        assert (target / "ro" / "data").read_text() == "k"
+        assert target.stat().st_mode & 0o777 == 0o750
+        assert not list(tmp_path.glob(".run.*"))
+    finally:
+        os.chmod(target / "ro", 0o755)
