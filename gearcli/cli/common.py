@@ -54,9 +54,22 @@ def handle_errors(func):
             _echo_err(f"error: {where}: {exc.strerror or exc}")
             raise typer.Exit(int(ExitCode.INPUT)) from None
         except Exception:  # a bug: keep the traceback for the report, not on the screen
-            return _internal()
+            signum = _received.pop() if _received else None
+            if signum is None:
+                return _internal()
+            # a signal's exception that a library wrapped in its own (pydantic's serializer
+            # turns Terminated into a PydanticSerializationError): still the signal
+            if signum == signal.SIGINT:
+                _echo_err("interrupted")
+                raise typer.Exit(int(ExitCode.INTERRUPTED)) from None
+            _echo_err(f"terminated ({signal.Signals(signum).name})")
+            raise typer.Exit(128 + signum) from None
 
     return wrapper
+
+
+#: Signals received during the command in progress (:func:`_signals_raise`).
+_received: list[int] = []
 
 
 class Terminated(BaseException):
@@ -69,12 +82,21 @@ class Terminated(BaseException):
 
 
 def _raise_terminated(signum, frame):
+    _received.append(signum)
     raise Terminated(signum)
+
+
+def _raise_interrupt(signum, frame):
+    _received.append(signum)
+    raise KeyboardInterrupt
 
 
 @contextmanager
 def _signals_raise():
-    """SIGTERM and SIGHUP raise :class:`Terminated` during a command (main thread only)."""
+    """SIGTERM and SIGHUP raise :class:`Terminated` during a command (main thread only), and
+    SIGINT KeyboardInterrupt as Python's default handler does; each is recorded, so that an
+    exception a library wraps around them (pydantic's serializer does) still ends as the
+    signal, not as an internal error."""
     import threading
 
     if threading.current_thread() is not threading.main_thread():
@@ -82,6 +104,9 @@ def _signals_raise():
         return
     names = [n for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
     previous = {n: signal.signal(getattr(signal, n), _raise_terminated) for n in names}
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        previous["SIGINT"] = signal.signal(signal.SIGINT, _raise_interrupt)
+    _received.clear()
     try:
         yield
     finally:

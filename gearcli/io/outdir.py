@@ -64,6 +64,13 @@ def check_target(target: str | Path, force: bool) -> Path:
                 or here.parent == here:
             raise OutputError(f"{p}: is the current folder or one of its parents; expected "
                               "a new folder name")
+    parent = p.parent if str(p.parent) else Path(".")
+    kept = stranded(parent, p.name) if parent.is_dir() else []
+    if kept:
+        raise OutputError(f"{p}: {kept[0]} beside it holds your files from the earlier results "
+                          "folder (an interrupted or failed --force write moved the folder "
+                          "aside); move them where they belong, delete that folder, then run "
+                          "again")
     if p.is_dir() and any(p.iterdir()):
         if not (p / MARKER).exists():
             raise OutputError(f"{p}: folder holds other files; expected a new or empty folder "
@@ -112,12 +119,8 @@ def remove_stale(parent: Path, name: str) -> list[Path]:
     running process, of another target (``.NAME.2024.PID.X.tmp`` belongs to ``NAME.2024``),
     or holding anything else (the user's files of a replaced folder, see :func:`_install`)
     are left alone. Returns the removed paths."""
-    pattern = re.compile(rf"\.{re.escape(name)}\.(\d+)\.[A-Za-z0-9_]+\.tmp(\.old)?")
     removed = []
-    for q in parent.glob(f".{glob_escape(name)}.*.tmp*"):
-        m = pattern.fullmatch(q.name)
-        if m is None or not q.is_dir() or q.is_symlink() or _alive(int(m.group(1))):
-            continue
+    for q in _dead_temporaries(parent, name):
         try:
             if user_entries(q):
                 continue
@@ -126,6 +129,29 @@ def remove_stale(parent: Path, name: str) -> list[Path]:
         _remove_tree(q)
         removed.append(q)
     return removed
+
+
+def stranded(parent: Path, name: str) -> list[Path]:
+    """Temporary folders of ended gearcli processes beside ``parent/NAME`` that hold the
+    user's files: an earlier results folder swapped out by a ``--force`` write that was killed
+    (or could not move them) before they were back in ``NAME`` (:func:`_install`)."""
+    out = []
+    for q in _dead_temporaries(parent, name):
+        with contextlib.suppress(OSError):
+            if user_entries(q):
+                out.append(q)
+    return sorted(out)
+
+
+def _dead_temporaries(parent: Path, name: str) -> list[Path]:
+    """The folders ``.NAME.PID.XXXXXXXX.tmp`` / ``.tmp.old`` of processes that have ended."""
+    pattern = re.compile(rf"\.{re.escape(name)}\.(\d+)\.[A-Za-z0-9_]+\.tmp(\.old)?")
+    out = []
+    for q in parent.glob(f".{glob_escape(name)}.*.tmp*"):
+        m = pattern.fullmatch(q.name)
+        if m is not None and q.is_dir() and not q.is_symlink() and not _alive(int(m.group(1))):
+            out.append(q)
+    return out
 
 
 def _remove_tree(q: Path) -> None:
@@ -173,56 +199,92 @@ def user_entries(folder: Path) -> list[Path]:
 
 def _move_user_entries(old: Path, new: Path) -> list[str]:
     """Move the user's entries of the replaced results folder ``old`` into ``new`` (renames
-    in one folder: owners, modes, links and hard links stay); returns the names that could not
+    in one folder: owners, modes, links and hard links stay; a folder without write
+    permission gets it for the move, then its mode back); returns the names that could not
     be moved."""
     left = []
     for q in user_entries(old):
         dest = new / q.name
+        mode = None
         try:
             if dest.exists() or dest.is_symlink():
                 raise FileExistsError(q.name)  # never over a new result
+            if q.is_dir() and not q.is_symlink() and not os.access(q, os.W_OK):
+                mode = stat.S_IMODE(q.stat().st_mode)  # renaming a folder rewrites its ".."
+                os.chmod(q, mode | 0o200)
             os.replace(q, dest)
         except OSError:
             left.append(q.name)
+            dest = q
+        if mode is not None:
+            with contextlib.suppress(OSError):
+                os.chmod(dest, mode)
     return left
 
 
-def _keep_mode(old: Path, new: Path) -> None:
-    """Give ``new`` the permission bits and group of the folder it replaces (best effort: a
+def _apply_mode(st: os.stat_result, new: Path) -> None:
+    """Give ``new`` the permission bits and group of the folder it replaced (best effort: a
     group the user does not belong to stays the default)."""
     with contextlib.suppress(OSError):
-        st = old.stat()
         os.chmod(new, stat.S_IMODE(st.st_mode))
         if new.stat().st_gid != st.st_gid:
             os.chown(new, -1, st.st_gid)
 
 
+@contextlib.contextmanager
+def _signals_deferred():
+    """Hold SIGINT, SIGTERM and SIGHUP back while the folders are swapped and the user's
+    entries moved (renames, well under a second), so that an interrupt never leaves them
+    split between the new folder and the swapped-out one; held signals arrive afterwards."""
+    import signal
+
+    held = {getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n)}
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
 def _install(tmp: Path, p: Path) -> None:
     """Move the finished ``tmp`` to ``p``. An earlier ``p`` is swapped out whole, then the
-    user's entries in it move into the new folder and only gearcli's earlier results are
-    deleted; entries that cannot be moved stay in the swapped-out folder, which is then kept
-    (and named in the error)."""
-    try:
-        if not p.exists():
+    user's entries in it move into the new folder (twice: also what a program working inside
+    it wrote meanwhile), the new folder gets the earlier one's mode, and only gearcli's earlier
+    results are deleted. Entries that cannot be moved stay in the swapped-out folder, which is
+    then kept and named in the error (and later writes refuse until it is dealt with,
+    :func:`stranded`)."""
+    if not p.exists():
+        try:
             os.replace(tmp, p)
-            return
-        _keep_mode(p, tmp)
-        if _exchange(tmp, p):  # p is now the new folder, tmp the old one
-            old = tmp
-        else:
-            old = tmp.with_name(tmp.name + ".old")
-            os.replace(p, old)
-            try:
-                os.replace(tmp, p)
-            except BaseException:
-                os.replace(old, p)  # put the earlier results back
-                raise
-    except OSError as exc:
-        raise OutputError(f"{p}: cannot move the new results into place ({exc.strerror}); "
-                          "the earlier results are unchanged") from None
-    with contextlib.suppress(OSError):  # moving out of a read-only earlier folder
-        os.chmod(old, os.stat(old).st_mode | 0o700)
-    left = _move_user_entries(old, p)
+        except OSError as exc:
+            raise OutputError(f"{p}: cannot move the new results into place "
+                              f"({exc.strerror})") from None
+        return
+    with _signals_deferred():
+        try:
+            st = p.stat()
+            if _exchange(tmp, p):  # p is now the new folder, tmp the old one
+                old = tmp
+            else:
+                old = tmp.with_name(tmp.name + ".old")
+                os.replace(p, old)
+                try:
+                    os.replace(tmp, p)
+                except BaseException:
+                    os.replace(old, p)  # put the earlier results back
+                    raise
+        except OSError as exc:
+            raise OutputError(f"{p}: cannot move the new results into place ({exc.strerror}); "
+                              "the earlier results are unchanged") from None
+        with contextlib.suppress(OSError):  # moving out of a read-only earlier folder
+            os.chmod(old, os.stat(old).st_mode | 0o700)
+        left = _move_user_entries(old, p)
+        if not left:
+            left = _move_user_entries(old, p)
+        _apply_mode(st, p)
     if left:
         raise OutputError(f"{p}: new results written, but {len(left)} of your files could not "
                           f"be moved over from the earlier folder; they are in {old}")

@@ -7,6 +7,7 @@ import json
 import os
 import shutil
 import signal
+import time
 
 import pytest
 from typer.testing import CliRunner
@@ -253,3 +254,27 @@ def test_hand_edited_results_are_exit_1_for_report(finished, tmp_path, edit):
     r = invoke("report", folder)
     assert r.exit_code == 1, (r.exit_code, r.stderr)
     no_internal_error(r)
+
+
+def test_a_signal_wrapped_by_a_library_still_ends_as_the_signal(finished, tmp_path, monkeypatch):
+    """pydantic's serializer wraps the exception a signal handler raises inside it in its own
+    PydanticSerializationError: that is still SIGTERM (exit 143), not an internal error."""
+    out = _copy(finished, tmp_path)
+    from gearcli.pipeline import analysis_io
+
+    real = analysis_io.write_analysis
+
+    def wrapped(res):
+        doc = real(res)
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(5)  # the handler raises here
+        except BaseException as exc:
+            raise RuntimeError("serializer failed") from exc  # what a library does with it
+        return doc
+
+    monkeypatch.setattr(analysis_io, "write_analysis", wrapped)
+    r = invoke("run", SEED, "-o", out, "-q", "--force", "--set", "run.end_time=0.4")
+    assert r.exit_code == 128 + signal.SIGTERM, r.stderr
+    assert "terminated (SIGTERM)" in r.stderr and "internal error" not in r.stderr
+    assert _leftovers(tmp_path) == []

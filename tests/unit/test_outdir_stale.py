@@ -87,3 +87,39 @@ def test_replacing_keeps_the_folder_mode_and_moves_read_only_user_folders(tmp_pa
         assert not list(tmp_path.glob(".run.*"))
     finally:
         os.chmod(target / "ro", 0o755)
+
+
+def test_files_stranded_by_a_killed_force_write_block_the_next_write(tmp_path):
+    """A --force write killed between the swap and the moves leaves the user's files in the
+    swapped-out folder: the next write to that target names it instead of going on."""
+    import pytest
+
+    from gearcli.errors import OutputError
+    from gearcli.io.outdir import check_target
+
+    target = tmp_path / "run"
+    with atomic_dir(target, False) as tmp:
+        (tmp / "manifest.json").write_text("{}")
+    old = tmp_path / f".run.{_dead_pid()}.xyz.tmp"
+    old.mkdir()
+    (old / "notes.txt").write_text("mine")
+    with pytest.raises(OutputError, match=r"\.run\..*\.xyz\.tmp beside it holds your files"):
+        check_target(target, True)
+    (old / "notes.txt").rename(target / "notes.txt")  # the user deals with it
+    check_target(target, True)
+
+
+def test_a_read_only_results_folder_gets_its_mode_after_the_moves(tmp_path):
+    target = tmp_path / "run"
+    with atomic_dir(target, False) as tmp:
+        (tmp / "manifest.json").write_text("{}")
+    (target / "notes.txt").write_text("mine")
+    os.chmod(target, 0o555)
+    try:
+        with atomic_dir(target, True) as tmp:
+            (tmp / "manifest.json").write_text('{"new": 1}')
+        assert (target / "notes.txt").read_text() == "mine"
+        assert target.stat().st_mode & 0o777 == 0o555
+    finally:
+        os.chmod(target, 0o755)
+    assert not list(tmp_path.glob(".run.*"))
