@@ -1,16 +1,20 @@
 """Result folders written atomically: complete earlier results or complete new ones, never a mix.
 
-Files are written into a hidden temporary folder beside the target, which replaces the target
-only when everything is written. Existing results are replaced only with ``force``; a folder
-that holds other files is never replaced. ``force`` replaces gearcli's results, never the
-user's files: whatever else an earlier results folder holds (notes, a figure written there
-with ``--plot``; :data:`RESULT_NAMES`) is moved into the new folder right after the swap,
-keeping owners, modes and links, and the new folder gets the earlier one's mode. The
-earlier folder is swapped out in one step where
-the system allows it (Linux ``renameat2(RENAME_EXCHANGE)``), else moved aside, the new one moved
-in, the old one deleted. A failure or a signal (SIGTERM, SIGHUP, Ctrl-C: see
-:func:`gearcli.cli.common.handle_errors`) removes the temporary folder; the folder gets the
-permissions of an ordinary new folder (the umask), not mkdtemp's 0700.
+Files are written into a hidden temporary folder ``.NAME.PID.XXXXXXXX.tmp`` beside the target,
+which replaces the target only when everything is written. Existing results are replaced only
+with ``force``; a folder that holds other files is never replaced. The earlier folder is
+swapped out in one step where the system allows it (Linux ``renameat2(RENAME_EXCHANGE)``),
+else moved aside and the new one moved in.
+
+``force`` replaces gearcli's results, never the user's files: whatever else the earlier folder
+holds (notes, a figure written there with ``--plot``: every name not in :data:`RESULT_NAMES`)
+is moved into the new folder right after the swap, keeping owners, modes and links, with
+SIGINT, SIGTERM and SIGHUP held back meanwhile; then the earlier results are deleted. A new
+folder gets the permissions of an ordinary new folder (the umask), not mkdtemp's 0700; a
+replacing one the earlier folder's. A failure or a signal (see
+:func:`gearcli.cli.common.handle_errors`) removes the temporary folder unless it holds the
+user's files; such a folder, left by a write that was killed or could not move them, makes
+later writes to the target refuse and name it (:func:`stranded`).
 """
 
 from __future__ import annotations
