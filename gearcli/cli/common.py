@@ -14,8 +14,10 @@ from pathlib import Path
 
 import typer
 
+from gearcli import interrupts
 from gearcli.errors import ExitCode, GearcliError
 from gearcli.guards import clip_message
+from gearcli.interrupts import Terminated
 
 #: errno values of a full or broken output stream or disk: the user's environment, not a bug.
 _OUTPUT_ERRNOS = frozenset(getattr(errno, n) for n in (
@@ -54,7 +56,7 @@ def handle_errors(func):
             _echo_err(f"error: {where}: {exc.strerror or exc}")
             raise typer.Exit(int(ExitCode.INPUT)) from None
         except Exception:  # a bug: keep the traceback for the report, not on the screen
-            signum = _received.pop() if _received else None
+            signum = interrupts.received[-1] if interrupts.received else None
             if signum is None:
                 return _internal()
             # a signal's exception that a library wrapped in its own (pydantic's serializer
@@ -68,45 +70,22 @@ def handle_errors(func):
     return wrapper
 
 
-#: Signals received during the command in progress (:func:`_signals_raise`).
-_received: list[int] = []
-
-
-class Terminated(BaseException):
-    """SIGTERM or SIGHUP, raised in the main thread so that ``finally`` blocks and the
-    cleanup of temporary folders (gearcli.io.outdir) run, as for Ctrl-C."""
-
-    def __init__(self, signum: int) -> None:
-        super().__init__(signum)
-        self.signum = signum
-
-
-def _raise_terminated(signum, frame):
-    _received.append(signum)
-    raise Terminated(signum)
-
-
-def _raise_interrupt(signum, frame):
-    _received.append(signum)
-    raise KeyboardInterrupt
-
-
 @contextmanager
 def _signals_raise():
-    """SIGTERM and SIGHUP raise :class:`Terminated` during a command (main thread only), and
-    SIGINT KeyboardInterrupt as Python's default handler does; each is recorded, so that an
-    exception a library wraps around them (pydantic's serializer does) still ends as the
-    signal, not as an internal error."""
+    """During a command (main thread only) SIGTERM and SIGHUP raise Terminated and SIGINT
+    KeyboardInterrupt, through :func:`gearcli.interrupts.on_signal`: held back inside
+    :func:`gearcli.interrupts.deferred` sections, and recorded, so that an exception a library
+    wraps around them (pydantic's serializer does) still ends as the signal."""
     import threading
 
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     names = [n for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
-    previous = {n: signal.signal(getattr(signal, n), _raise_terminated) for n in names}
     if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-        previous["SIGINT"] = signal.signal(signal.SIGINT, _raise_interrupt)
-    _received.clear()
+        names.append("SIGINT")
+    previous = {n: signal.signal(getattr(signal, n), interrupts.on_signal) for n in names}
+    interrupts.received.clear()
     try:
         yield
     finally:

@@ -31,6 +31,7 @@ import tempfile
 from pathlib import Path
 
 from gearcli.errors import OutputError
+from gearcli.interrupts import deferred
 from gearcli.io.files import umask
 
 #: A folder holding this file is a gearcli result folder.
@@ -109,11 +110,12 @@ def atomic_dir(target: str | Path, force: bool):
 def _discard(tmp: Path) -> None:
     """Remove the temporary folder of a failed write, unless it holds the user's files (after
     the swap of :func:`_install` it is the earlier folder: what could not be moved stays)."""
-    try:
-        if tmp.is_dir() and not tmp.is_symlink() and not user_entries(tmp):
-            _remove_tree(tmp)
-    except OSError:
-        pass
+    for q in (tmp, tmp.with_name(tmp.name + ".old")):  # .old: the rename fallback's
+        try:
+            if q.is_dir() and not q.is_symlink() and not user_entries(q):
+                _remove_tree(q)
+        except OSError:
+            pass
 
 
 def remove_stale(parent: Path, name: str) -> list[Path]:
@@ -197,8 +199,16 @@ def _alive(pid: int) -> bool:
 
 
 def user_entries(folder: Path) -> list[Path]:
-    """The entries at the top of a results folder that gearcli did not write (sorted)."""
-    return sorted(q for q in folder.iterdir() if q.name not in RESULT_NAMES)
+    """The entries at the top of a results folder that gearcli did not write (sorted): not
+    in :data:`RESULT_NAMES`, nor the temporary ``.NAME.XXXXXXXX.tmp`` of one of them
+    (io.files.write_atomic, left by a killed write)."""
+    return sorted(q for q in folder.iterdir()
+                  if q.name not in RESULT_NAMES and not _result_temporary(q.name))
+
+
+def _result_temporary(name: str) -> bool:
+    m = re.fullmatch(r"\.(.+)\.[A-Za-z0-9_]+\.tmp", name)
+    return m is not None and m.group(1) in RESULT_NAMES
 
 
 def _move_user_entries(old: Path, new: Path) -> list[str]:
@@ -235,31 +245,14 @@ def _apply_mode(st: os.stat_result, new: Path) -> None:
             os.chown(new, -1, st.st_gid)
 
 
-@contextlib.contextmanager
-def _signals_deferred():
-    """Hold SIGINT, SIGTERM and SIGHUP back while the folders are swapped and the user's
-    entries moved (renames, well under a second), so that an interrupt never leaves them
-    split between the new folder and the swapped-out one; held signals arrive afterwards."""
-    import signal
-
-    held = {getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n)}
-    if not hasattr(signal, "pthread_sigmask"):
-        yield
-        return
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
-
-
 def _install(tmp: Path, p: Path) -> None:
-    """Move the finished ``tmp`` to ``p``. An earlier ``p`` is swapped out whole, then the
-    user's entries in it move into the new folder (twice: also what a program working inside
-    it wrote meanwhile), the new folder gets the earlier one's mode, and only gearcli's earlier
-    results are deleted. Entries that cannot be moved stay in the swapped-out folder, which is
-    then kept and named in the error (and later writes refuse until it is dealt with,
-    :func:`stranded`)."""
+    """Move the finished ``tmp`` to ``p``. An earlier ``p`` is swapped out whole and the
+    user's entries in it move into the new folder, with signals held back
+    (:func:`gearcli.interrupts.deferred`); then gearcli's earlier results are deleted, what a
+    program working inside the earlier folder wrote meanwhile moves over too
+    (:func:`_empty_out`), and the new folder gets the earlier one's mode. Entries that cannot
+    be moved stay in the swapped-out folder, which is then kept and named in the error (and
+    later writes refuse until it is dealt with, :func:`stranded`)."""
     if not p.exists():
         try:
             os.replace(tmp, p)
@@ -267,7 +260,7 @@ def _install(tmp: Path, p: Path) -> None:
             raise OutputError(f"{p}: cannot move the new results into place "
                               f"({exc.strerror})") from None
         return
-    with _signals_deferred():
+    with deferred():
         try:
             st = p.stat()
             if _exchange(tmp, p):  # p is now the new folder, tmp the old one
@@ -286,13 +279,33 @@ def _install(tmp: Path, p: Path) -> None:
         with contextlib.suppress(OSError):  # moving out of a read-only earlier folder
             os.chmod(old, os.stat(old).st_mode | 0o700)
         left = _move_user_entries(old, p)
-        if not left:
-            left = _move_user_entries(old, p)
-        _apply_mode(st, p)
+    if not left:
+        left = _empty_out(old, p)
+    _apply_mode(st, p)  # after the moves: the earlier folder may have been read-only
     if left:
         raise OutputError(f"{p}: new results written, but {len(left)} of your files could not "
                           f"be moved over from the earlier folder; they are in {old}")
-    _remove_tree(old)
+
+
+def _empty_out(old: Path, new: Path, passes: int = 3) -> list[str]:
+    """Delete gearcli's earlier results in ``old``, move over what appeared there since (a
+    program working inside the folder), and remove ``old`` once it is empty; returns the
+    names still left in it (then it stays, named by the caller and by :func:`stranded`)."""
+    for q in old.iterdir():
+        if q.name in RESULT_NAMES or _result_temporary(q.name):
+            if q.is_dir() and not q.is_symlink():
+                _remove_tree(q)
+            else:
+                with contextlib.suppress(OSError):
+                    q.unlink()
+    for _ in range(passes):
+        left = _move_user_entries(old, new)
+        try:
+            old.rmdir()
+            return []
+        except OSError:
+            continue
+    return left or [q.name for q in user_entries(old)]
 
 
 _RENAME_EXCHANGE = 2

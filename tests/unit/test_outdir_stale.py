@@ -123,3 +123,16 @@ def test_a_read_only_results_folder_gets_its_mode_after_the_moves(tmp_path):
     finally:
         os.chmod(target, 0o755)
     assert not list(tmp_path.glob(".run.*"))
+
+
+def test_a_killed_write_with_a_half_written_result_is_not_taken_for_user_files(tmp_path):
+    """io.files.write_atomic's ``.analysis.json.XXXXXXXX.tmp`` inside a killed write's folder
+    is gearcli's: the folder is cleaned up, not reported as holding the user's files."""
+    from gearcli.io.outdir import stranded
+
+    old = tmp_path / f".run.{_dead_pid()}.xyz.tmp"
+    old.mkdir()
+    (old / "manifest.json").write_text("{}")
+    (old / ".analysis.json.k2j4h5g6.tmp").write_text("{")
+    assert stranded(tmp_path, "run") == []
+    assert remove_stale(tmp_path, "run") == [old]

@@ -1,0 +1,49 @@
+"""Signals inside a deferred section (gearcli.interrupts): held back until it ends, whichever
+thread the kernel hands them to (the handler itself runs in the main thread mid-section when
+another thread received the signal, as with a progress display running)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+
+import pytest
+
+from gearcli import interrupts
+from gearcli.interrupts import Terminated
+
+
+@pytest.fixture
+def handlers():
+    previous = {s: signal.signal(s, interrupts.on_signal) for s in (signal.SIGTERM,
+                                                                    signal.SIGINT)}
+    interrupts.received.clear()
+    yield
+    for s, h in previous.items():
+        signal.signal(s, h)
+
+
+def test_the_handler_run_mid_section_only_records(handlers):
+    done = []
+    with pytest.raises(Terminated) as caught:
+        with interrupts.deferred():
+            interrupts.on_signal(signal.SIGTERM, None)  # what runs when a thread got it
+            done.append("moves")
+    assert done == ["moves"] and caught.value.signum == signal.SIGTERM
+    assert interrupts.received == [signal.SIGTERM]
+
+
+def test_a_real_signal_arrives_after_the_section(handlers):
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        with interrupts.deferred():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)
+            done.append("moves")
+    assert done == ["moves"]
+
+
+def test_outside_a_section_the_signal_raises_at_once(handlers):
+    with pytest.raises(Terminated):
+        interrupts.on_signal(signal.SIGTERM, None)
