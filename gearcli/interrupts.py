@@ -14,7 +14,9 @@ told apart from a bug.
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
+import threading
 
 #: Signals received during the command in progress (cleared when a command starts).
 received: list[int] = []
@@ -50,21 +52,49 @@ def on_signal(signum, frame) -> None:
 @contextlib.contextmanager
 def deferred():
     """Hold SIGINT, SIGTERM and SIGHUP back for a short section (a few renames): a signal that
-    arrives meanwhile is raised when the section ends. Also masks them in the calling thread
-    where the system allows it, which covers Python's default SIGINT handler (library use
-    without :func:`on_signal`) when no other thread runs."""
+    arrives meanwhile takes effect when the section ends, as it would have without the section
+    (an exception from :func:`on_signal` or Python's Ctrl-C handler, another handler called, or
+    the default action). In the main thread the handlers are replaced for the section by one
+    that records (library use, where gearcli's handler is not installed and numpy's threads
+    may receive the signal); everywhere the signals are also masked in the calling thread."""
     global _depth
-    held = {getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n)}
+    names = [n for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n)]
+    held = {getattr(signal, n) for n in names}
     masked = hasattr(signal, "pthread_sigmask")
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held) if masked else None
+    previous_mask = signal.pthread_sigmask(signal.SIG_BLOCK, held) if masked else None
+    replaced = {}
+    if threading.current_thread() is threading.main_thread():
+        for signum in held:
+            handler = signal.getsignal(signum)
+            if handler is not on_signal and handler is not None:
+                replaced[signum] = signal.signal(signum, _record)
     _depth += 1
     try:
         yield
     finally:
         _depth -= 1
+        for signum, handler in replaced.items():
+            signal.signal(signum, handler)
         if masked:
-            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous_mask)
         if not _depth and _pending:
             signum = _pending[0]
             _pending.clear()
-            raise_for(signum)
+            _deliver(signum, replaced.get(signum, on_signal))
+
+
+def _record(signum, frame) -> None:
+    _pending.append(signum)
+
+
+def _deliver(signum: int, handler) -> None:
+    """What ``signum`` would have done under ``handler`` (the one in place before the
+    section)."""
+    if handler is on_signal:  # (it recorded the signal when it held it back)
+        raise_for(signum)
+    if handler is signal.SIG_IGN:
+        return
+    if handler is signal.SIG_DFL:
+        os.kill(os.getpid(), signum)  # the default action, with the handler restored
+        return
+    handler(signum, None)  # Python's default_int_handler raises KeyboardInterrupt

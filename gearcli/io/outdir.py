@@ -207,7 +207,7 @@ def user_entries(folder: Path) -> list[Path]:
 
 
 def _result_temporary(name: str) -> bool:
-    m = re.fullmatch(r"\.(.+)\.[A-Za-z0-9_]+\.tmp", name)
+    m = re.fullmatch(r"\.(.+)\.[a-z0-9_]{8}\.tmp", name)  # tempfile.mkstemp's 8 characters
     return m is not None and m.group(1) in RESULT_NAMES
 
 
@@ -279,9 +279,9 @@ def _install(tmp: Path, p: Path) -> None:
         with contextlib.suppress(OSError):  # moving out of a read-only earlier folder
             os.chmod(old, os.stat(old).st_mode | 0o700)
         left = _move_user_entries(old, p)
+        _apply_mode(st, p)  # after the moves: the earlier folder may have been read-only
     if not left:
         left = _empty_out(old, p)
-    _apply_mode(st, p)  # after the moves: the earlier folder may have been read-only
     if left:
         raise OutputError(f"{p}: new results written, but {len(left)} of your files could not "
                           f"be moved over from the earlier folder; they are in {old}")

@@ -47,3 +47,23 @@ def test_a_real_signal_arrives_after_the_section(handlers):
 def test_outside_a_section_the_signal_raises_at_once(handlers):
     with pytest.raises(Terminated):
         interrupts.on_signal(signal.SIGTERM, None)
+
+
+def test_library_use_keeps_pythons_ctrl_c_and_the_default_action():
+    """Without gearcli's handler (library use) a deferred section still holds Ctrl-C back and
+    then raises KeyboardInterrupt as Python's own handler does; an ignored signal stays
+    ignored."""
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        with interrupts.deferred():
+            signal.raise_signal(signal.SIGINT)
+            done.append("moves")
+    assert done == ["moves"]
+    previous = signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    try:
+        with interrupts.deferred():
+            signal.raise_signal(signal.SIGHUP)
+        assert signal.getsignal(signal.SIGHUP) is signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGHUP, previous)
