@@ -350,10 +350,20 @@ def check_static_deflection(loaded: LoadedCase, geo: GeometryResult,
         "of the tooth thickness); expected a stiffer contact or a smaller load.torque"))
 
 
-def summarize(res: SimulationResult) -> dict:
-    """Key scalars over the steady window (internal units; names carry them)."""
+def static_force_at(res: SimulationResult, omega2_rad_s: float) -> float:
+    """The dynamic factor's static force [N] of a run at a steady gear speed [rad/s]: the
+    contact model's load torque F_s r_b2 with the gear side's speed-dependent terms
+    (model.mesh.static_reference_N, docs/theory.md §7.3)."""
     from gearcli.case.build import gear_side_damping
     from gearcli.model.mesh import static_reference_N
+
+    r_b2 = res.geometry.geometry.gear.r_b_mm
+    return static_reference_N(res.kernel_input.mesh.static_force_N * r_b2, r_b2, omega2_rad_s,
+                              gear_side_damping(res.loaded.case))
+
+
+def summarize(res: SimulationResult) -> dict:
+    """Key scalars over the steady window (internal units; names carry them)."""
     from gearcli.pipeline.modal import modes_summary
 
     k, ki, g = res.kernel, res.kernel_input, res.geometry.geometry
@@ -365,9 +375,7 @@ def summarize(res: SimulationResult) -> dict:
     omega2 = k.column("omega2_rad_s")[w]
     mm = ki.mesh
     mesh_f, mesh_zeta = mesh_mode_of(res)
-    r_b2 = g.gear.r_b_mm
-    f_static = static_reference_N(mm.static_force_N * r_b2, r_b2, float(omega2.mean()),
-                                  gear_side_damping(res.loaded.case))
+    f_static = static_force_at(res, float(omega2.mean()))
     return {
         "window_s": [res.window.t0_s, res.window.t1_s],
         "window_reason": res.window.reason,

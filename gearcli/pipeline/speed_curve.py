@@ -94,11 +94,8 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
     t = k.column("t_s")
     force, delta = k.column("force_total_N"), k.column("delta_mm")
     omega1, omega2 = k.column("omega1_rad_s"), k.column("omega2_rad_s")
-    from gearcli.case.build import gear_side_damping
-    from gearcli.model.mesh import static_reference_N
+    from gearcli.pipeline.simulate import static_force_at
 
-    damping = gear_side_damping(res.loaded.case)
-    r_b2 = res.geometry.geometry.gear.r_b_mm
     j_n = ki.params[P.backlash_n]
     free_pinion = ki.params[P.drive_mode] != DRIVE_SPEED
     residual = res.summary["energy_balance"]["relative_residual"]
@@ -114,8 +111,7 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
             teeth=(z1, res.geometry.geometry.gear.teeth), energy_relative_residual=residual)
         f_max = float(force[w].max())
         # each level's own static force: the resisted torque at its gear speed (§7.3)
-        f_static = static_reference_N(ki.mesh.static_force_N * r_b2, r_b2,
-                                      float(omega2[w].mean()), damping)
+        f_static = static_force_at(res, float(omega2[w].mean()))
         valid = status == "ok"
         rows.append({
             "point": first_point + i, "direction": direction, "mesh_frequency [Hz]": fz,
