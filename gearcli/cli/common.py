@@ -40,14 +40,12 @@ def handle_errors(func):
         except (typer.Exit, typer.Abort, SystemExit):
             raise
         except Terminated as exc:  # temporary folders were removed on the way out
-            _echo_err(f"terminated ({signal.Signals(exc.signum).name})")
-            raise typer.Exit(128 + exc.signum) from None
+            _signal_exit(exc.signum)
         except GearcliError as exc:
             _echo_err(f"error: {clip_message(str(exc))}")
             raise typer.Exit(int(exc.exit_code)) from None
         except KeyboardInterrupt:
-            _echo_err("interrupted")
-            raise typer.Exit(int(ExitCode.INTERRUPTED)) from None
+            _signal_exit(signal.SIGINT)
         except OSError as exc:
             if exc.errno not in _OUTPUT_ERRNOS:
                 return _internal()
@@ -56,18 +54,22 @@ def handle_errors(func):
             _echo_err(f"error: {where}: {exc.strerror or exc}")
             raise typer.Exit(int(ExitCode.INPUT)) from None
         except Exception:  # a bug: keep the traceback for the report, not on the screen
-            signum = interrupts.received[-1] if interrupts.received else None
-            if signum is None:
+            if not interrupts.received:
                 return _internal()
             # a signal's exception that a library wrapped in its own (pydantic's serializer
             # turns Terminated into a PydanticSerializationError): still the signal
-            if signum == signal.SIGINT:
-                _echo_err("interrupted")
-                raise typer.Exit(int(ExitCode.INTERRUPTED)) from None
-            _echo_err(f"terminated ({signal.Signals(signum).name})")
-            raise typer.Exit(128 + signum) from None
+            _signal_exit(interrupts.received[-1])
 
     return wrapper
+
+
+def _signal_exit(signum: int):
+    """The message and exit code of a command ended by a signal: 130 for Ctrl-C, 128 + n."""
+    if signum == signal.SIGINT:
+        _echo_err("interrupted")
+        raise typer.Exit(int(ExitCode.INTERRUPTED)) from None
+    _echo_err(f"terminated ({signal.Signals(signum).name})")
+    raise typer.Exit(128 + signum) from None
 
 
 @contextmanager
