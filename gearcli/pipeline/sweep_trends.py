@@ -112,7 +112,8 @@ def trend_rows(df, study: Study) -> list[dict]:
                 change = 100.0 * (last - first) / abs(first) if first != 0.0 else math.nan
                 ratio = last / first if first != 0.0 else math.nan
                 spread = 100.0 * np.ptp(y) / (float(np.mean(np.abs(y))) or 1.0)
-                # rounded: Spearman's rho of 5 levels is 0.8 exactly, computed 0.7999999999999999
+                # rounded: Spearman's rho of 5 levels is 0.8 exactly, which floating point
+                # may give an ulp below
                 rho = round(float(spearmanr(x, y).statistic), 12) if np.ptp(y) > 0 else 0.0
                 if spread < NO_EFFECT_PERCENT or not math.isfinite(rho):
                     direction = "no effect"

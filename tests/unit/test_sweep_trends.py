@@ -78,7 +78,7 @@ def test_grid_trend_uses_only_combinations_that_ran_at_every_level():
 
 def test_a_rank_correlation_at_the_threshold_is_monotonic():
     # 5 levels with two swaps: rho = 1 - 6·4/(5·24) = 0.8, which floating point may give an ulp
-    # below (0.7999999999999999 here); the rule must not depend on that last bit
+    # below; the rule must not depend on that last bit
     study = _study("  gears.face_width: [\"60 mm\", \"70 mm\", \"80 mm\", \"90 mm\", "
                    "\"100 mm\"]\n")
     row = next(r for r in trend_rows(_frame(study, [2.0, 1.0, 4.0, 3.0, 5.0]), study)
