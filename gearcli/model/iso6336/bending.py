@@ -15,12 +15,12 @@ Lengths in mm, angles in rad, stresses in N/mm².
 
 from __future__ import annotations
 
+import itertools
 import math
 from typing import NamedTuple
 
 from gearcli.model.iso6336.common import Edition, involute
-from gearcli.model.iso6336.material import (GREY_IRON_LIKE, NITRIDED, SURFACE_HARDENED,
-                                            MaterialKind)
+from gearcli.model.iso6336.material import GREY_IRON_LIKE, NITRIDED, SURFACE_HARDENED, MaterialKind
 
 __all__ = ["STRESS_CORRECTION_TEST", "FormGeometry", "form_geometry", "form_factor",
            "stress_correction_factor", "helix_factor", "rim_factor", "deep_tooth_factor",
@@ -193,7 +193,7 @@ def slip_layer_thickness(kind: MaterialKind, proof_stress_MPa: float | None = No
     if proof_stress_MPa is None:
         raise ValueError(f"{kind.value}: the slip-layer thickness needs the 0.2 % proof stress")
     s = min(max(proof_stress_MPa, 300.0), 1000.0)
-    for (s0, r0), (s1, r1) in zip(_SLIP_LAYER_PROOF, _SLIP_LAYER_PROOF[1:]):
+    for (s0, r0), (s1, r1) in itertools.pairwise(_SLIP_LAYER_PROOF):
         if s <= s1:
             return r0 + (r1 - r0) * (s - s0) / (s1 - s0)
     return _SLIP_LAYER_PROOF[-1][1]

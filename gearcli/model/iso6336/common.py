@@ -14,7 +14,7 @@ from dataclasses import dataclass
 __all__ = ["Edition", "Factor", "involute", "inverse_involute", "log_interpolate"]
 
 
-class Edition(str, enum.Enum):
+class Edition(enum.StrEnum):
     """Edition of ISO 6336 parts 1-3 followed (docs/theory.md, "ISO 6336 rating", editions)."""
 
     ISO2006 = "2006"

@@ -102,7 +102,7 @@ def face_load_factor_method_c(line_load_N_mm: float, c_gamma_beta_N_mm_um: float
         if kinds is None or sigma_h_lim_MPa is None:
             raise ValueError("y_β not given: give both gears' material kinds and σ_Hlim")
         y_beta_um = 0.5 * sum(running_in_helix(k, s, f_beta_x, v_m_s)
-                              for k, s in zip(kinds, sigma_h_lim_MPa))
+                              for k, s in zip(kinds, sigma_h_lim_MPa, strict=True))
     f_beta_y = max(f_beta_x - y_beta_um, 0.0)
     k = 1.0 + c_gamma_beta_N_mm_um * f_beta_y / (2.0 * line_load_N_mm)
     if k > 2.0:
@@ -110,7 +110,8 @@ def face_load_factor_method_c(line_load_N_mm: float, c_gamma_beta_N_mm_um: float
     return k, f_beta_x, f_beta_y
 
 
-def bending_face_load_factor(k_h_beta: float, face_width_mm: float, tooth_height_mm: float) -> float:
+def bending_face_load_factor(k_h_beta: float, face_width_mm: float,
+                             tooth_height_mm: float) -> float:
     """K_Fβ = K_Hβ^N_F [-], N_F = (b/h)² / (1 + b/h + (b/h)²) (ISO 6336-1:2006, 7.7, eqs. 69-70).
 
     b the face width [mm] (the smaller of the pair), h the tooth height [mm] (h_a + h_f); b/h

@@ -23,12 +23,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 
-from gearcli.model.iso6336.common import involute, inverse_involute
+from gearcli.model.iso6336.common import inverse_involute, involute
 
 __all__ = ["arc_tooth_thickness", "span_teeth", "span", "theoretical_ball_diameter",
            "BALL_SERIES_MM", "standard_ball_diameter", "dimension_over_balls",
-           "chordal_thickness", "chordal_height"]
+           "chordal_thickness", "chordal_height", "InspectionDimensions",
+           "inspection_dimensions"]
 
 #: Ball/pin diameters offered as "next standard size" [mm]: 0.25 mm steps to 10, 0.5 mm to 20,
 #: 1 mm to 25, 5 mm to 100. A project convention (the DIN 3977 series is not at hand); it gives
@@ -113,3 +115,37 @@ def chordal_height(z: int, x: float, m_mm: float, alpha_rad: float, tip_diameter
     d = m_mm * z
     s = arc_tooth_thickness(z, x, m_mm, alpha_rad, allowance_mm)
     return 0.5 * (tip_diameter_mm - d) + 0.5 * d * (1.0 - math.cos(s / d))
+
+
+@dataclass(frozen=True)
+class InspectionDimensions:
+    """Inspection dimensions of one gear; tuples are (nominal, upper allowance, lower allowance)
+    [mm]."""
+
+    span_teeth: int  #: k
+    span_mm: tuple[float, float, float]  #: W_k
+    ball_theoretical_mm: float  #: D_M touching on d + 2 x m (nominal thickness)
+    ball_mm: float  #: the ball used: given, else the next standard size
+    over_balls_mm: tuple[float, float, float]  #: M_dK
+    chordal_thickness_mm: tuple[float, float, float]  #: s_c
+    chordal_height_mm: tuple[float, float, float]  #: h_c from the tip diameter
+
+    def to_dict(self) -> dict:
+        return {k: (list(v) if isinstance(v, tuple) else v) for k, v in self.__dict__.items()}
+
+
+def inspection_dimensions(z: int, x: float, m_mm: float, alpha_rad: float,
+                          tip_diameter_mm: float, allowances_mm: tuple[float, float] = (0.0, 0.0),
+                          ball_mm: float | None = None) -> InspectionDimensions:
+    """All inspection dimensions of an external spur gear (module notes): teeth z, profile shift
+    x [-], module [mm], pressure angle [rad], tip diameter [mm], (upper, lower) tooth thickness
+    allowances A_sn [mm], ball diameter [mm] (None: the next standard size)."""
+    allow = (0.0, allowances_mm[0], allowances_mm[1])
+    k = span_teeth(z, x, alpha_rad)
+    d_th = theoretical_ball_diameter(z, x, m_mm, alpha_rad)
+    ball = standard_ball_diameter(d_th) if ball_mm is None else float(ball_mm)
+    return InspectionDimensions(
+        k, tuple(span(z, x, m_mm, alpha_rad, k, a) for a in allow), d_th, ball,
+        tuple(dimension_over_balls(z, x, m_mm, alpha_rad, ball, a) for a in allow),
+        tuple(chordal_thickness(z, x, m_mm, alpha_rad, a) for a in allow),
+        tuple(chordal_height(z, x, m_mm, alpha_rad, tip_diameter_mm, a) for a in allow))

@@ -35,13 +35,13 @@ where σ_i is below the curve's end, 0 where it exceeds the static strength).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from gearcli.model.iso6336.common import log_interpolate
-from gearcli.model.iso6336.material import (GREY_IRON_LIKE, NITRIDED, SURFACE_HARDENED,
-                                            MaterialKind)
+from gearcli.model.iso6336.material import GREY_IRON_LIKE, NITRIDED, SURFACE_HARDENED, MaterialKind
 
 __all__ = ["load_cycles", "LifeCurve", "pitting_life_curve", "bending_life_curve",
            "influence_at", "cycles_at_strength", "miner_damage", "LONG_LIFE_CYCLES"]
@@ -80,7 +80,7 @@ class LifeCurve:
         pts = self.knees()
         if n <= pts[0][0]:
             return pts[0][1]
-        for (n0, f0), (n1, f1) in zip(pts, pts[1:]):
+        for (n0, f0), (n1, f1) in itertools.pairwise(pts):
             if n <= n1:
                 return log_interpolate(n, n0, f0, n1, f1)
         return pts[-1][1]

@@ -28,7 +28,7 @@ __all__ = ["MaterialKind", "Quality", "AllowableStress", "allowable_stress", "si
            "SURFACE_HARDENED", "NITRIDED", "THROUGH_HARDENED", "GREY_IRON_LIKE"]
 
 
-class MaterialKind(str, enum.Enum):
+class MaterialKind(enum.StrEnum):
     """Material / heat treatment groups of ISO 6336-5 (ISO abbreviation in the comment)."""
 
     NORMALIZED_STEEL = "normalized_steel"  # St
@@ -47,7 +47,7 @@ class MaterialKind(str, enum.Enum):
     NITROCARBURIZED = "nitrocarburized"  # NV (nitrocar.)
 
 
-class Quality(str, enum.Enum):
+class Quality(enum.StrEnum):
     """ISO 6336-5 material quality grade."""
 
     ML = "ML"
@@ -72,7 +72,7 @@ _ML_MQ_ME = (Quality.ML, Quality.MQ, Quality.ME)
 
 
 def _row(ml, mq, me):
-    return dict(zip(_ML_MQ_ME, (ml, mq, me)))
+    return dict(zip(_ML_MQ_ME, (ml, mq, me), strict=True))
 
 
 _TABLE: dict[tuple[MaterialKind, str], tuple[dict, str, float, float]] = {
@@ -81,7 +81,8 @@ _TABLE: dict[tuple[MaterialKind, str], tuple[dict, str, float, float]] = {
     (K.NORMALIZED_CAST_STEEL, "H"): (_row((0.986, 131), (0.986, 131), (1.143, 237)), "HBW", 140,
                                      210),
     (K.NORMALIZED_CAST_STEEL, "F"): (_row((0.313, 62), (0.313, 62), (0.254, 137)), "HBW", 140, 210),
-    (K.BLACK_MALLEABLE_IRON, "H"): (_row((1.371, 143), (1.371, 143), (1.333, 267)), "HBW", 135, 250),
+    (K.BLACK_MALLEABLE_IRON, "H"): (_row((1.371, 143), (1.371, 143), (1.333, 267)), "HBW", 135,
+                                    250),
     (K.BLACK_MALLEABLE_IRON, "F"): (_row((0.345, 77), (0.345, 77), (0.403, 128)), "HBW", 135, 250),
     (K.NODULAR_IRON, "H"): (_row((1.434, 211), (1.434, 211), (1.500, 250)), "HBW", 175, 300),
     (K.NODULAR_IRON, "F"): (_row((0.350, 119), (0.350, 119), (0.380, 134)), "HBW", 175, 300),
