@@ -15,6 +15,13 @@ from gearcli.model.iso6336.inspection import InspectionDimensions
 __all__ = ["GearRating", "RatingResult"]
 
 
+def _find(rows: tuple[Factor, ...], symbol: str) -> Factor:
+    for f in rows:
+        if f.symbol == symbol:
+            return f
+    raise KeyError(symbol)
+
+
 def _finite(x: float) -> float | None:
     return None if math.isinf(x) else x
 
@@ -52,10 +59,7 @@ class GearRating:
 
     def factor(self, symbol: str) -> Factor:
         """The row of ``symbol`` (KeyError when absent)."""
-        for f in self.factors:
-            if f.symbol == symbol:
-                return f
-        raise KeyError(symbol)
+        return _find(self.factors, symbol)
 
     def to_dict(self) -> dict:
         return {
@@ -91,10 +95,7 @@ class RatingResult:
 
     def factor(self, symbol: str) -> Factor:
         """The pair row of ``symbol`` (KeyError when absent)."""
-        for f in self.pair_factors:
-            if f.symbol == symbol:
-                return f
-        raise KeyError(symbol)
+        return _find(self.pair_factors, symbol)
 
     def to_dict(self) -> dict:
         return {"method": "ISO 6336 Method B", "edition": self.edition,

@@ -86,32 +86,38 @@ class LifeCurve:
         return pts[-1][1]
 
 
+def _life_group(kind: MaterialKind) -> str:
+    """The row group of ISO 6336-2 Table 2 / ISO 6336-3 Table 3 a material belongs to."""
+    kind = MaterialKind(kind)
+    if kind is MaterialKind.NITROCARBURIZED:
+        return "nitrocarburized"
+    if kind in NITRIDED or kind in GREY_IRON_LIKE:
+        return "nitrided_grey"
+    return "surface" if kind in SURFACE_HARDENED else "through"
+
+
+#: (static knee, static factor, endurance knee) per group; module notes.
+_PITTING_KNEES = {"nitrocarburized": (1e5, 1.1, 2e6), "nitrided_grey": (1e5, 1.3, 2e6),
+                  "surface": (1e5, 1.6, 5e7), "through": (1e5, 1.6, 5e7)}
+_BENDING_KNEES = {"nitrocarburized": (1e3, 1.1, 3e6), "nitrided_grey": (1e3, 1.6, 3e6),
+                  "surface": (1e3, 2.5, 3e6), "through": (1e4, 2.5, 3e6)}
+
+
 def pitting_life_curve(kind: MaterialKind, pitting_permitted: bool = False,
                        optimum: bool = False) -> LifeCurve:
     """Z_NT curve of a material (ISO 6336-2, Table 2; module notes). ``optimum``: 1.0 beyond
-    the endurance knee (optimum lubrication, material, manufacturing and experience)."""
-    kind = MaterialKind(kind)
+    the endurance knee (optimum lubrication, material, manufacturing and experience);
+    ``pitting_permitted``: the St, V, GGG, GTS, Eh, IF line through 1.3 at 10⁷ to 1.0 at 10⁹."""
     f_long = 1.0 if optimum else 0.85
-    if kind is MaterialKind.NITROCARBURIZED:
-        return LifeCurve(1e5, 1.1, 2e6, f_long=f_long)
-    if kind in NITRIDED or kind in GREY_IRON_LIKE:
-        return LifeCurve(1e5, 1.3, 2e6, f_long=f_long)
-    if pitting_permitted:
+    group = _life_group(kind)
+    if pitting_permitted and group in ("surface", "through"):
         return LifeCurve(6e5, 1.6, 1e9, 1e7, 1.3, f_long=f_long)
-    return LifeCurve(1e5, 1.6, 5e7, f_long=f_long)
+    return LifeCurve(*_PITTING_KNEES[group], f_long=f_long)
 
 
 def bending_life_curve(kind: MaterialKind, optimum: bool = False) -> LifeCurve:
     """Y_NT curve of a material (ISO 6336-3, Table 3; module notes)."""
-    kind = MaterialKind(kind)
-    f_long = 1.0 if optimum else 0.85
-    if kind is MaterialKind.NITROCARBURIZED:
-        return LifeCurve(1e3, 1.1, 3e6, f_long=f_long)
-    if kind in NITRIDED or kind in GREY_IRON_LIKE:
-        return LifeCurve(1e3, 1.6, 3e6, f_long=f_long)
-    if kind in SURFACE_HARDENED:
-        return LifeCurve(1e3, 2.5, 3e6, f_long=f_long)
-    return LifeCurve(1e4, 2.5, 3e6, f_long=f_long)
+    return LifeCurve(*_BENDING_KNEES[_life_group(kind)], f_long=1.0 if optimum else 0.85)
 
 
 def influence_at(n: float, curve: LifeCurve, static_value: float, reference_value: float) -> float:
