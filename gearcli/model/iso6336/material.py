@@ -67,56 +67,55 @@ THROUGH_HARDENED = frozenset({K.NORMALIZED_STEEL, K.NORMALIZED_CAST_STEEL, K.BLA
 #: GG: grey cast iron.
 GREY_IRON_LIKE = frozenset({K.GREY_IRON})
 
-# (kind, "H" contact | "F" bending) -> {quality: (A, B)}, hardness scale and valid range.
 _ML_MQ_ME = (Quality.ML, Quality.MQ, Quality.ME)
 
 
-def _row(ml, mq, me):
-    return dict(zip(_ML_MQ_ME, (ml, mq, me), strict=True))
+#: ISO 6336-5:2016 Table 1 as text: material group, H (σ_Hlim) or F (σ_Flim), hardness scale
+#: and range, then A and B of σ_lim = A x + B for ML, MQ and ME.
+_TABLE_TEXT = """
+normalized_steel             H HBW 110 210  1.000  190  1.000  190  1.520  250
+normalized_steel             F HBW 110 210  0.455   69  0.455   69  0.386  147
+normalized_cast_steel        H HBW 140 210  0.986  131  0.986  131  1.143  237
+normalized_cast_steel        F HBW 140 210  0.313   62  0.313   62  0.254  137
+black_malleable_iron         H HBW 135 250  1.371  143  1.371  143  1.333  267
+black_malleable_iron         F HBW 135 250  0.345   77  0.345   77  0.403  128
+nodular_iron                 H HBW 175 300  1.434  211  1.434  211  1.500  250
+nodular_iron                 F HBW 175 300  0.350  119  0.350  119  0.380  134
+grey_iron                    H HBW 150 240  1.033  132  1.033  132  1.465  122
+grey_iron                    F HBW 150 240  0.256    8  0.256    8  0.200   53
+through_hardened_carbon      H HV  135 210  0.963  283  0.925  360  0.838  432
+through_hardened_carbon      F HV  115 215  0.250  108  0.240  163  0.283  202
+through_hardened_alloy       H HV  200 360  1.313  188  1.313  373  2.213  260
+through_hardened_alloy       F HV  200 360  0.423  104  0.425  187  0.358  231
+through_hardened_cast_carbon H HV  130 215  0.831  300  0.831  300  0.951  345
+through_hardened_cast_carbon F HV  130 215  0.224  117  0.224  117  0.286  167
+through_hardened_cast_alloy  H HV  200 360  1.276  298  1.276  298  1.350  356
+through_hardened_cast_alloy  F HV  200 360  0.364  161  0.364  161  0.356  186
+case_hardened                H HV  600 800    0.0 1300    0.0 1500    0.0 1650
+case_hardened                F HV  600 800    0.0  312    0.0  425    0.0  525
+induction_hardened           H HV  485 615  0.740  602  0.541  882  0.505 1013
+induction_hardened           F HV  485 615  0.305   76  0.138  290  0.271  237
+nitrided                     H HV  650 900    0.0 1125    0.0 1250    0.0 1450
+nitrided                     F HV  650 900    0.0  270    0.0  420    0.0  468
+nitrided_through_hardening   H HV  450 650    0.0  788    0.0  998    0.0 1217
+nitrided_through_hardening   F HV  450 650    0.0  258    0.0  363    0.0  432
+nitrocarburized              H HV  300 650    0.0  650  1.167  425  1.167  425
+nitrocarburized              F HV  300 650    0.0  224  0.653   94  0.653   94
+"""
 
 
-_TABLE: dict[tuple[MaterialKind, str], tuple[dict, str, float, float]] = {
-    (K.NORMALIZED_STEEL, "H"): (_row((1.000, 190), (1.000, 190), (1.520, 250)), "HBW", 110, 210),
-    (K.NORMALIZED_STEEL, "F"): (_row((0.455, 69), (0.455, 69), (0.386, 147)), "HBW", 110, 210),
-    (K.NORMALIZED_CAST_STEEL, "H"): (_row((0.986, 131), (0.986, 131), (1.143, 237)), "HBW", 140,
-                                     210),
-    (K.NORMALIZED_CAST_STEEL, "F"): (_row((0.313, 62), (0.313, 62), (0.254, 137)), "HBW", 140, 210),
-    (K.BLACK_MALLEABLE_IRON, "H"): (_row((1.371, 143), (1.371, 143), (1.333, 267)), "HBW", 135,
-                                    250),
-    (K.BLACK_MALLEABLE_IRON, "F"): (_row((0.345, 77), (0.345, 77), (0.403, 128)), "HBW", 135, 250),
-    (K.NODULAR_IRON, "H"): (_row((1.434, 211), (1.434, 211), (1.500, 250)), "HBW", 175, 300),
-    (K.NODULAR_IRON, "F"): (_row((0.350, 119), (0.350, 119), (0.380, 134)), "HBW", 175, 300),
-    (K.GREY_IRON, "H"): (_row((1.033, 132), (1.033, 132), (1.465, 122)), "HBW", 150, 240),
-    (K.GREY_IRON, "F"): (_row((0.256, 8), (0.256, 8), (0.200, 53)), "HBW", 150, 240),
-    (K.THROUGH_HARDENED_CARBON, "H"): (_row((0.963, 283), (0.925, 360), (0.838, 432)), "HV", 135,
-                                       210),
-    (K.THROUGH_HARDENED_CARBON, "F"): (_row((0.250, 108), (0.240, 163), (0.283, 202)), "HV", 115,
-                                       215),
-    (K.THROUGH_HARDENED_ALLOY, "H"): (_row((1.313, 188), (1.313, 373), (2.213, 260)), "HV", 200,
-                                      360),
-    (K.THROUGH_HARDENED_ALLOY, "F"): (_row((0.423, 104), (0.425, 187), (0.358, 231)), "HV", 200,
-                                      360),
-    (K.THROUGH_HARDENED_CAST_CARBON, "H"): (_row((0.831, 300), (0.831, 300), (0.951, 345)), "HV",
-                                            130, 215),
-    (K.THROUGH_HARDENED_CAST_CARBON, "F"): (_row((0.224, 117), (0.224, 117), (0.286, 167)), "HV",
-                                            130, 215),
-    (K.THROUGH_HARDENED_CAST_ALLOY, "H"): (_row((1.276, 298), (1.276, 298), (1.350, 356)), "HV",
-                                           200, 360),
-    (K.THROUGH_HARDENED_CAST_ALLOY, "F"): (_row((0.364, 161), (0.364, 161), (0.356, 186)), "HV",
-                                           200, 360),
-    (K.CASE_HARDENED, "H"): (_row((0.0, 1300), (0.0, 1500), (0.0, 1650)), "HV", 600, 800),
-    (K.CASE_HARDENED, "F"): (_row((0.0, 312), (0.0, 425), (0.0, 525)), "HV", 600, 800),
-    (K.INDUCTION_HARDENED, "H"): (_row((0.740, 602), (0.541, 882), (0.505, 1013)), "HV", 485, 615),
-    (K.INDUCTION_HARDENED, "F"): (_row((0.305, 76), (0.138, 290), (0.271, 237)), "HV", 485, 615),
-    (K.NITRIDED, "H"): (_row((0.0, 1125), (0.0, 1250), (0.0, 1450)), "HV", 650, 900),
-    (K.NITRIDED, "F"): (_row((0.0, 270), (0.0, 420), (0.0, 468)), "HV", 650, 900),
-    (K.NITRIDED_THROUGH_HARDENING, "H"): (_row((0.0, 788), (0.0, 998), (0.0, 1217)), "HV", 450,
-                                          650),
-    (K.NITRIDED_THROUGH_HARDENING, "F"): (_row((0.0, 258), (0.0, 363), (0.0, 432)), "HV", 450,
-                                          650),
-    (K.NITROCARBURIZED, "H"): (_row((0.0, 650), (1.167, 425), (1.167, 425)), "HV", 300, 650),
-    (K.NITROCARBURIZED, "F"): (_row((0.0, 224), (0.653, 94), (0.653, 94)), "HV", 300, 650),
-}
+def _parse_table(text: str) -> dict:
+    """{(kind, "H" | "F"): ({quality: (A, B)}, scale, h_min, h_max)} from the text table."""
+    table = {}
+    for line in text.strip().splitlines():
+        kind, stress, scale, h_min, h_max, *ab = line.split()
+        coef = [(float(ab[i]), float(ab[i + 1])) for i in (0, 2, 4)]
+        table[(MaterialKind(kind), stress)] = (dict(zip(_ML_MQ_ME, coef, strict=True)), scale,
+                                               float(h_min), float(h_max))
+    return table
+
+
+_TABLE: dict[tuple[MaterialKind, str], tuple[dict, str, float, float]] = _parse_table(_TABLE_TEXT)
 
 
 @dataclass(frozen=True)
