@@ -15,7 +15,7 @@ import pytest
 from scipy.optimize import brentq
 
 from gearcli.model.iso6336 import bending as b3
-from gearcli.model.iso6336.common import involute
+from gearcli.model.iso6336.common import Edition, involute
 from gearcli.model.iso6336.factors import (
     face_load_factor_method_c,
     running_in_helix,
@@ -304,3 +304,11 @@ def test_rim_deep_tooth_and_helix_factors():
     assert b3.helix_factor(beta, 1.2, "2006") == pytest.approx(1.0 - 15.0 / 120.0)
     assert b3.helix_factor(beta, 1.2, "2019") == pytest.approx((1.0 - 15.0 / 120.0)
                                                                / math.cos(beta) ** 3)
+
+
+def test_inputs_are_checked():
+    with pytest.raises(ValueError, match="pinion_torque_Nm"):
+        make_input(pinion_torque_Nm=0.0)
+    with pytest.raises(ValueError, match="'2010'"):
+        make_input(edition="2010")
+    assert make_input(edition="2019").edition is Edition.ISO2019

@@ -42,6 +42,11 @@ class GearInput:
     thickness_allowances_mm: tuple[float, float] = (0.0, 0.0)  #: (upper, lower) A_sn [mm]
     ball_diameter_mm: float | None = None  #: D_M [mm]; None: the next standard size
 
+    def __post_init__(self):
+        _positive(self, "teeth", "face_width_mm", "youngs_MPa", "contacts_per_revolution")
+        if not 0.0 <= self.poisson < 0.5:
+            raise ValueError(f"poisson {self.poisson:g} outside 0 … 0.5")
+
 
 @dataclass(frozen=True)
 class RatingInput:
@@ -72,3 +77,17 @@ class RatingInput:
     pitting_permitted: bool = False  #: limited pitting permitted (Z_NT curve)
     optimum_long_life: bool = False  #: life factors stay 1.0 beyond the knee (else 0.85 at 1e10)
     edition: Edition = Edition.ISO2019  #: ISO 6336 edition followed where they differ
+
+    def __post_init__(self):
+        _positive(self, "module_mm", "pinion_torque_Nm", "pinion_speed_rpm", "life_h",
+                  "application_factor", "load_sharing_factor", "dynamic_factor",
+                  "mesh_stiffness_N_mm_um", "viscosity_40_mm2_s", "minimum_safety_pitting",
+                  "minimum_safety_bending")
+        object.__setattr__(self, "edition", Edition(self.edition))
+
+
+def _positive(obj, *names: str) -> None:
+    """ValueError naming the first field of ``names`` that is not > 0."""
+    for name in names:
+        if not getattr(obj, name) > 0:
+            raise ValueError(f"{name} must be > 0, got {getattr(obj, name)!r}")
