@@ -1,10 +1,12 @@
 """ISO 6336-1 load factors of a spur pair: K_Hβ (Method C), K_Fβ, K_Hα and K_Fα (Method B).
 
-docs/theory.md, "ISO 6336 rating", §1. Equation numbers are those of ISO 6336-1:2006; the 2019
+docs/theory.md, "ISO 6336 rating", §1. Clauses are those of ISO 6336-1:2006; the 2019
 edition keeps these relations for spur gears (its Method C for K_Hβ adds helix-modification
 options not modelled here). K_v by Method B is :func:`gearcli.model.iso_kv.dynamic_factor`.
 
-Running-in allowances (ISO 6336-1, clauses 7.6/8.3 running-in):
+Running-in allowances (ISO 6336-1, running-in allowances y_β of the face load factor and y_α of
+the transverse load factor; y_α = 160/σ_Hlim f_pb is eq. (75), 8.3.5.1, of the 2006 edition as
+corrected by its Cor.1:2008):
 
 ==================  =========================================  ==============================
 material group      y_β (helix, of F_βx)                        y_α (profile, of f_pb)
@@ -50,7 +52,8 @@ def _running_in(kind: MaterialKind, sigma_h_lim: float, deviation_um: float, v_m
 
 def running_in_helix(kind: MaterialKind, sigma_h_lim_MPa: float, f_beta_x_um: float,
                      v_m_s: float) -> float:
-    """Running-in allowance y_β [µm] of one gear (ISO 6336-1:2006, 7.6.3, eqs. 58-63).
+    """Running-in allowance y_β [µm] of one gear (ISO 6336-1:2006, face load factor,
+    running-in allowance y_β).
 
     Parameters: material group; σ_Hlim [N/mm²]; initial equivalent misalignment F_βx [µm];
     pitch-line velocity v [m/s]. Table in the module notes (St/V: 320/σ_Hlim F_βx capped at
@@ -62,7 +65,8 @@ def running_in_helix(kind: MaterialKind, sigma_h_lim_MPa: float, f_beta_x_um: fl
 
 def running_in_profile(kind: MaterialKind, sigma_h_lim_MPa: float, f_pb_um: float,
                        v_m_s: float) -> float:
-    """Running-in allowance y_α [µm] of one gear (ISO 6336-1:2006, 8.3.5, eqs. 75-80).
+    """Running-in allowance y_α [µm] of one gear (ISO 6336-1:2006, 8.3.5.1, eq. (75)
+    and the limits that follow it).
 
     Parameters: material group; σ_Hlim [N/mm²]; base pitch deviation f_pb [µm]; pitch-line
     velocity v [m/s]. St/V: y_α = 160/σ_Hlim f_pb (≤ 12800/σ_Hlim for 5 < v ≤ 10 m/s, ≤
@@ -78,7 +82,8 @@ def face_load_factor_method_c(line_load_N_mm: float, c_gamma_beta_N_mm_um: float
                               kinds: tuple[MaterialKind, MaterialKind] | None = None,
                               sigma_h_lim_MPa: tuple[float, float] | None = None,
                               v_m_s: float = 0.0) -> tuple[float, float, float]:
-    """Face load factor K_Hβ [-] by Method C (ISO 6336-1:2006, 7.6, eqs. 41-53).
+    """Face load factor K_Hβ [-] by Method C (ISO 6336-1:2006, clause 7 Method C;
+    F_βx is eq. (53), 7.5.2.3, as corrected by Cor.1:2008, here without helix modification).
 
     Parameters
     ----------
@@ -112,7 +117,8 @@ def face_load_factor_method_c(line_load_N_mm: float, c_gamma_beta_N_mm_um: float
 
 def bending_face_load_factor(k_h_beta: float, face_width_mm: float,
                              tooth_height_mm: float) -> float:
-    """K_Fβ = K_Hβ^N_F [-], N_F = (b/h)² / (1 + b/h + (b/h)²) (ISO 6336-1:2006, 7.7, eqs. 69-70).
+    """K_Fβ = K_Hβ^N_F [-], N_F = (b/h)² / (1 + b/h + (b/h)²)
+    (ISO 6336-1:2006, face load factor for tooth root stress K_Fβ).
 
     b the face width [mm] (the smaller of the pair), h the tooth height [mm] (h_a + h_f); b/h
     is taken as at least 3 (ISO: "use b/h = 3 when b/h < 3").
@@ -125,7 +131,7 @@ def bending_face_load_factor(k_h_beta: float, face_width_mm: float,
 def transverse_load_factors(eps_alpha: float, c_gamma_alpha_N_mm_um: float, f_pb_um: float,
                             y_alpha_um: float, line_load_N_mm: float,
                             z_eps: float) -> tuple[float, float]:
-    """Transverse load factors (K_Hα, K_Fα) [-] by Method B (ISO 6336-1:2006, 8.3, eqs. 71-74).
+    """Transverse load factors (K_Hα, K_Fα) [-] by Method B (ISO 6336-1:2006, 8.3).
 
     Parameters
     ----------

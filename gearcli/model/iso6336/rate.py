@@ -148,7 +148,7 @@ def _load_factors(inp: RatingInput, geo: PairGeometry, f_t: float, v: float, z_e
         k_hb, _, _ = face_load_factor_method_c(
             f_m, 0.85 * inp.mesh_stiffness_N_mm_um, inp.shaft_misalignment_um,
             inp.manufacturing_misalignment_um, kinds=kinds, sigma_h_lim_MPa=s_hlim, v_m_s=v)
-        src_b = f"{p1} 7.6 Method C"
+        src_b = f"{p1} K_Hβ Method C"
     b_over_h = min(gi.face_width_mm / h for gi, h in zip((inp.pinion, inp.gear),
                                                           geo.tooth_height, strict=True))
     k_fb = bending_face_load_factor(k_hb, b_over_h, 1.0)
@@ -161,14 +161,14 @@ def _load_factors(inp: RatingInput, geo: PairGeometry, f_t: float, v: float, z_e
                                                                           strict=True))
         k_ha, k_fa = transverse_load_factors(geo.eps_alpha, inp.mesh_stiffness_N_mm_um, f_pb,
                                              y_a, f_m * k_hb, z_eps)
-        src_a = f"{p1} 8.3 Method B"
+        src_a = f"{p1} K_Hα Method B"
     k = {"K_A": k_a, "K_gamma": k_g, "K_v": k_v, "K_Hb": k_hb, "K_Fb": k_fb, "K_Ha": k_ha,
          "K_Fa": k_fa}
     rows = [Factor("K_A", k_a, "-", "given", "application factor"),
             Factor("K_γ", k_g, "-", "given", "mesh load factor (load sharing)"),
             Factor("K_v", k_v, "-", "given", "dynamic factor"),
             Factor("K_Hβ", k_hb, "-", src_b, "face load factor, flank"),
-            Factor("K_Fβ", k_fb, "-", f"{p1} 7.7", "face load factor, root"),
+            Factor("K_Fβ", k_fb, "-", f"{p1} K_Fβ from K_Hβ", "face load factor, root"),
             Factor("K_Hα", k_ha, "-", src_a, "transverse load factor, flank"),
             Factor("K_Fα", k_fa, "-", src_a, "transverse load factor, root")]
     return k, rows
