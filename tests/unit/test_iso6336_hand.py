@@ -312,3 +312,18 @@ def test_inputs_are_checked():
     with pytest.raises(ValueError, match="'2010'"):
         make_input(edition="2010")
     assert make_input(edition="2019").edition is Edition.ISO2019
+
+
+def test_mean_stress_factor_for_reversed_bending():
+    """Y_M = (1 + M)/((1 − R) + M (1 + R)) (Haigh line through the pulsating test point): fully
+    reversed R = −1 with M = 0.4 gives 0.7; R = 0 gives 1; 2006 gives 0.7 for any R < 0."""
+    assert b3.mean_stress_factor(False, "2019", sensitivity=0.4, stress_ratio=-1.0) == \
+        pytest.approx(0.7)
+    r, m = -0.5, 0.3
+    assert b3.mean_stress_factor(False, "2019", sensitivity=m, stress_ratio=r) == \
+        pytest.approx((1 + m) / ((1 - r) + m * (1 + r)))
+    assert b3.mean_stress_factor(True, "2019", stress_ratio=0.0) == 1.0
+    assert b3.mean_stress_factor(False, "2006", stress_ratio=-0.3) == 0.7
+    assert b3.mean_stress_factor(True, "2019", MaterialKind.NITRIDED) == 0.7
+    with pytest.raises(ValueError, match="mean stress sensitivity"):
+        b3.mean_stress_factor(False, "2019", MaterialKind.NITRIDED, stress_ratio=-0.5)

@@ -268,17 +268,22 @@ IDLER_STRESS_RATIO = -1.2
 
 def mean_stress_factor(idler: bool, edition: Edition = Edition.ISO2019,
                        kind: MaterialKind | None = None, y_s: float | None = None,
-                       sensitivity: float | None = None) -> float:
+                       sensitivity: float | None = None,
+                       stress_ratio: float | None = None) -> float:
     """Mean stress (alternating bending) factor Y_M [-] (ISO 6336-3, "Mean stress influence").
 
-    1 for one-way bending. An idler (both flanks loaded once per revolution):
-    2006: 0.7 (σ_FE reduced to 70 %);
-    2019: Y_M = 1/(1 − R (1 − M)/(1 + M)) with R = −1.2 and the mean stress sensitivity
-    M [-] (given, or 0.8 − 0.15 Y_S for case-hardened steel). This is the Haigh line
-    σ_a = σ_W − M σ_m through the pulsating (R = 0) test point; for other materials M must be
-    given (else 0.7, as 2006).
+    Parameters: ``idler`` (both flanks loaded once per revolution); ``stress_ratio`` R [-] of
+    the root stress (min/max; None: −1.2 for an idler, 0 otherwise; R < 0 for reversed
+    bending); mean stress sensitivity M [-] (None: 0.8 − 0.15 Y_S for case-hardened steel).
+
+    One-way bending (R = 0): 1.
+    2006: 0.7 for an idler or reversed bending (σ_FE reduced to 70 %).
+    2019: Y_M = 1/(1 − R (1 − M)/(1 + M)) — the Haigh line σ_a = σ_W − M σ_m through the
+    pulsating (R = 0) test point. Without M (not case-hardened): 0.7 for an idler at R = −1.2,
+    ValueError for another R < 0.
     """
-    if not idler:
+    r = stress_ratio if stress_ratio is not None else (IDLER_STRESS_RATIO if idler else 0.0)
+    if r >= 0.0:
         return 1.0
     if Edition(edition) is Edition.ISO2006:
         return 0.7
@@ -286,6 +291,7 @@ def mean_stress_factor(idler: bool, edition: Edition = Edition.ISO2019,
     if m is None and kind is not None and MaterialKind(kind) is MaterialKind.CASE_HARDENED:
         m = 0.8 - 0.15 * (y_s if y_s is not None else STRESS_CORRECTION_TEST)
     if m is None:
-        return 0.7
-    r = IDLER_STRESS_RATIO
+        if r == IDLER_STRESS_RATIO:
+            return 0.7
+        raise ValueError(f"Y_M at R = {r:g}: give the mean stress sensitivity M")
     return 1.0 / (1.0 - r * (1.0 - m) / (1.0 + m))

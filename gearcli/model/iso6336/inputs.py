@@ -38,6 +38,7 @@ class GearInput:
     rim_thickness_mm: float | None = None  #: s_R below the root [mm]; None: solid gear
     idler: bool = False  #: both flanks loaded once per revolution (alternating bending)
     mean_stress_sensitivity: float | None = None  #: M [-] for Y_M (2019), None: by material
+    root_stress_ratio: float | None = None  #: R [-] of reversed bending; None: −1.2 idler, else 0
     contacts_per_revolution: float = 1.0  #: load cycles of the flank per revolution [-]
     thickness_allowances_mm: tuple[float, float] = (0.0, 0.0)  #: (upper, lower) A_sn [mm]
     ball_diameter_mm: float | None = None  #: D_M [mm]; None: the next standard size

@@ -151,7 +151,7 @@ def _load_factors(inp: RatingInput, geo: PairGeometry, f_t: float, v: float, z_e
         src_b = f"{p1} K_Hβ Method C"
     b_over_h = min(gi.face_width_mm / h for gi, h in zip((inp.pinion, inp.gear),
                                                           geo.tooth_height, strict=True))
-    k_fb = bending_face_load_factor(k_hb, b_over_h, 1.0)
+    k_fb = bending_face_load_factor(k_hb, b_over_h, 1.0)  # only the ratio b/h enters
     if inp.transverse_load_factor is not None:
         k_ha = k_fa = inp.transverse_load_factor
         src_a = "given"
@@ -232,7 +232,8 @@ def _bending(inp: RatingInput, i: int, geo: PairGeometry, f_t: float, k: dict, n
     y_d_stat = b3.notch_sensitivity_factor_static(g.material, y_s, g.proof_stress_MPa)
     y_r = b3.relative_surface_factor(g.material, g.root_roughness_rz_um)
     y_x = b3.size_factor(g.material, m)
-    y_m = b3.mean_stress_factor(g.idler, ed, g.material, y_s, g.mean_stress_sensitivity)
+    y_m = b3.mean_stress_factor(g.idler, ed, g.material, y_s, g.mean_stress_sensitivity,
+                                g.root_stress_ratio)
     curve = bending_life_curve(g.material, inp.optimum_long_life)
     y_st = b3.STRESS_CORRECTION_TEST
 
