@@ -285,8 +285,9 @@ def test_two_bin_duty_cycle_follows_the_sn_line():
 def test_document_to_dict_is_plain():
     import json
     doc = rate(make_input()).to_dict()
-    text = json.dumps(doc)
+    text = json.dumps(doc, allow_nan=False)
     assert doc["pinion"]["life_bending_h"] is None  # infinite life
+    assert [r["value"] for r in doc["pinion"]["factors"] if r["symbol"] == "L_F"] == [None]
     assert any(row["symbol"] == "Y_F" for row in doc["gear"]["factors"])
     assert "ISO 6336-3:2006" in text and doc["method"] == "ISO 6336 Method B"
 

@@ -32,7 +32,9 @@ class Factor:
     name: str  #: plain-language name
 
     def to_dict(self) -> dict:
-        return {"symbol": self.symbol, "value": self.value, "unit": self.unit,
+        """Plain JSON types; a non-finite value (an infinite life) becomes None."""
+        value = self.value if math.isfinite(self.value) else None
+        return {"symbol": self.symbol, "value": value, "unit": self.unit,
                 "clause": self.clause, "name": self.name}
 
 

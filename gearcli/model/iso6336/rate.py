@@ -105,6 +105,8 @@ class GearEvaluation:
 
 @dataclass(frozen=True)
 class Evaluation:
+    """Everything :func:`rate` documents, before the lives and the inspection dimensions."""
+
     geometry: PairGeometry
     pair_factors: tuple[Factor, ...]
     pinion: GearEvaluation
