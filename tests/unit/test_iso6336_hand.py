@@ -328,3 +328,27 @@ def test_mean_stress_factor_for_reversed_bending():
     assert b3.mean_stress_factor(True, "2019", MaterialKind.NITRIDED) == 0.7
     with pytest.raises(ValueError, match="mean stress sensitivity"):
         b3.mean_stress_factor(False, "2019", MaterialKind.NITRIDED, stress_ratio=-0.5)
+
+
+def test_method_b_closed_form_equals_the_generated_fillet_section():
+    """ISO's closed-form 30° section (bending.form_geometry) and gearcli.model.rating's section
+    found on the actual generated fillet (spline of the trochoid, Brent root) describe the same
+    curve: for the anchor's sun and planet (same tip diameters, tip shortening included) Y_F,
+    Y_S, s_Fn, ρ_F, h_Fe agree to 2e-6 relative (rating's spline and root tolerances,
+    tests/unit/test_rating.py ISO_RTOL)."""
+    from gearcli.model.geometry import GearSpec, PairSpec, compute_pair_geometry
+    from gearcli.model.rating import static_rating
+    from tests.unit.test_iso6336_anchor import X1, X2
+
+    k1 = 1.0 + X1 - (432.838 - 378.0) / 42.0  # d_a = d + 2 m (h_aP* + x − k)
+    k2 = 1.0 + X2 - (815.663 - 756.0) / 42.0
+    geo = compute_pair_geometry(PairSpec(21.0, math.radians(20.0),
+                                         GearSpec(18, 550.0, X1, tip_shortening_coef=k1),
+                                         GearSpec(36, 550.0, X2, tip_shortening_coef=k2),
+                                         centre_distance_mm=584.0))
+    st = static_rating(geo, 1000.0, (206000.0, 206000.0), (0.3, 0.3))
+    r = rate(make_input())
+    for gs, gr in ((st.pinion, r.pinion), (st.gear, r.gear)):
+        got = [gr.factor(s).value for s in ("Y_F", "Y_S", "s_Fn", "ρ_F", "h_Fe")]
+        ref = [gs.Y_F, gs.Y_S, gs.section.s_Fn_mm, gs.section.rho_F_mm, gs.h_Fe_mm]
+        assert got == pytest.approx(ref, rel=2e-6)
