@@ -113,9 +113,8 @@ def parse_quantity(value: object, dim: Dim) -> float:
     ------
     UnitError : unparseable, wrong dimension, non-finite
     """
-    expected = (
-        f"a {dim.name} as a number in {dim.default} or a string with units, e.g. {dim.example}"
-    )
+    expected = (f"{article(dim.name)} {dim.name} as a number in {dim.default} or a string "
+                f"with units, e.g. {dim.example}")
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise UnitError(f"expected {expected}")
     if isinstance(value, int | float):
@@ -133,7 +132,7 @@ def parse_quantity(value: object, dim: Dim) -> float:
     own = own_unit_quantity(text, dim)
     if own is not None:
         if not math.isfinite(own):
-            raise UnitError(f"expected a finite {dim.name}")
+            raise UnitError(f"expected {article(dim.name)} finite {dim.name}")
         return own
     ureg = registry()
     try:
@@ -149,10 +148,11 @@ def parse_quantity(value: object, dim: Dim) -> float:
         out = float(q.to(dim.internal).magnitude)
     except Exception:
         raise UnitError(
-            f"wrong dimension: '{q.units:~}' is not a {dim.name}; expected {expected}"
+            f"wrong dimension: '{q.units:~}' is not {article(dim.name)} {dim.name}; "
+            f"expected {expected}"
         ) from None
     if not math.isfinite(out):
-        raise UnitError(f"expected a finite {dim.name}")
+        raise UnitError(f"expected {article(dim.name)} finite {dim.name}")
     return out
 
 
@@ -206,7 +206,13 @@ def default_to_internal(number: float, dim: Dim) -> float:
 def _refuse_cycles(text: str, dim: Dim) -> None:
     """pint treats Hz as 1/s = rad/s; for angular quantities that silently loses 2π."""
     if dim.angular and any(tok in text for tok in ("Hz", "hertz")):
-        raise UnitError(f"'Hz' is ambiguous for a {dim.name}; write rev/s, rpm, deg/s or rad/s")
+        raise UnitError(f"'Hz' is ambiguous for {article(dim.name)} {dim.name}; expected rev/s, "
+                        "rpm, deg/s or rad/s")
+
+
+def article(noun: str) -> str:
+    """'a' or 'an' before ``noun`` (by its first letter: "an angular velocity")."""
+    return "an" if noun[:1].lower() in "aeiou" else "a"
 
 
 def format_internal(value: float, dim: Dim) -> str:

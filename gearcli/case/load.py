@@ -132,7 +132,10 @@ def _schema_errors(exc: ValidationError, src: Source) -> list[CaseError]:
 def _shown_value(data: object, loc: Loc) -> tuple[object, bool]:
     """The value as written at ``loc`` and whether an error shows it (not for a section)."""
     value, has_value = _raw_value(data, loc)
-    return value, has_value and not isinstance(value, dict)
+    if isinstance(value, dict):  # a mapping value (a time function's) yes, a section no
+        field = field_at(Case, loc)
+        has_value = field is not None and not allowed_keys(Case, loc)
+    return value, has_value
 
 
 def _close_keys(loc: Loc) -> list[str]:

@@ -15,6 +15,7 @@ from typing import Annotated, Any
 from pydantic import BeforeValidator, Field, PlainSerializer, WithJsonSchema
 
 from gearcli import guards, units
+from gearcli.case.section import compose
 from gearcli.units import Dim
 
 
@@ -168,14 +169,15 @@ def _time_function_validator(dim: Dim):
                 value = constant
         if isinstance(value, bool) or not isinstance(value, int | float | str):
             raise ValueError(
-                f"expected a {dim.name} ({dim.default}): a number, a string with units, or an "
-                "expression such as 'STEP(time, 0, 0, 1, 3000)'"
+                f"expected {units.article(dim.name)} {dim.name} ({dim.default}): a number, a "
+                "string with units, or an expression such as 'STEP(time, 0, 0, 1, 3000)'"
             )
         if isinstance(value, str) and is_expression(value):
             try:
                 parse_time_function(value)
             except ExpressionError as exc:
-                raise ValueError(f"malformed expression: {exc}") from None
+                raise ValueError(compose(f"malformed expression: {exc}", "an expression of "
+                                         "time such as 'STEP(time, 0, 0, 1, 3000)'")) from None
             return TimeFunction(" ".join(value.split()), unit, dim)
         constant = checked_quantity(value, dim)
         return TimeFunction(repr(constant), dim.internal, dim)

@@ -440,8 +440,33 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
                 f"({zone}); allowed: d_Nf >= d_Ff" + (
                     "" if g.undercut else
                     f" ({_FILLET_CURE.format(gear=role, mate=mate)})"))
-    return tuple(out)
+    return tuple(_pressure_angle_first(out, alpha))
 
+
+def _pressure_angle_first(found: list[Finding], alpha: float) -> list[Finding]:
+    """The findings, led by one naming the pressure angle when it lies far outside the range
+    of gear racks and the pair fails: the input that causes the errors, not the teeth or the
+    interference distance it leads to (a radian value written as degrees, 0.349 for 20 deg,
+    fails as interference)."""
+    errors = [f for f in found if f.severity == "error"]
+    deg = math.degrees(alpha)
+    low, high = PRESSURE_ANGLE_RANGE_DEG
+    if not errors or low <= deg <= high:
+        return found
+    hint = (f" ({deg:.4g} rad would be {math.degrees(deg):.4g} deg: write '{deg:.4g} rad')"
+            if deg < 1.0 else "")
+    fails = ", ".join(dict.fromkeys(f.code.replace("_", " ") + (f" ({f.subject})" if f.subject
+                                                                else "") for f in errors))
+    message = (f"pressure angle alpha = {deg:.4g} deg is far outside the {low:g} ... {high:g} "
+               f"deg of gear racks (ISO 53: 20 deg) and the pair fails ({fails}); allowed: "
+               f"a pressure angle in deg, usually {low:g} ... {high:g}{hint}")
+    return [Finding("error", "pressure_angle", message), *found]
+
+
+#: Pressure angles of gear racks [deg], generously bounded: ISO 53:1998's basic rack has 20 deg;
+#: 14.5 deg (old AGMA) and 25 ... 28 deg (high-capacity gears, Niemann/Winter II) are the ends in
+#: use. A failing pair with a pressure angle outside 10 ... 35 deg has it as its first cause.
+PRESSURE_ANGLE_RANGE_DEG = (10.0, 35.0)
 
 #: Largest face width to pinion reference diameter ratio b/d1 without a warning: the upper end
 #: of VDI 2736-2:2014's initial-design range 0.2 <= b/d1 <= 2.0 (a thermoplastic-gear standard;
