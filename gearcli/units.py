@@ -81,6 +81,55 @@ QUADRATIC_DAMPING = Dim(
 MOTOR_SLOPE = Dim("motor-curve slope", "N*mm*s/rad", "N*mm*s/rad", "'2 N*m*s/rad'", True)
 
 
+#: Unit systems of bare numbers in a case file (its ``units:`` key), by quantity (``Dim.name``):
+#: the unit a bare number is in and its factor to the internal unit (pint's factor, bit for
+#: bit: tests/unit/test_case_units.py compares them). A quantity a system does not list keeps
+#: its Dim's default. "adams" is the default: Adams MMKS with degrees (mm, N*mm, kg, deg, deg/s).
+#: "engineering": rpm, N*m and kg*m^2 at the shafts, kg/m^3; mm, MPa, deg, Hz, s stay.
+#: "si": the coherent SI units (m, rad, rad/s, N*m, Pa, kg/m^3, kg*m^2, N/m, ...).
+#: The Adams contact stiffness k [N/mm^e] keeps its unit in every system.
+UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
+    "adams": {},
+    "engineering": {
+        "angular velocity": ("rpm", 0.10471975511965977),  # 2 pi / 60
+        "torque": ("N*m", 1000.0),
+        "density": ("kg/m^3", 1.0000000000000002e-12),
+        "polar moment of inertia": ("kg*m^2", 1000.0),
+        "torsional stiffness": ("N*m/rad", 1000.0),
+        "torsional damping": ("N*m*s/rad", 1000.0),
+        "quadratic torque coefficient": ("N*m*s^2/rad^2", 1000.0),
+        "motor-curve slope": ("N*m*s/rad", 1000.0),
+    },
+    "si": {
+        "length": ("m", 1000.0),
+        "angle": ("rad", 1.0),
+        "angular velocity": ("rad/s", 1.0),
+        "torque": ("N*m", 1000.0),
+        "density": ("kg/m^3", 1.0000000000000002e-12),
+        "polar moment of inertia": ("kg*m^2", 1000.0),
+        "stress": ("Pa", 1e-06),
+        "velocity": ("m/s", 1000.0),
+        "stiffness": ("N/m", 0.001),
+        "damping": ("N*s/m", 0.001),
+        "torsional stiffness": ("N*m/rad", 1000.0),
+        "torsional damping": ("N*m*s/rad", 1000.0),
+        "quadratic torque coefficient": ("N*m*s^2/rad^2", 1000.0),
+        "motor-curve slope": ("N*m*s/rad", 1000.0),
+    },
+}
+
+
+@functools.cache
+def in_system(dim: Dim, system: str | None) -> Dim:
+    """``dim`` with the default unit (and factor) of bare numbers in unit ``system`` (a key of
+    :data:`UNIT_SYSTEMS`; None: the default, "adams")."""
+    unit, factor = UNIT_SYSTEMS.get(system or "adams", {}).get(dim.name, (dim.default,
+                                                                           dim.factor))
+    if unit == dim.default:
+        return dim
+    return Dim(dim.name, unit, dim.internal, dim.example, dim.angular, factor)
+
+
 def contact_stiffness_dim(exponent: float) -> Dim:
     """Dimension of the Adams IMPACT stiffness k for force exponent e: N/mm^e."""
     e = f"{exponent:g}"

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from pydantic import ValidationError
 
+from gearcli import units
 from gearcli.case.bounds import magnitude_errors
 from gearcli.case.keypaths import allowed_keys, field_at
 from gearcli.case.overrides import apply_overrides
@@ -67,7 +68,7 @@ def validate_source(src: Source, stem: str) -> LoadedCase:
     except ValidationError as exc:
         raise CaseErrors.of(_schema_errors(exc, src)) from None
     found = [src.error(loc, message, *_shown_value(src.data, loc))
-             for loc, _, message in magnitude_errors(case)]
+             for loc, _, message in magnitude_errors(case, case.units)]
     if found:
         raise CaseErrors.of(found)
     return LoadedCase(case, src, case.name or stem)
@@ -123,7 +124,9 @@ def _schema_errors(exc: ValidationError, src: Source) -> list[CaseError]:
             continue
         errors.append((missing, src.line_of(loc) or 0, loc, err, cause))
     errors.sort(key=lambda e: e[:2])
-    return [src.error(loc, _message(err, cause, loc),
+    declared = src.data.get("units") if isinstance(src.data, dict) else None
+    system = declared if declared in units.UNIT_SYSTEMS else None
+    return [src.error(loc, _message(err, cause, loc, system),
                       *(_shown_value(src.data, loc) if err["type"] != "missing" else (None,
                                                                                        False)))
             for _, _, loc, err, cause in errors]
@@ -173,7 +176,7 @@ def data_loc(loc: tuple, data: object) -> Loc:
     return tuple(out)
 
 
-def _message(err: dict, cause: Exception | None, loc: Loc) -> str:
+def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -> str:
     """What is wrong and what is allowed (:func:`~gearcli.case.section.compose`); the loader
     adds file, line, key and value. A validator's own error says both itself."""
     kind = err["type"]
@@ -185,7 +188,7 @@ def _message(err: dict, cause: Exception | None, loc: Loc) -> str:
         return compose("missing required key", _what(loc))
     if cause is not None:
         return str(cause)
-    limit = _limit_message(err, loc)
+    limit = _limit_message(err, loc, system)
     if limit:
         return limit
     msg = err["msg"]
@@ -214,8 +217,9 @@ _LIMITS = {
 }
 
 
-def _limit_message(err: dict, loc: Loc) -> str | None:
-    """'expected > 0 mm': a bound of a quantity field, in the field's default unit."""
+def _limit_message(err: dict, loc: Loc, system: str | None) -> str | None:
+    """'expected > 0 mm': a bound of a quantity field, in the unit of its bare numbers (the
+    field's default unit, or the declared ``units:`` system's)."""
     if err["type"] not in _LIMITS:
         return None
     op, key = _LIMITS[err["type"]]
@@ -230,5 +234,6 @@ def _limit_message(err: dict, loc: Loc) -> str | None:
         return compose("", f"{op} {limit}")
     if dim is None:  # a plain number (a coefficient): the bound as written, not pydantic's
         return compose("", f"{op} {float(limit):g}")  # fixed-point 0.000000000000023
+    dim = units.in_system(dim, system)
     return compose("", f"{op} {float(limit) / dim.factor:g} {dim.default}")
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import Field, Strict, model_validator
+from pydantic import Field, Strict, model_serializer, model_validator
 
 from gearcli import units
 from gearcli.case.schema_drive import Bearing, Bearings, Drive, Load, MotorCurve, Shaft
@@ -18,7 +18,7 @@ from gearcli.case.schema_gears import Gear, Gears, InertiaSpec, Material, Rack, 
 from gearcli.case.schema_mesh import IMPACT_KEYS, TOOTH_KEYS, Contact, Friction
 from gearcli.case.schema_mods import Errors, Modifications, PitchDeviation, Relief, Runout
 from gearcli.case.section import Coefficient, FieldError, Section, pair, raise_all
-from gearcli.case.types import Frequency, Length, Time, qfield
+from gearcli.case.types import Frequency, Length, Time, qfield, unit_system
 
 __all__ = [
     "IMPACT_KEYS", "TOOTH_KEYS", "Bearing", "Bearings", "Case", "Checks", "Coefficient",
@@ -75,6 +75,12 @@ class Checks(Section):
 class Case(Section):
     """A gearcli case: one spur gear pair, its contact, drive, load and run settings."""
 
+    units: Literal["adams", "engineering", "si"] | None = Field(
+        None, description="the units of bare numbers (a string with units always means what it "
+        "says): 'adams' (the default: mm, deg, deg/s, N*mm, kg, kg/mm^3, kg*mm^2, MPa, as each "
+        "key's description states), 'engineering' (as adams but rpm, N*m, kg/m^3, kg*m^2, "
+        "N*m/rad, N*m*s/rad) or 'si' (m, rad, rad/s, N*m, Pa, kg/m^3, kg*m^2, N/m, N*s/m, "
+        "m/s); the Adams contact stiffness stays in N/mm^e (docs/theory.md §8)")
     name: str | None = Field(None, description="case name (default: file stem)")
     description: str = Field("", description="free text")
     model: Literal["torsional", "lateral-torsional"] = Field(
@@ -93,6 +99,24 @@ class Case(Section):
     errors: Errors = Field(default_factory=Errors)
     run: Run
     checks: Checks = Field(default_factory=Checks)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _in_declared_units(cls, data, handler):
+        """Bare numbers in the unit system the case declares (``units:``), the default's
+        without one; an unknown system is the Literal's error (validated in the default's)."""
+        declared = data.get("units") if isinstance(data, dict) else None
+        with unit_system(declared if isinstance(declared, str) else None):
+            return handler(data)
+
+    @model_serializer(mode="wrap")
+    def _units_when_declared(self, handler):
+        """The resolved case names its units only when the file did (its values carry their
+        units: the name only records what the file said)."""
+        data = handler(self)
+        if self.units is None:
+            data.pop("units", None)
+        return data
 
     @model_validator(mode="after")
     def _cross_checks(self):
