@@ -71,7 +71,7 @@ BAD = [
     (("STEP(time, 0, 0, 1, 3000)", "{functio: 3}"), "drive.speed", "{'functio': 3}",
      "a mapping with keys 'function'"),
     (("  module: 10 ", "  # module: 10 "), "gears.module", None, "module m [mm]"),
-    (("gears:  ", "gearz:  "), "gearz", None, "one of: name"),
+    (("gears:  ", "gearz:  "), "gearz", None, "one of: units, name"),
     (("  end_time: 5 ", "  end_time: 5\n  output_steps: 100\n  output_rate: 1000 "),
      "run.output_rate", "1000", "at most one of them"),
     (("  poisson_ratio: 0.29", "  poisson_ratio: 0.7"), "material.poisson_ratio", "0.7",
