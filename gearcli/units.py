@@ -86,8 +86,10 @@ MOTOR_SLOPE = Dim("motor-curve slope", "N*mm*s/rad", "N*mm*s/rad", "'2 N*m*s/rad
 #: bit: tests/unit/test_case_units.py compares them). A quantity a system does not list keeps
 #: its Dim's default. "adams" is the default: Adams MMKS with degrees (mm, N*mm, kg, deg, deg/s).
 #: "engineering": rpm, N*m and kg*m^2 at the shafts, kg/m^3; mm, MPa, deg, Hz, s stay.
-#: "si": the coherent SI units (m, rad, rad/s, N*m, Pa, kg/m^3, kg*m^2, N/m, ...).
-#: The Adams contact stiffness k [N/mm^e] keeps its unit in every system.
+#: "si": the coherent SI units (m, rad, rad/s, N*m, kg/m^3, kg*m^2, N/m, ...). Stresses and
+#: moduli stay in MPa in every system (ISO 6336's unit, as in the display units of
+#: gearcli/display_units.py: 1500 meaning Pa would be a silent slip of 1e6), and the Adams
+#: contact stiffness k [N/mm^e] keeps its unit.
 UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
     "adams": {},
     "engineering": {
@@ -107,7 +109,6 @@ UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
         "torque": ("N*m", 1000.0),
         "density": ("kg/m^3", 1.0000000000000002e-12),
         "polar moment of inertia": ("kg*m^2", 1000.0),
-        "stress": ("Pa", 1e-06),
         "velocity": ("m/s", 1000.0),
         "stiffness": ("N/m", 0.001),
         "damping": ("N*s/m", 0.001),

@@ -79,8 +79,8 @@ class Case(Section):
         None, description="the units of bare numbers (a string with units always means what it "
         "says): 'adams' (the default: mm, deg, deg/s, N*mm, kg, kg/mm^3, kg*mm^2, MPa, as each "
         "key's description states), 'engineering' (as adams but rpm, N*m, kg/m^3, kg*m^2, "
-        "N*m/rad, N*m*s/rad) or 'si' (m, rad, rad/s, N*m, Pa, kg/m^3, kg*m^2, N/m, N*s/m, "
-        "m/s); the Adams contact stiffness stays in N/mm^e (docs/theory.md §8)")
+        "N*m/rad, N*m*s/rad) or 'si' (m, rad, rad/s, N*m, kg/m^3, kg*m^2, N/m, N*s/m, m/s); "
+        "stresses stay in MPa and the Adams contact stiffness in N/mm^e (docs/theory.md §8)")
     name: str | None = Field(None, description="case name (default: file stem)")
     description: str = Field("", description="free text")
     model: Literal["torsional", "lateral-torsional"] = Field(
