@@ -90,32 +90,27 @@ MOTOR_SLOPE = Dim("motor-curve slope", "N*mm*s/rad", "N*mm*s/rad", "'2 N*m*s/rad
 #: moduli stay in MPa in every system (ISO 6336's unit, as in the display units of
 #: gearcli/display_units.py: 1500 meaning Pa would be a silent slip of 1e6), and the Adams
 #: contact stiffness k [N/mm^e] keeps its unit.
+#: Shaft quantities in N*m (both named systems).
+_N_M = {
+    "torque": ("N*m", 1000.0),
+    "density": ("kg/m^3", 1.0000000000000002e-12),
+    "polar moment of inertia": ("kg*m^2", 1000.0),
+    "torsional stiffness": ("N*m/rad", 1000.0),
+    "torsional damping": ("N*m*s/rad", 1000.0),
+    "quadratic torque coefficient": ("N*m*s^2/rad^2", 1000.0),
+    "motor-curve slope": ("N*m*s/rad", 1000.0),
+}
 UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
     "adams": {},
-    "engineering": {
-        "angular velocity": ("rpm", 0.10471975511965977),  # 2 pi / 60
-        "torque": ("N*m", 1000.0),
-        "density": ("kg/m^3", 1.0000000000000002e-12),
-        "polar moment of inertia": ("kg*m^2", 1000.0),
-        "torsional stiffness": ("N*m/rad", 1000.0),
-        "torsional damping": ("N*m*s/rad", 1000.0),
-        "quadratic torque coefficient": ("N*m*s^2/rad^2", 1000.0),
-        "motor-curve slope": ("N*m*s/rad", 1000.0),
-    },
+    "engineering": {"angular velocity": ("rpm", 0.10471975511965977), **_N_M},  # 2 pi / 60
     "si": {
         "length": ("m", 1000.0),
         "angle": ("rad", 1.0),
         "angular velocity": ("rad/s", 1.0),
-        "torque": ("N*m", 1000.0),
-        "density": ("kg/m^3", 1.0000000000000002e-12),
-        "polar moment of inertia": ("kg*m^2", 1000.0),
         "velocity": ("m/s", 1000.0),
         "stiffness": ("N/m", 0.001),
         "damping": ("N*s/m", 0.001),
-        "torsional stiffness": ("N*m/rad", 1000.0),
-        "torsional damping": ("N*m*s/rad", 1000.0),
-        "quadratic torque coefficient": ("N*m*s^2/rad^2", 1000.0),
-        "motor-curve slope": ("N*m*s/rad", 1000.0),
+        **_N_M,
     },
 }
 

@@ -9,7 +9,7 @@ from typing import Annotated, ClassVar, Literal
 from pydantic import Field, Strict, model_validator
 
 from gearcli import units
-from gearcli.case.section import FieldError, Section, pair
+from gearcli.case.section import Section, pair
 from gearcli.case.types import Angle, Length, qfield
 
 
@@ -23,10 +23,7 @@ class Relief(Section):
 
     @model_validator(mode="after")
     def _one_extent(self):
-        if (self.length is None) == (self.start_diameter is None):
-            raise FieldError(("length",), "both given" if self.length is not None else "missing",
-                             "exactly one of 'length' and 'start_diameter'")
-        return self
+        return self.exactly_one("length", "start_diameter")
 
 
 class Modifications(Section):
@@ -53,10 +50,7 @@ class PitchDeviation(Section):
 
     @model_validator(mode="after")
     def _one_source(self):
-        if (self.values is None) == (self.iso1328_grade is None):
-            raise FieldError(("values",), "both given" if self.values is not None else "missing",
-                             "exactly one of 'values' and 'iso1328_grade'")
-        return self
+        return self.exactly_one("values", "iso1328_grade")
 
 
 class Errors(Section):

@@ -56,6 +56,15 @@ class Section(BaseModel):
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
+    def exactly_one(self, first: str, second: str):
+        """``self`` when exactly one of the keys ``first`` and ``second`` is given, else a
+        FieldError at ``first`` (for an ``after`` model validator)."""
+        given = getattr(self, first) is not None
+        if given == (getattr(self, second) is not None):
+            raise FieldError((first,), "both given" if given else "missing",
+                             f"exactly one of '{first}' and '{second}'")
+        return self
+
 
 @functools.cache
 def pair(entry: type[BaseModel]) -> type[Section]:
