@@ -444,28 +444,22 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
 
 
 def _pressure_angle_first(found: list[Finding], alpha: float) -> list[Finding]:
-    """The findings, led by one naming the pressure angle when it lies far outside the range
-    of gear racks and the pair fails: the input that causes the errors, not the teeth or the
-    interference distance it leads to (a radian value written as degrees, 0.349 for 20 deg,
-    fails as interference)."""
-    errors = [f for f in found if f.severity == "error"]
-    deg = math.degrees(alpha)
+    """Led by a finding naming the pressure angle, the input that causes them, when the pair
+    fails with one far outside the range of racks (0.349 deg for 0.349 rad: interference)."""
+    errors, deg = [f for f in found if f.severity == "error"], math.degrees(alpha)
     low, high = PRESSURE_ANGLE_RANGE_DEG
     if not errors or low <= deg <= high:
         return found
-    hint = (f" ({deg:.4g} rad would be {math.degrees(deg):.4g} deg: write '{deg:.4g} rad')"
-            if deg < 1.0 else "")
-    fails = ", ".join(dict.fromkeys(f.code.replace("_", " ") + (f" ({f.subject})" if f.subject
-                                                                else "") for f in errors))
-    message = (f"pressure angle alpha = {deg:.4g} deg is far outside the {low:g} ... {high:g} "
-               f"deg of gear racks (ISO 53: 20 deg) and the pair fails ({fails}); allowed: "
-               f"a pressure angle in deg, usually {low:g} ... {high:g}{hint}")
-    return [Finding("error", "pressure_angle", message), *found]
+    fails = ", ".join(dict.fromkeys(f.code.replace("_", " ") + (f" ({f.subject})" * bool(
+        f.subject)) for f in errors))
+    return [Finding("error", "pressure_angle", f"pressure angle alpha = {deg:.4g} deg is far "
+                    f"outside the {low:g} ... {high:g} deg of gear racks (ISO 53: 20 deg) and the "
+                    f"pair fails ({fails}); allowed: a pressure angle in deg, usually {low:g} ... "
+                    f"{high:g}" + (f" ({deg:.4g} rad would be {math.degrees(deg):.4g} deg: write "
+                                   f"'{deg:.4g} rad')" if deg < 1.0 else "")), *found]
 
 
-#: Pressure angles of gear racks [deg], generously bounded: ISO 53:1998's basic rack has 20 deg;
-#: 14.5 deg (old AGMA) and 25 ... 28 deg (high-capacity gears, Niemann/Winter II) are the ends in
-#: use. A failing pair with a pressure angle outside 10 ... 35 deg has it as its first cause.
+#: Pressure angles of racks in use [deg], generously: ISO 53 20, old AGMA 14.5, Niemann/Winter II 28
 PRESSURE_ANGLE_RANGE_DEG = (10.0, 35.0)
 
 #: Largest face width to pinion reference diameter ratio b/d1 without a warning: the upper end
