@@ -246,6 +246,7 @@ def time_field(dim: Dim, description: str, default: float | None = ...) -> Any:
     return Field(
         default=TimeFunction(repr(value), dim.internal, dim),
         description=text + f" (default {default:g} {dim.default})",
+        json_schema_extra={"default": default},  # as a case file writes it, not the object
     )
 
 
