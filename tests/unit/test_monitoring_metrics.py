@@ -33,8 +33,9 @@ def test_sinusoid_moments_are_the_closed_forms():
 
 def test_gaussian_kurtosis_is_three_within_its_sampling_spread():
     """Sample kurtosis b2 of N iid normal values: E[b2] = 3(N − 1)/(N + 1),
-    Var[b2] = 24 N (N − 2)(N − 3) / ((N + 1)² (N + 3)(N + 5)) (Pearson; ≈ 24/N). Six standard
-    deviations (≈ 0.11 at N = 2¹⁶) bound it; a kurtosis normalised by N − 1, or of |x|, misses."""
+    Var[b2] = 24 N (N − 2)(N − 3) / ((N + 1)² (N + 3)(N + 5)) (D'Agostino, Belanger &
+    D'Agostino 1990; ≈ 24/N). Six standard
+    deviations (≈ 0.11 at N = 2¹⁶) bound it; an excess kurtosis (0) or one of |x| (≈ 3.87) misses."""
     n = 2**16
     x = np.random.default_rng(20261127).normal(0.0, 2.5, n)
     mean = 3.0 * (n - 1) / (n + 1)
@@ -83,8 +84,9 @@ def test_energy_ratio_and_sidebands_closed_forms():
     assert m.sideband_level_factor(am, Z) == pytest.approx(mu / sigma, rel=1e-12)
 
 
-# The public NA4 example of oplib (onepredict), `oplib/feature/gear.py` docstring (the signal
-# of MathWorks' tsaresidual example: 180 rpm, 50 kHz, one revolution, mesh orders 17 and 51
+# The public NA4 example of oplib (github.com/Onepredict/onebone, oplib/feature/
+# gear_condition_metrics.py at commit 337f9885, the docstring of `na4`; the signal of MathWorks'
+# tsaresidual example: 180 rpm, 50 kHz, one revolution, mesh orders 17 and 51
 # with two harmonics each, shaft orders 1 and 2, and a "fault" at order 10 growing k/6 · 2).
 # NA4 per record k with the run's records 1 … k normalising, as printed there:
 OPLIB_NA4 = [1.536982703280907, 3.857738227803903, 5.590250485891509, 6.835250547872656,
