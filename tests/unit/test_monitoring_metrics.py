@@ -34,8 +34,8 @@ def test_sinusoid_moments_are_the_closed_forms():
 def test_gaussian_kurtosis_is_three_within_its_sampling_spread():
     """Sample kurtosis b2 of N iid normal values: E[b2] = 3(N − 1)/(N + 1),
     Var[b2] = 24 N (N − 2)(N − 3) / ((N + 1)² (N + 3)(N + 5)) (D'Agostino, Belanger &
-    D'Agostino 1990; ≈ 24/N). Six standard
-    deviations (≈ 0.11 at N = 2¹⁶) bound it; an excess kurtosis (0) or one of |x| (≈ 3.87) misses."""
+    D'Agostino 1990; ≈ 24/N). Six standard deviations (≈ 0.11 at N = 2¹⁶) bound it; an excess
+    kurtosis (0) or one of |x| (≈ 3.87) misses."""
     n = 2**16
     x = np.random.default_rng(20261127).normal(0.0, 2.5, n)
     mean = 3.0 * (n - 1) / (n + 1)

@@ -38,7 +38,7 @@ def test_samples_per_revolution_rule():
     """Power of two ≥ the most time samples in one revolution and ≥ 2 (order + 1)."""
     theta = 2 * np.pi * np.arange(5000) / 1000.0  # 1000 samples per revolution
     assert samples_per_revolution(theta) == 1024
-    assert samples_per_revolution(theta, min_order=700) == 2048
+    assert samples_per_revolution(theta, highest_order=700) == 2048
     _, run_up = _run_up()
     assert samples_per_revolution(run_up) == 512  # 280 per revolution at 10 Hz
     with pytest.raises(ValueError):
@@ -53,7 +53,7 @@ def test_resampling_a_pure_order_under_varying_speed_gives_one_clean_line():
     5e-4 (the not-a-knot end conditions are not the clamped ones of the bound)."""
     t, theta = _run_up()
     x = np.cos(7 * theta)
-    n = samples_per_revolution(theta, min_order=7)
+    n = samples_per_revolution(theta, highest_order=7)
     sig = resample_to_angle(x, theta, n)
     assert sig.n_revolutions == 29 and sig.values.size == 29 * n
     tsa = time_synchronous_average(sig)

@@ -41,24 +41,24 @@ def _monotone_angle(shaft_angle_rad) -> tuple[np.ndarray, float]:
                      "stop or reverse within the record)")
 
 
-def samples_per_revolution(shaft_angle_rad, min_order: int = 0) -> int:
+def samples_per_revolution(shaft_angle_rad, highest_order: int = 0) -> int:
     """Samples per revolution n [-] for resampling a record onto the shaft angle.
 
     Rule (docs/theory.md, "Condition-monitoring signals", §1): n is the smallest power of two
     that is at least the largest number of time samples in one revolution of the record,
-    2π / min_i |θ_{i+1} − θ_i|, and at least 2 (min_order + 1), so that order ``min_order``
-    lies below the angle-domain Nyquist order n/2. The slowest part of the record has the most
-    samples per revolution; matching it keeps every order the time sampling resolved there
-    (the time Nyquist frequency f_s/2 is order f_s/(2 f_shaft), highest at the lowest speed).
-    A power of two keeps the order FFTs fast.
+    2π / min_i |θ_{i+1} − θ_i|, and at least 2 (m_max + 1), so that the order m_max lies below
+    the angle-domain Nyquist order n/2. The slowest part of the record has the most samples per
+    revolution; matching it keeps every order the time sampling resolved there (the time
+    Nyquist frequency f_s/2 is the order f_s/(2 f_shaft), highest at the lowest speed). A power
+    of two keeps the order FFTs fast.
 
     Parameters
     ----------
     shaft_angle_rad : array [rad]
         The shaft's angle at the time samples, strictly monotone.
-    min_order : int [-]
-        The highest shaft order that must be resolved (e.g. the highest mesh harmonic plus its
-        sidebands).
+    highest_order : int [-]
+        m_max, the highest shaft order that must be resolved (e.g. the highest mesh harmonic
+        plus its sidebands).
 
     Returns
     -------
@@ -67,7 +67,7 @@ def samples_per_revolution(shaft_angle_rad, min_order: int = 0) -> int:
     """
     theta, _ = _monotone_angle(shaft_angle_rad)
     per_rev_in_time = TWO_PI / float(np.min(np.diff(theta)))
-    need = max(per_rev_in_time, 2.0 * (int(min_order) + 1))
+    need = max(per_rev_in_time, 2.0 * (int(highest_order) + 1))
     n = 2
     while n < need * (1.0 - 1e-12):
         n *= 2
