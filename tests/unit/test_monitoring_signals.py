@@ -130,6 +130,24 @@ def test_a_once_per_revolution_fault_gives_sidebands_at_the_shaft_order_spacing(
     assert clean[3] == pytest.approx(1.0, abs=5e-4)
 
 
+def test_the_pinion_fault_has_no_sidebands_on_the_mating_gear_shaft():
+    """The same signal on the gear's angle (29 teeth, turning backwards: θ₂ = −13/29 θ₁): the
+    mesh is gear order 29, but the pinion's once-per-revolution pattern sits at the gear orders
+    29 k/13, not integers. The record holds 13 whole gear revolutions (= 29 pinion ones), so
+    each such component makes a whole number of cycles over the 13 and the TSA's sum of its
+    13 phases e^{2πi q r} is exactly zero: no sidebands at 29 ± 1 … 3 (the resampling bound
+    5e-4), the mesh line 1 + a c_0 intact. The signature belongs to the faulty gear's shaft."""
+    z1, z2, w, a = 13, 29, 0.3, 0.5
+    c0 = w / math.sqrt(2 * math.pi)
+    theta, x = _gear_signal(a, z1, w)
+    gear = resample_to_angle(x, -theta * z1 / z2, 1024)
+    assert gear.n_revolutions == 13
+    table = sideband_table(time_synchronous_average(gear), z2, n_sidebands=3,
+                           n_mesh_harmonics=1)[0]
+    assert max(table[[0, 1, 2, 4, 5, 6]]) < 5e-4
+    assert table[3] == pytest.approx(1 + a * c0, abs=1e-3)
+
+
 def test_regular_residual_difference_decomposition():
     """x̄ = mean + regular + difference exactly; residual − difference = the sidebands;
     regular holds shaft orders 1..K, harmonics h z and h z ± 1..S."""
