@@ -179,3 +179,6 @@ def test_order_spectrum_amplitudes_and_sideband_table_edges():
     table = sideband_table(x, 30, n_sidebands=5)  # harmonics 30, 60; 60 + 5 > 64
     assert table.shape == (2, 11)
     assert np.isnan(table[1, -1]) and not np.isnan(table[1, 9])
+    _, theta = _run_up()
+    with pytest.raises(ValueError):  # many revolutions are not one: average first
+        order_spectrum(resample_to_angle(np.cos(theta), theta, 512))

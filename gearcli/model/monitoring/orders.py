@@ -27,6 +27,8 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 from scipy.signal import hilbert
 
+from gearcli.model.monitoring.angle import AngleSignal
+
 __all__ = ["order_spectrum", "order_amplitude", "mesh_orders_kept", "keep_orders",
            "regular_signal", "residual_signal", "difference_signal", "sideband_table",
            "narrowband_envelope", "DEFAULT_SHAFT_ORDERS", "DEFAULT_SIDEBANDS"]
@@ -38,6 +40,9 @@ DEFAULT_SIDEBANDS = 1
 
 
 def _values(tsa) -> np.ndarray:
+    if isinstance(tsa, AngleSignal) and tsa.n_revolutions != 1:
+        raise ValueError("order signals need one revolution: average the angle signal first "
+                         "(time_synchronous_average)")
     x = np.asarray(getattr(tsa, "values", tsa), dtype=float)
     if x.ndim != 1 or x.size < 4:
         raise ValueError("a TSA of at least 4 samples (one revolution) is needed")
