@@ -42,7 +42,7 @@ class MeshControl:
     refinement: float = 1.0
     fine: float = 0.04
     coarse: float = 0.3
-    max_area: float = 0.25
+    max_area: float = 4.0
     depth: float = 0.25
     clamp_sides: bool = True
 
