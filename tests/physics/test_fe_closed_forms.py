@@ -61,13 +61,13 @@ def _slab_deflection(length, c, spacing):
 
 def test_cantilever_slab_bending_and_shear():
     """Tip deflection of a tooth-like slab (l = 2.25, 2c = 1.6 in units of a module 1 tooth:
-    shear is 24 % of the deflection) against the closed form. Tolerance from convergence:
+    shear is 33 % of the deflection) against the closed form. Tolerance from convergence:
     P2 errors at spacing 0.2 and 0.1 mm were measured 1.6e-5 and 1.7e-6 (relative, a
     tenfold drop per halving); 2e-4 at spacing 0.2 is ten times the observed error and far
-    below the 24 % shear part or a (1 − ν²) factor that a wrong law would change."""
+    below the 33 % shear part or a (1 − ν²) factor that a wrong law would change."""
     fe, exact = _slab_deflection(2.25, 0.8, 0.2)
     shear = 1.5 * 2.25 / (E / (2 * (1 + NU)) * 1.6)
-    assert 0.2 < shear / exact < 0.3  # shear is a real part of what is checked
+    assert 0.3 < shear / exact < 0.36  # shear is a real part of what is checked
     assert fe == pytest.approx(exact, rel=2e-4)
 
 

@@ -35,6 +35,7 @@ from scipy.interpolate import CubicSpline
 from gearcli.model.fe.cache import DEFAULT_CACHE, ComplianceCache
 from gearcli.model.fe.hertz import contact_modulus, hertz_half_width, weber_approach
 from gearcli.model.fe.tooth import (
+    DEFAULT_CONTROL,
     FEToothCompliance,
     MeshControl,
     fe_tooth_compliance,
@@ -129,7 +130,7 @@ def fe_mesh_stiffness(pair: PairGeometry, *, face_width_mm: float, load_N_mm: fl
                       bore_diameter1_mm: float | None = None,
                       bore_diameter2_mm: float | None = None,
                       plane_strain: bool | None = None, n_roll: int = 21,
-                      n_teeth: int | None = None, control: MeshControl = MeshControl(),
+                      n_teeth: int | None = None, control: MeshControl = DEFAULT_CONTROL,
                       cache: ComplianceCache | None = None,
                       n_mesh_points: int = 400) -> FEMeshStiffness:
     """FE pair and mesh stiffness of ``pair`` along its path of contact (module notes).

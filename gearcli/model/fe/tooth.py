@@ -27,7 +27,8 @@ from gearcli.model.fe.elasticity import PlaneBody
 from gearcli.model.fe.sector import BORE, SIDE, flank_point_normal, sector_outline
 from gearcli.model.toothform import ToothForm
 
-__all__ = ["FEToothCompliance", "MeshControl", "fe_tooth_compliance", "geometry_key"]
+__all__ = ["DEFAULT_CONTROL", "FEToothCompliance", "MeshControl", "fe_tooth_compliance",
+           "geometry_key"]
 
 
 @dataclass(frozen=True)
@@ -45,6 +46,9 @@ class MeshControl:
     max_area: float = 4.0
     depth: float = 0.25
     clamp_sides: bool = True
+
+
+DEFAULT_CONTROL = MeshControl()  #: the default element sizes and reading depth
 
 
 @dataclass(frozen=True)
@@ -71,7 +75,7 @@ def geometry_key(gear: ToothForm, radii_mm, **params) -> str:
 
 def fe_tooth_compliance(gear: ToothForm, radii_mm, *, bore_diameter_mm: float,
                         youngs_MPa: float, poisson: float, plane_strain: bool,
-                        n_teeth: int | None = None, control: MeshControl = MeshControl()
+                        n_teeth: int | None = None, control: MeshControl = DEFAULT_CONTROL
                         ) -> FEToothCompliance:
     """Global FE compliance c_FE(r) [mm/(N/mm)] of ``gear``'s tooth at involute radii.
 
