@@ -77,7 +77,9 @@ def _print(doc: dict, units: str) -> None:
     console = Console()
     lin = doc["linearisation"]
 
-    def q(value, unit):
+    def q(value, unit, zone=""):
+        if value is None:  # the loaded mesh has no such zone (e.g. eps_alpha > ~1.7 loaded)
+            return f"not applicable: no {zone} zone"
         x, u = convert(value, unit, units)
         return f"{x:.4g} {u}"
 
@@ -85,8 +87,8 @@ def _print(doc: dict, units: str) -> None:
         f"[bold]{doc['case']}[/bold]: {doc['model']} model, drive '{doc['drive']}', "
         f"linearised at F = {lin['static_force_N']:.1f} N: k_mesh = "
         f"{q(lin['mesh_stiffness_N_mm'], 'N/mm')} (single pair "
-        f"{q(lin['single_pair_stiffness_N_mm'], 'N/mm')}, double pair "
-        f"{q(lin['double_pair_stiffness_N_mm'], 'N/mm')}), c_mesh = "
+        f"{q(lin['single_pair_stiffness_N_mm'], 'N/mm', 'single-pair')}, double pair "
+        f"{q(lin['double_pair_stiffness_N_mm'], 'N/mm', 'double-pair')}), c_mesh = "
         f"{q(lin['mesh_damping_Ns_mm'], 'N*s/mm')}, friction off")
     t = Table(title="Modes", title_justify="left")
     for col in ("mode", "f [Hz]", "zeta", "description",

@@ -57,7 +57,29 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import scipy.linalg
 
-from gearcli.model.structure import Structure, line_of_action
+# the model, its descriptions and the resonance map live in topic modules; their public names
+# are importable from here (gearcli.model.modal is the one entry point)
+from gearcli.model.modal_describe import (  # noqa: F401  (re-exported)
+    COUPLED_SHARE,
+    describe,
+    energy_shares,
+    normalise_shape,
+)
+from gearcli.model.modal_resonance import (  # noqa: F401  (re-exported)
+    Crossing,
+    Margin,
+    Order,
+    crossings,
+    excitation_orders,
+    margins,
+)
+from gearcli.model.modal_system import (  # noqa: F401  (re-exported)
+    ALL_DOFS,
+    BODIES,
+    ELEMENTS,
+    LinearSystem,
+    linearised_dampers,
+)
 
 #: A mode with ζ >= 1/√2 has no resonant peak: |H(f)| <= |H(0)| at every frequency (single-DOF
 #: oscillator; Rao, Mechanical Vibrations, §3.4). The one place this rule is written.
@@ -91,195 +113,14 @@ def roundoff_pairs(lam, scale: float) -> set[int]:
                 out.update((a, b))
     return out
 
+
 #: Natural frequencies this close (relative) are one repeated frequency.
 REPEATED_TOLERANCE = 1e-6
-
-#: A second element holding at least this share of a mode's strain energy makes it "coupled".
-COUPLED_SHARE = 0.25
-
-#: Every coordinate the model knows, in the order of :meth:`LinearSystem.dofs`.
-ALL_DOFS = ("theta_m_rad", "theta1_rad", "theta2_rad", "theta_L_rad",
-            "x1_mm", "y1_mm", "x2_mm", "y2_mm")
-
-#: Elastic elements (strain-energy shares) and bodies (kinetic-energy shares), in report order.
-ELEMENTS = ("mesh", "drive shaft", "load shaft", "pinion bearings", "gear bearings")
-BODIES = ("motor", "pinion rotation", "gear rotation", "load", "pinion translation",
-          "gear translation")
 
 
 def has_resonant_peak(damping_ratio: float) -> bool:
     """True when a mode of damping ratio ζ [-] has a resonant peak (ζ < 1/√2)."""
     return damping_ratio < NO_PEAK_DAMPING_RATIO
-
-
-def linearised_dampers(structure: Structure, drive_torque_Nmm: float,
-                       pinion_speed_rad_s: float | None) -> tuple[float, float]:
-    """(c_m, c_q,lin) [N·mm·s/rad]: the motor curve and quadratic load term, linearised.
-
-    c_m = |T|/ω0 (torque drive with a linear motor curve T(t)(1 − ω/ω0); core/rhs.py);
-    c_q,lin = 2 c_q |ω_L| with the load speed ω_L = ω2 = ω1 r_b1/r_b2 (rigid kinematics,
-    docs/theory.md §1; the load shaft turns with the gear). Derivatives of the torque laws with
-    respect to speed: the linearisation of Rao, Mechanical Vibrations, ch. 13 (small motion
-    about an operating point).
-    """
-    s = structure
-    c_m = 0.0
-    if s.drive == "torque" and s.motor_no_load_speed_rad_s > 0.0:
-        c_m = abs(drive_torque_Nmm) / s.motor_no_load_speed_rad_s
-    omega_load = abs(pinion_speed_rad_s or 0.0) * s.r_b1_mm / s.r_b2_mm
-    return c_m, 2.0 * s.load_quadratic_Nmms2_rad2 * omega_load
-
-
-@dataclass(frozen=True)
-class LinearSystem:
-    """The linearised model: a :class:`Structure` plus mesh and linearised dampers.
-
-    ``motor_curve_damping_Nmms_rad`` = c_m and ``load_quadratic_damping_Nmms_rad`` =
-    2 c_q |ω_L| (:func:`linearised_dampers`); the load's viscous term, shafts and bearings come
-    from the structure.
-    """
-
-    structure: Structure
-    mesh_stiffness_N_mm: float
-    mesh_damping_Ns_mm: float = 0.0
-    motor_curve_damping_Nmms_rad: float = 0.0
-    load_quadratic_damping_Nmms_rad: float = 0.0
-
-    @property
-    def drive(self) -> str:
-        return self.structure.drive
-
-    @property
-    def model(self) -> str:
-        return self.structure.model
-
-    def dofs(self) -> tuple[str, ...]:
-        s = self.structure
-        active = {"theta_m_rad": s.has_motor, "theta1_rad": not s.pinion_prescribed,
-                  "theta2_rad": True, "theta_L_rad": s.has_load_inertia}
-        return tuple(d for d in ALL_DOFS if active.get(d, s.lateral))
-
-    def validate(self) -> None:
-        """ValueError naming the field when a value cannot give a physical model."""
-        s = self.structure
-
-        def positive(obj, name: str) -> None:
-            if not getattr(obj, name) > 0.0:  # also catches NaN
-                raise ValueError(f"{name} must be > 0, got {getattr(obj, name)}")
-
-        def non_negative(obj, name: str) -> None:
-            if not getattr(obj, name) >= 0.0:
-                raise ValueError(f"{name} must be >= 0, got {getattr(obj, name)}")
-
-        for name in ("J1_t_mm2", "J2_t_mm2", "r_b1_mm", "r_b2_mm"):
-            positive(s, name)
-        for name in ("load_viscous_Nmms_rad", "pinion_bearing_damping_Nmms_rad",
-                     "gear_bearing_damping_Nmms_rad", "drive_shaft_damping_Nmms_rad",
-                     "load_shaft_damping_Nmms_rad", "motor_inertia_t_mm2", "load_inertia_t_mm2"):
-            non_negative(s, name)
-        for name in ("mesh_stiffness_N_mm", "mesh_damping_Ns_mm", "motor_curve_damping_Nmms_rad",
-                     "load_quadratic_damping_Nmms_rad"):
-            non_negative(self, name)
-        if s.drive == "shaft" or s.has_motor:
-            positive(s, "drive_shaft_stiffness_Nmm_rad")
-        if s.has_load_inertia:
-            positive(s, "load_shaft_stiffness_Nmm_rad")
-        if s.lateral:
-            positive(s, "m1_t")
-            positive(s, "m2_t")
-            for body in ("pinion", "gear"):
-                sup = getattr(s, f"{body}_support")
-                if sup is None:
-                    raise ValueError(f"{body}_support: the lateral-torsional model needs the "
-                                     "bearing stiffness of both gears")
-                for name in ("stiffness_x_N_mm", "stiffness_y_N_mm"):
-                    if not getattr(sup, name) > 0.0:
-                        raise ValueError(f"{body}_support.{name} must be > 0, got "
-                                         f"{getattr(sup, name)}")
-                for name in ("damping_x_Ns_mm", "damping_y_Ns_mm"):
-                    if not getattr(sup, name) >= 0.0:
-                        raise ValueError(f"{body}_support.{name} must be >= 0, got "
-                                         f"{getattr(sup, name)}")
-
-    # --- assembly ------------------------------------------------------------------------------
-    def length_scales(self) -> np.ndarray:
-        """Length per unit of each coordinate of :meth:`dofs` [mm/rad or -]: the base radius
-        of the body a rotation belongs to (motor and pinion r_b1, gear and load r_b2), 1 for
-        a centre displacement (for reporting shapes as lengths)."""
-        s = self.structure
-        scale = {"theta_m_rad": s.r_b1_mm, "theta1_rad": s.r_b1_mm, "theta2_rad": s.r_b2_mm,
-                 "theta_L_rad": s.r_b2_mm}
-        return np.array([scale.get(d, 1.0) for d in self.dofs()])
-
-    def mesh_vector(self) -> np.ndarray:
-        """g = ∂δ/∂q over :meth:`dofs` [mm/rad, -] (module docstring; structure.py frame)."""
-        s = self.structure
-        nx, ny = line_of_action(s.alpha_w_rad, "drive")
-        full = {"theta1_rad": s.r_b1_mm, "theta2_rad": -s.r_b2_mm,
-                "x1_mm": nx, "y1_mm": ny, "x2_mm": -nx, "y2_mm": -ny}
-        return np.array([full.get(d, 0.0) for d in self.dofs()])
-
-    def _unit(self, **entries: float) -> np.ndarray:
-        dofs = self.dofs()
-        v = np.zeros(len(dofs))
-        for name, value in entries.items():
-            if name in dofs:
-                v[dofs.index(name)] = value
-        return v
-
-    def element_matrices(self) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-        """(K_e, C_e) of every elastic element of :data:`ELEMENTS` that is present."""
-        s = self.structure
-        out: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-        g = self.mesh_vector()
-        out["mesh"] = (self.mesh_stiffness_N_mm * np.outer(g, g),
-                       self.mesh_damping_Ns_mm * np.outer(g, g))
-        if s.has_motor or s.drive == "shaft":
-            # twist θm − θ1; with drive 'shaft' the motor angle is prescribed (ground)
-            v = self._unit(theta_m_rad=1.0, theta1_rad=-1.0)
-            out["drive shaft"] = (s.drive_shaft_stiffness_Nmm_rad * np.outer(v, v),
-                                  s.drive_shaft_damping_Nmms_rad * np.outer(v, v))
-        if s.has_load_inertia:
-            v = self._unit(theta2_rad=1.0, theta_L_rad=-1.0)
-            out["load shaft"] = (s.load_shaft_stiffness_Nmm_rad * np.outer(v, v),
-                                 s.load_shaft_damping_Nmms_rad * np.outer(v, v))
-        if s.lateral:
-            for body, i, sup in (("pinion", 1, s.pinion_support), ("gear", 2, s.gear_support)):
-                kx, ky = self._unit(**{f"x{i}_mm": 1.0}), self._unit(**{f"y{i}_mm": 1.0})
-                out[f"{body} bearings"] = (
-                    np.diag(sup.stiffness_x_N_mm * kx + sup.stiffness_y_N_mm * ky),
-                    np.diag(sup.damping_x_Ns_mm * kx + sup.damping_y_Ns_mm * ky))
-        return out
-
-    def body_masses(self) -> dict[str, np.ndarray]:
-        """Diagonal of M per body of :data:`BODIES` that is present [t·mm² or t]."""
-        s = self.structure
-        out = {
-            "motor": self._unit(theta_m_rad=s.motor_inertia_t_mm2),
-            "pinion rotation": self._unit(theta1_rad=s.J1_t_mm2),
-            "gear rotation": self._unit(theta2_rad=s.J2_t_mm2),
-            "load": self._unit(theta_L_rad=s.load_inertia_t_mm2),
-            "pinion translation": self._unit(x1_mm=s.m1_t, y1_mm=s.m1_t),
-            "gear translation": self._unit(x2_mm=s.m2_t, y2_mm=s.m2_t),
-        }
-        return {k: v for k, v in out.items() if np.any(v)}
-
-    def matrices(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """M, K, C over :meth:`dofs` (module docstring; internal units)."""
-        s = self.structure
-        M = np.diag(sum(self.body_masses().values()))
-        elements = self.element_matrices()
-        K = sum(k for k, _ in elements.values())
-        C = sum(c for _, c in elements.values())
-        motor_body = "theta_m_rad" if s.has_motor else "theta1_rad"
-        load_body = "theta_L_rad" if s.has_load_inertia else "theta2_rad"
-        dampers = [("theta1_rad", s.pinion_bearing_damping_Nmms_rad),
-                   ("theta2_rad", s.gear_bearing_damping_Nmms_rad),
-                   (motor_body, self.motor_curve_damping_Nmms_rad),
-                   (load_body, s.load_viscous_Nmms_rad + self.load_quadratic_damping_Nmms_rad)]
-        for name, c in dampers:
-            C = C + np.diag(self._unit(**{name: c}))
-        return M, K, C
 
 
 @dataclass(frozen=True)
@@ -330,133 +171,17 @@ class ModalResult:
         return min(rates) if rates else None
 
 
-def _normalise(v: np.ndarray) -> np.ndarray:
-    """Real shape, largest component +1. A complex (damped) shape is first turned by the phase
-    of its largest component and its real part taken (the "realised" mode shape)."""
-    v = np.asarray(v)
-    i = int(np.argmax(np.abs(v)))
-    if np.iscomplexobj(v):
-        v = np.real(v * np.exp(-1j * np.angle(v[i])))
-    return np.asarray(v / v[i], dtype=float)
-
-
 def _shape(system: LinearSystem, v: np.ndarray) -> tuple[float, ...]:
     """The reported shape: every coordinate as a length [mm] (a rotation as the roll distance
     r_b θ at its base circle: r_b1 for the motor and pinion, r_b2 for the gear and load; the
-    centre displacements as they are), then realised and normalised (:func:`_normalise`).
+    centre displacements as they are), then realised and normalised (:func:`normalise_shape`).
     Rotations in rad next to displacements in mm would compare numbers, not motions."""
-    return tuple(float(x) for x in _normalise(np.asarray(v) * system.length_scales()))
+    return tuple(float(x) for x in normalise_shape(np.asarray(v) * system.length_scales()))
 
 
 def _mac(a: np.ndarray, b: np.ndarray) -> float:
     """Modal assurance criterion |aᴴb|² / (aᴴa bᴴb) in [0, 1]."""
     return float(abs(np.vdot(a, b)) ** 2 / (np.vdot(a, a).real * np.vdot(b, b).real))
-
-
-def energy_shares(system: LinearSystem, phi: np.ndarray) -> tuple[dict[str, float],
-                                                                    dict[str, float]]:
-    """(strain, kinetic) energy shares of a mode shape φ per element and per body.
-
-    Strain φᴴK_eφ / φᴴKφ, kinetic φᴴM_bφ / φᴴMφ (Rao ch. 6; the Hermitian form is the
-    time-averaged energy of a complex, damped shape and the usual one for a real shape).
-    Strain shares are empty when the mode stores no strain energy (rigid body).
-    """
-    phi = np.asarray(phi)
-    strain = {name: float(np.real(np.vdot(phi, k @ phi)))
-              for name, (k, _) in system.element_matrices().items()}
-    total = sum(strain.values())
-    strain = {k: max(v, 0.0) / total for k, v in strain.items()} if total > 0.0 else {}
-    kin = {name: float(np.sum(m * np.abs(phi) ** 2)) for name, m in system.body_masses().items()}
-    ktot = sum(kin.values())
-    return strain, {k: v / ktot for k, v in kin.items()}
-
-
-#: A translation within this angle of a direction is described as along it.
-_DIRECTION_TOLERANCE_RAD = math.radians(10.0)
-
-
-def _direction(system: LinearSystem, shape: np.ndarray, i: int) -> str:
-    """Direction of gear i's centre motion in a real shape: 'along/across the line of action'
-    (drive-flank LoA n_d, structure.py), 'x', 'y' or 'x-y'."""
-    dofs = system.dofs()
-    u = np.array([shape[dofs.index(f"x{i}_mm")], shape[dofs.index(f"y{i}_mm")]])
-    norm = float(np.hypot(*u))
-    if norm == 0.0:
-        return "x-y"
-    nx, ny = line_of_action(system.structure.alpha_w_rad, "drive")
-    cos_tol = math.cos(_DIRECTION_TOLERANCE_RAD)
-    for name, d in (("along the line of action", (nx, ny)),
-                    ("across the line of action", (ny, -nx)), ("x", (1.0, 0.0)),
-                    ("y", (0.0, 1.0))):
-        if abs(u @ np.array(d)) / norm >= cos_tol:
-            return name
-    return "x-y"
-
-
-def describe(system: LinearSystem, phi: np.ndarray, rigid: bool) -> str:
-    """The dominant motion of a mode in words, from its strain-energy shares.
-
-    The element with the largest share names the mode. When the bearings of the gears hold
-    >= COUPLED_SHARE together beside a dominant mesh or shaft, or a second element holds
-    >= COUPLED_SHARE, the mode is called coupled and both are named.
-    """
-    s = system.structure
-    if rigid:
-        _, kinetic = energy_shares(system, phi)
-        still = [b for b, e in kinetic.items() if e < 1e-9 and "translation" not in b]
-        if still:  # a body without a stiff link to the rest (e.g. no mesh stiffness)
-            moving = [b.replace(" rotation", "") for b, e in kinetic.items() if e >= 1e-9]
-            return f"rigid-body rotation of the {' and '.join(moving)} alone"
-        if s.has_motor or s.has_load_inertia:
-            return "rigid-body rotation (the whole drive train turns together)"
-        return "rigid-body rotation (gears turn together, no mesh deflection)"
-    strain, _ = energy_shares(system, phi)
-    if not strain:
-        return "rigid-body motion"
-    shape = _normalise(phi)
-
-    def translation(bodies: list[str]) -> str:
-        if len(bodies) == 2:
-            return "pinion and gear translation"
-        i = 1 if bodies[0] == "pinion" else 2
-        return f"{bodies[0]} translation ({_direction(system, shape, i)})"
-
-    def full(name: str) -> str:
-        if name == "mesh":
-            if s.pinion_prescribed:
-                return "mesh mode (gear against the fixed-speed pinion)"
-            return "mesh mode (gears against each other)"
-        if name == "drive shaft":
-            if s.has_motor:
-                return "torsional: drive shaft (motor against pinion)"
-            return "torsional: drive shaft (pinion against the prescribed motor)"
-        if name == "load shaft":
-            return "torsional: load shaft (load inertia against gear)"
-        body = name.split()[0]
-        return f"lateral: {body} on its bearings " \
-               f"({_direction(system, shape, 1 if body == 'pinion' else 2)})"
-
-    ranked = sorted(strain, key=lambda k: -strain[k])
-    first = ranked[0]
-    bearings = {b: strain.get(f"{b} bearings", 0.0) for b in ("pinion", "gear")}
-    if not first.endswith("bearings") and sum(bearings.values()) >= COUPLED_SHARE:
-        # translation of the gear(s) whose bearings hold a tenth of the energy or more
-        moving = [b for b, e in bearings.items() if e >= 0.1] or [max(bearings,
-                                                                      key=bearings.get)]
-        return f"coupled: {first} with {translation(moving)}"
-    if len(ranked) > 1 and strain[ranked[1]] >= COUPLED_SHARE:
-        if {ranked[0], ranked[1]} == {"pinion bearings", "gear bearings"}:
-            d1, d2 = _direction(system, shape, 1), _direction(system, shape, 2)
-            dofs = system.dofs()
-            u1, u2 = (np.array([shape[dofs.index(f"x{i}_mm")], shape[dofs.index(f"y{i}_mm")]])
-                      for i in (1, 2))
-            phase = "in phase" if u1 @ u2 >= 0.0 else "in antiphase"
-            return f"lateral: both gears on their bearings, {phase}" + \
-                (f" ({d1})" if d1 == d2 else "")
-        names = [translation([n.split()[0]]) if n.endswith("bearings") else n
-                 for n in ranked[:2]]
-        return f"coupled: {names[0]} with {names[1]}"
-    return full(first)
 
 
 #: |ζ| below this counts as 0 (an undamped mode's roots carry round-off of this order).
@@ -566,51 +291,3 @@ def linear_modes(system: LinearSystem) -> ModalResult:
     numbered = tuple(replace(m, number=k + 1) for k, m in enumerate(modes))
     return ModalResult(system.dofs(), numbered, tuple(complex(x) for x in lam), system.model)
 
-
-# --- resonance map ------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Order:
-    """An excitation at ``per_rev`` events per pinion revolution (f = per_rev n1)."""
-
-    name: str
-    per_rev: float
-
-
-def excitation_orders(z1: int, z2: int, harmonics: int) -> tuple[Order, ...]:
-    """GMF harmonics k z1 (k = 1..N) and the shaft orders 1x pinion, 1x gear (= z1/z2)."""
-    gmf = tuple(Order(f"{k}x GMF", float(k * z1)) for k in range(1, harmonics + 1))
-    return (*gmf, Order("1x pinion", 1.0), Order("1x gear", z1 / z2))
-
-
-@dataclass(frozen=True)
-class Crossing:
-    order: str
-    mode: int
-    frequency_Hz: float
-    pinion_speed_rev_s: float  #: n1 at which order × n1 = f_mode
-
-
-@dataclass(frozen=True)
-class Margin:
-    order: str
-    mode: int
-    excitation_Hz: float
-    mode_Hz: float
-    margin_percent: float  #: |f_exc − f_mode| / f_mode × 100
-    has_peak: bool
-
-
-def crossings(modes, orders) -> list[Crossing]:
-    """Pinion speeds n1 [rev/s] where each order line meets each non-rigid mode."""
-    return [Crossing(o.name, m.number, m.natural_frequency_Hz, m.natural_frequency_Hz / o.per_rev)
-            for m in modes if not m.rigid for o in orders]
-
-
-def margins(modes, orders, pinion_speed_rev_s: float) -> list[Margin]:
-    """Margin [%] of every order at the pinion speed n1 [rev/s] to every non-rigid mode,
-    nearest first."""
-    out = [Margin(o.name, m.number, o.per_rev * pinion_speed_rev_s, m.natural_frequency_Hz,
-                  abs(o.per_rev * pinion_speed_rev_s - m.natural_frequency_Hz)
-                  / m.natural_frequency_Hz * 100.0, m.has_peak)
-           for m in modes if not m.rigid for o in orders]
-    return sorted(out, key=lambda x: x.margin_percent)
