@@ -25,7 +25,7 @@ from gearcli.core.gaptable import hermite, linear
 from gearcli.core.jit import jit
 from gearcli.core.laws import pair_force
 from gearcli.core.layout import DRIVE_FLANKS, GEAR, PINION, SC, D, F, P
-from gearcli.core.nrt import jit_noalloc_inline
+from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
 
 class Kinematics(NamedTuple):
@@ -88,7 +88,7 @@ def _friction(prm, x1, omega1, omega2, slide, force, mu_s, mu_d):
     return fr, fr * rho1, fr * rho2, fr * vs
 
 
-@jit_noalloc_inline
+@jit
 def _slot_phase(r, p_b, inv_p_b):
     """Position ``u`` of slot 0 within its base pitch, ``0 <= u < p_b`` [mm], and the pitch
     count ``n`` of ``r = u + n p_b`` (``r``: the family's roll distance less its phase)."""
@@ -103,7 +103,7 @@ def _slot_phase(r, p_b, inv_p_b):
     return u, int(nf)
 
 
-@jit_noalloc_inline
+@jit
 def _previous_tooth(i, isig, z):
     """The tooth of the next slot: ``(i - isig) mod z`` for ``0 <= i < z``."""
     i -= isig
@@ -144,11 +144,19 @@ def _pair_stiffness(model, f, x1, i1, i2, k, grid, stiff):
         # int(f): the family as a run-time int, one compiled hermite for every call
         _, k, dk = hermite(model.pair_stiffness, int(f), x_lo, x_hi, h, inv_h, x1)
     if factors:
-        fp, dfp = linear(model.tooth_stiffness_factor, PINION, i1, grid[0], inv_hf, x1)
-        fg, dfg = linear(model.tooth_stiffness_factor, GEAR, i2, grid[0], inv_hf, x1)
-        dk = dk * (fp * fg) + k * (dfp * fg + fp * dfg)
-        k *= fp * fg
+        fac, dfac = _factors(model.tooth_stiffness_factor, i1, i2, grid[0], inv_hf, x1)
+        dk = dk * fac + k * dfac
+        k *= fac
     return k, dk
+
+
+@jit_noalloc
+def _factors(table, i1, i2, x_lo, inv_hf, x1):
+    """The pair's stiffness factor f_P(i1, x1) f_G(i2, x1) [-] and its slope by x1 [1/mm]
+    (docs/theory.md §4b.2): a call, not inlined (read only in runs with factors)."""
+    fp, dfp = linear(table, PINION, i1, x_lo, inv_hf, x1)
+    fg, dfg = linear(table, GEAR, i2, x_lo, inv_hf, x1)
+    return fp * fg, dfp * fg + fp * dfg
 
 
 @jit_noalloc_inline
