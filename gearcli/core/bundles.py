@@ -21,7 +21,6 @@ from typing import NamedTuple
 import numpy as np
 
 #: Defaults of optional model arrays: absent (size 0).
-EMPTY_2D = np.zeros((0, 0))
 EMPTY_3D = np.zeros((0, 0, 0))
 
 
@@ -42,9 +41,12 @@ class Model(NamedTuple):
     #: Tooth law (layout.LAW_TOOTH): pair stiffness k [N/mm] and its slope dk/dx [N/mm^2] per
     #: flank family on the gap tables' grid of pinion roll positions, (N_FAMILIES, 2, n)
     pair_stiffness: np.ndarray = EMPTY_3D
-    #: Tooth law: stiffness factor of every tooth, (N_GEARS, >= max(z1, z2)) [-]; a pair's
-    #: stiffness is k(x) f_pinion[i1] f_gear[i2] (faults: cracks, spalls, missing teeth)
-    tooth_stiffness_factor: np.ndarray = EMPTY_2D
+    #: Stiffness factor of every tooth along the path, (N_TABLES, >= max(z1, z2), n >= 2) [-]
+    #: (rows as tooth_offsets: flank family x gear) at n pinion roll positions evenly spaced
+    #: over [x_lo, x_hi], linearly interpolated; a pair's stiffness is k(x1) f_P(i1, x1)
+    #: f_G(i2, x1) for its teeth i1, i2 (either law; faults: cracks, spalls, missing teeth;
+    #: docs/theory.md §4b.2)
+    tooth_stiffness_factor: np.ndarray = EMPTY_3D
 
 
 class Work(NamedTuple):

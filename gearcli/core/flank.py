@@ -2,13 +2,16 @@
 
 Coordinates and slots are described in :mod:`gearcli.core.rhs`; this module evaluates, for one
 flank family f (layout.DRIVE_FLANKS: sigma = +1, layout.COAST_FLANKS: sigma = -1), every pair
-slot's penetration from the gap tables, runout and tooth offsets, its contact force (Adams
-IMPACT, docs/theory.md §4), the generalized forces on the roll distances and the friction moments
-(Adams contact friction, docs/theory.md §5).
+slot's penetration from the gap tables, runout and tooth offsets, its stiffness (the tooth
+law's table, the per-tooth, per-position stiffness factors, docs/theory.md §4b.2), its contact
+force under the run's contact law (:mod:`gearcli.core.laws`, docs/theory.md §4, §4b, §4c), the
+generalized forces on the roll distances and the friction moments (Adams contact friction,
+docs/theory.md §5).
 
 A new per-pair or per-tooth quantity (a stiffness table, a fault) is read here from a field of
 :class:`gearcli.core.bundles.Model`; the per-family constants come from ``model.family``
-(layout.F, :mod:`gearcli.core.derive`).
+(layout.F, :mod:`gearcli.core.derive`). A new contact law is a function of
+:mod:`gearcli.core.laws`, not code here.
 """
 
 import math
@@ -16,13 +19,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from gearcli.core.contact import impact_force
 from gearcli.core.derive import table_of
 from gearcli.core.friction import adams_mu
-from gearcli.core.gaptable import hermite
+from gearcli.core.gaptable import hermite, linear
 from gearcli.core.jit import jit
-from gearcli.core.layout import DRIVE_FLANKS, GEAR, LAW_TOOTH, PINION, SC, D, F, P
-from gearcli.core.nrt import jit_noalloc_inline
+from gearcli.core.laws import pair_force
+from gearcli.core.layout import DRIVE_FLANKS, GEAR, PINION, SC, D, F, P
+from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
 
 class Kinematics(NamedTuple):
@@ -85,6 +88,202 @@ def _friction(prm, x1, omega1, omega2, slide, force, mu_s, mu_d):
     return fr, fr * rho1, fr * rho2, fr * vs
 
 
+@jit
+def _slot_phase(r, p_b, inv_p_b):
+    """Position ``u`` of slot 0 within its base pitch, ``0 <= u < p_b`` [mm], and the pitch
+    count ``n`` of ``r = u + n p_b`` (``r``: the family's roll distance less its phase)."""
+    nf = np.floor(r * inv_p_b)  # a float: math.floor's int costs two conversions
+    u = r - nf * p_b
+    if u >= p_b:  # rounding of r - floor(r/p) p
+        u -= p_b
+        nf += 1.0
+    elif u < 0.0:
+        u += p_b
+        nf -= 1.0
+    return u, int(nf)
+
+
+@jit
+def _previous_tooth(i, isig, z):
+    """The tooth of the next slot: ``(i - isig) mod z`` for ``0 <= i < z``."""
+    i -= isig
+    if i < 0:
+        i += z
+    elif i >= z:
+        i -= z
+    return i
+
+
+@jit_noalloc_inline
+def _gap(tables, g, x, zero_lo, zero_hi, grid):
+    """Gap [mm] and slope [-] of table ``g`` at ``x`` [mm]; inside the table's zero run
+    ``zero_lo .. zero_hi`` the Hermite cubic is exactly 0 (values and slopes 0) and the table
+    is not read. ``grid = (x_lo, x_hi, h, inv_h)`` of the gap tables."""
+    if x >= zero_lo and x <= zero_hi:
+        return 0.0, 0.0
+    x_lo, x_hi, h, inv_h = grid
+    _, gap, dgap = hermite(tables, g, x_lo, x_hi, h, inv_h, x)
+    return gap, dgap
+
+
+@jit_noalloc
+def _factors(table, g1, g2, i1, i2, x_lo, inv_hf, x1):
+    """The pair's stiffness factor f_P(i1, x1) f_G(i2, x1) [-] and its slope by x1 [1/mm]
+    (docs/theory.md §4b.2) from rows ``g1``, ``g2`` (the flank family's pinion and gear rows,
+    derive.table_of): a call, not inlined (read only in runs with factors)."""
+    fp, dfp = linear(table, g1, i1, x_lo, inv_hf, x1)
+    fg, dfg = linear(table, g2, i2, x_lo, inv_hf, x1)
+    return fp * fg, dfp * fg + fp * dfg
+
+
+@jit_noalloc_inline
+def _gather(f, sigma, kin, app, model, scratch):
+    """First pass over the slots of flank family ``f``: every pair in contact (p > 0) into
+    ``scratch`` (layout.SC: slot, x1, p, p', dp/ds1, dp/ds2, k, dk/dx1). Returns their count,
+    the sum of k p over them [N] and the largest penetration [mm] (0 if none).
+
+    The stiffness k_j [N/mm^e] of the pair at pinion roll position x1 [mm] holding pinion
+    tooth i1 and gear tooth i2, and dk_j/dx1 [N/mm^(e+1)] (docs/theory.md §4b.2): with a
+    ``model.pair_stiffness`` table (the tooth law) k(x1) and its slope (cubic Hermite on the
+    gap tables' grid), else the constant ``prm[P.k_contact]``; with stiffness factors times
+    f_P(i1, x1) f_G(i2, x1) (:func:`_factors`), k_j' = k' f_P f_G + k (f_P f_G)'. Without
+    factors nothing is multiplied."""
+    prm = model.prm
+    derived = model.derived
+    fam = model.family
+    tables = model.tables
+    tooth_offsets = model.tooth_offsets
+    delta = kin.delta
+    v1 = kin.v1
+    v2 = kin.v2
+    lat = app.along
+    lat_rate = app.rate
+    offset = fam[f, F.offset]
+    e1, de1 = runout(prm[P.ecc1], fam[f, F.phase1], kin.theta1, derived[D.inv_r_b1])
+    e2, de2 = runout(prm[P.ecc2], fam[f, F.phase2], kin.theta2, derived[D.inv_r_b2])
+    g1 = table_of(f, PINION)  # gap tables, and the rows of the tooth offsets
+    g2 = table_of(f, GEAR)
+    p_b = prm[P.p_b]
+    x_lo = prm[P.x_lo]
+    x_hi = prm[P.x_hi]
+    grid = (x_lo, x_hi, derived[D.grid_step], derived[D.inv_grid_step])
+    k = prm[P.k_contact]
+    factors = derived[D.tooth_factors_used] != 0.0
+    inv_hf = 0.0
+    if factors:
+        inv_hf = (model.tooth_stiffness_factor.shape[2] - 1) / (x_hi - x_lo)
+    table = model.pair_stiffness.size != 0
+    u, n = _slot_phase(sigma * kin.s1 - fam[f, F.phase0], p_b, derived[D.inv_p_b])
+    # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (rhs.py docstring)
+    use_offsets = derived[D.tooth_offsets_used] != 0.0
+    track = derived[D.teeth_tracked] != 0.0
+    zlo1 = fam[f, F.zero_lo1]
+    zhi1 = fam[f, F.zero_hi1]
+    zlo2 = fam[f, F.zero_lo2]
+    zhi2 = fam[f, F.zero_hi2]
+    isig = 1 if sigma > 0.0 else -1
+    z1 = int(prm[P.z1])
+    z2 = int(prm[P.z2])
+    i1 = 0
+    i2 = 0
+    if track:
+        i1 = (int(fam[f, F.tooth_k1]) + isig * n) % z1
+        i2 = (int(fam[f, F.tooth_k2]) + isig * n) % z2
+    n_touch = 0
+    fel_sum = 0.0
+    pen_max = 0.0
+    for j in range(scratch.shape[1]):
+        if j > 0 and track:
+            i1 = _previous_tooth(i1, isig, z1)
+            i2 = _previous_tooth(i2, isig, z2)
+        x1 = x_lo + u + j * p_b
+        x2 = x1 - sigma * delta
+        # x1 >= x_lo always (u >= 0); NaN fails every comparison and ends the loop
+        if not x1 <= x_hi:
+            break  # x1 grows with j: every further slot is beyond the table too
+        if not (x2 >= x_lo and x2 <= x_hi):
+            continue
+        gap1, dgap1 = _gap(tables, g1, x1, zlo1, zhi1, grid)
+        gap2, dgap2 = _gap(tables, g2, x2, zlo2, zhi2, grid)
+        pen = sigma * delta + lat - offset - gap1 - gap2 - e1 - e2
+        if use_offsets:
+            pen -= tooth_offsets[g1, i1] + tooth_offsets[g2, i2]
+        if pen <= 0.0:
+            continue
+        if pen > pen_max:
+            pen_max = pen
+        dp1 = sigma * (1.0 - dgap1) - de1  # dp/ds1 [-]
+        dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
+        kj = k
+        dkj = 0.0
+        if table:
+            # int(f): the family as a run-time int, one compiled hermite for every call
+            _, kj, dkj = hermite(model.pair_stiffness, int(f), x_lo, x_hi, grid[2], grid[3], x1)
+        if factors:
+            fac, dfac = _factors(model.tooth_stiffness_factor, g1, g2, i1, i2, x_lo, inv_hf,
+                                 x1)
+            dkj = dkj * fac + kj * dfac
+            kj *= fac
+        scratch[SC.slot, n_touch] = j
+        scratch[SC.x1, n_touch] = x1
+        scratch[SC.pen, n_touch] = pen
+        scratch[SC.pdot, n_touch] = dp1 * v1 + dp2 * v2 + lat_rate
+        scratch[SC.dp1, n_touch] = dp1
+        scratch[SC.dp2, n_touch] = dp2
+        scratch[SC.k, n_touch] = kj
+        scratch[SC.dk, n_touch] = dkj
+        n_touch += 1
+        fel_sum += kj * pen
+    return n_touch, fel_sum, pen_max
+
+
+@jit_noalloc_inline
+def _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force, full):
+    """Second pass: the force of every pair kept by :func:`_gather` under the run's contact law
+    (:func:`gearcli.core.laws.pair_force`, ``shared`` as there), the slot forces (row ``f`` of
+    ``slot_force`` when ``full``) and the friction of the pairs that push. Returns the sums
+    q1, q2, m1f, m2f, force, n_contact, friction force, friction power, damping power and
+    potential (the fields of FlankForces but pen_max)."""
+    prm = model.prm
+    derived = model.derived
+    law = int(prm[P.contact_law])
+    omega1 = kin.omega1
+    omega2 = kin.omega2
+    slide = app.slide
+    mu_s = prm[P.mu_s]
+    mu_d = prm[P.mu_d]
+    use_friction = mu_s != 0.0 or mu_d != 0.0
+    q1 = 0.0
+    q2 = 0.0
+    m1f = 0.0
+    m2f = 0.0
+    f_sum = 0.0
+    n_contact = 0
+    ff_sum = 0.0
+    fpow = 0.0
+    pdamp = 0.0
+    pot = 0.0
+    for m in range(n_touch):
+        pair = (scratch[SC.pen, m], scratch[SC.pdot, m], scratch[SC.dp1, m],
+                scratch[SC.dp2, m], scratch[SC.k, m], scratch[SC.dk, m])
+        force, q1, q2, pot, pdamp = pair_force(law, prm, derived, pair, shared,
+                                               (q1, q2, pot, pdamp))
+        if force <= 0.0:
+            continue
+        if full:
+            slot_force[f, int(scratch[SC.slot, m])] = force
+        f_sum += force
+        n_contact += 1
+        if use_friction:
+            fr, fm1, fm2, fp = _friction(prm, scratch[SC.x1, m], omega1, omega2, slide, force,
+                                         mu_s, mu_d)
+            m1f += fm1
+            m2f -= fm2
+            ff_sum += fr
+            fpow += fp
+    return q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot
+
+
 @jit_noalloc_inline
 def flank(f, kin, app, model, slot_force, scratch, full):
     """Forces of all pair slots of flank family ``f``.
@@ -100,229 +299,38 @@ def flank(f, kin, app, model, slot_force, scratch, full):
     slot_force : ndarray, shape (N_FAMILIES, n_slots)
         Row ``f`` written when ``full``: the force of every slot [N] (0 out of contact).
     scratch : ndarray, shape (N_SCRATCH, n_slots)
-        Work space of the tooth law (layout.SC): its first pass keeps every pair in contact.
+        Work space (layout.SC): the pairs in contact between the two passes.
     full : bool
         False at the inner Runge-Kutta stages, where only the derivatives are used.
+
+    Two passes: :func:`_gather` finds the pairs in contact with their penetration, its rate
+    and derivatives and their stiffness (the tooth law's table k(x1), the per-tooth,
+    per-position stiffness factors); :func:`_pair_forces` applies the contact
+    law (``prm[P.contact_law]``, one call of :func:`gearcli.core.laws.pair_force` per pair;
+    the laws and their closed forms are in :mod:`gearcli.core.laws`) and adds friction.
 
     Fast paths that leave every result unchanged (tests/physics/test_kernel_fastpaths.py,
     bench/RESULTS.md): with ``sigma delta - offset + overlap <= 0`` (``model.family[f,
     F.overlap]``, derive.overlap_bound) no slot can touch and the slot loop is skipped;
     inside a table's zero run (``F.zero_lo1 .. F.zero_hi1``, and 2 for the gear) the gap and
-    its slope are exactly 0 and the table is not read; without per-tooth offsets
-    (``derived[D.tooth_offsets_used] == 0``) the tooth indices are not tracked.
-
-    Contact laws (``prm[P.contact_law]``):
-
-    * layout.LAW_IMPACT (docs/theory.md §4): F_j = max(0, k p^e + STEP(p, 0, 0, d_max, c_max)
-      pdot) in one pass; potential k p^(e+1)/(e+1).
-    * layout.LAW_TOOTH (§4b, §4c): the pair stiffness k_j = k(x1_j) is read from
-      ``model.pair_stiffness[f]`` (cubic Hermite on the gap tables' grid) and the mesh damping
-      c_m (``prm[P.mesh_damping]``) acts on the mesh deflection rate v = sigma delta' + the
-      centres' approach rate, not on the gap-closure rate, shared by the pairs in contact in
-      proportion to their elastic forces F_el,j = k_j p_j:
-      F_j = max(0, F_el,j (1 + c_m v / max(sum_i F_el,i, F_ref))), F_ref =
-      ``prm[P.damping_force_ref]`` (the static force). Loaded (sum F_el >= F_ref) the pairs
-      share c_m v, in proportion to their stiffness where their deflections are equal; at
-      light contact the damping is c_m v F_el,j / F_ref, Hunt & Crossley's form lambda p p'
-      (J. Appl. Mech. 42, 1975), so a pair's force rises from zero at first touch
-      (docs/theory.md §4c). A first pass finds the pairs in contact (``scratch``), a second
-      computes their forces.
-      Potential V_j = k_j p_j^2 / 2 with k_j depending on x1_j: the generalized forces are
-      -dV/ds, Q_s1 = -(F_j dp/ds1 + p_j^2/2 dk/dx sigma), Q_s2 = -F_j dp/ds2 (dx1/ds1 = sigma),
-      so the elastic mesh conserves energy with a position-dependent stiffness. The damping
-      part F_j - F_el,j acts along the mesh deflection (generalized forces -F_d sigma on s1,
-      +F_d sigma on s2), so its dissipation F_d v >= 0 (a pair clamped at F_j = 0: its
-      damping cancels F_el,j along p_j, dissipating -F_el,j pdot_j).
+    its slope are exactly 0 and the table is not read; without per-tooth offsets or factors
+    (``derived[D.teeth_tracked] == 0``) the tooth indices are not tracked; without factors
+    (``derived[D.tooth_factors_used] == 0``) the stiffness is not multiplied.
 
     Returns
     -------
     FlankForces
     """
-    prm = model.prm
-    derived = model.derived
     fam = model.family
-    tables = model.tables
-    tooth_offsets = model.tooth_offsets
     sigma = 1.0 if f == DRIVE_FLANKS else -1.0
     if full:
         for j in range(slot_force.shape[1]):
             slot_force[f, j] = 0.0
-    offset = fam[f, F.offset]
-    lat = app.along
-    if sigma * kin.delta + lat - offset + fam[f, F.overlap] <= 0.0:  # no slot can touch
-        return FlankForces(0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    delta = kin.delta
-    v1 = kin.v1
-    v2 = kin.v2
-    omega1 = kin.omega1
-    omega2 = kin.omega2
-    lat_rate = app.rate
-    slide = app.slide
-    e1, de1 = runout(prm[P.ecc1], fam[f, F.phase1], kin.theta1, derived[D.inv_r_b1])
-    e2, de2 = runout(prm[P.ecc2], fam[f, F.phase2], kin.theta2, derived[D.inv_r_b2])
-    g1 = table_of(f, PINION)  # gap tables, and the rows of the tooth offsets
-    g2 = table_of(f, GEAR)
-    p_b = prm[P.p_b]
-    x_lo = prm[P.x_lo]
-    x_hi = prm[P.x_hi]
-    h_grid = derived[D.grid_step]
-    inv_h = derived[D.inv_grid_step]
-    z1 = int(prm[P.z1])
-    z2 = int(prm[P.z2])
-    k = prm[P.k_contact]
-    ex = prm[P.exponent]
-    c_max = prm[P.c_max]
-    d_max = prm[P.d_max]
-    mu_s = prm[P.mu_s]
-    mu_d = prm[P.mu_d]
-    inv_e1 = derived[D.inv_exponent_plus_1]
-    tooth_law = prm[P.contact_law] == LAW_TOOTH
-    n_touch = 0  # tooth law: pairs in contact kept in the scratch
-    fel_sum = 0.0  # tooth law: their elastic force sum [N]
-    use_friction = mu_s != 0.0 or mu_d != 0.0
-    r = sigma * kin.s1 - fam[f, F.phase0]
-    nf = np.floor(r * derived[D.inv_p_b])  # a float: math.floor's int costs two conversions
-    u = r - nf * p_b
-    if u >= p_b:  # rounding of r - floor(r/p) p
-        u -= p_b
-        nf += 1.0
-    elif u < 0.0:
-        u += p_b
-        nf -= 1.0
-    n = int(nf)
-    isig = 1 if sigma > 0.0 else -1
-    q1 = 0.0
-    q2 = 0.0
-    m1f = 0.0
-    m2f = 0.0
-    f_sum = 0.0
-    n_contact = 0
-    ff_sum = 0.0
-    fpow = 0.0
-    pdamp = 0.0
-    pot = 0.0
-    pen_max = 0.0
-    # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (rhs.py docstring)
-    use_offsets = derived[D.tooth_offsets_used] != 0.0
-    use_factors = derived[D.tooth_factors_used] != 0.0
-    track = derived[D.teeth_tracked] != 0.0
-    zlo1 = fam[f, F.zero_lo1]
-    zhi1 = fam[f, F.zero_hi1]
-    zlo2 = fam[f, F.zero_lo2]
-    zhi2 = fam[f, F.zero_hi2]
-    i1 = 0
-    i2 = 0
-    if track:
-        i1 = (int(fam[f, F.tooth_k1]) + isig * n) % z1
-        i2 = (int(fam[f, F.tooth_k2]) + isig * n) % z2
-    for j in range(slot_force.shape[1]):
-        if j > 0 and track:
-            i1 -= isig
-            i2 -= isig
-            if i1 < 0:
-                i1 += z1
-            elif i1 >= z1:
-                i1 -= z1
-            if i2 < 0:
-                i2 += z2
-            elif i2 >= z2:
-                i2 -= z2
-        x1 = x_lo + u + j * p_b
-        x2 = x1 - sigma * delta
-        # x1 >= x_lo always (u >= 0); NaN fails every comparison and ends the loop
-        if not x1 <= x_hi:
-            break  # x1 grows with j: every further slot is beyond the table too
-        if not (x2 >= x_lo and x2 <= x_hi):
-            continue
-        # inside a table's zero run the Hermite cubic is exactly 0 (values and slopes 0)
-        if x1 >= zlo1 and x1 <= zhi1:
-            gap1 = 0.0
-            dgap1 = 0.0
-        else:
-            _, gap1, dgap1 = hermite(tables, g1, x_lo, x_hi, h_grid, inv_h, x1)
-        if x2 >= zlo2 and x2 <= zhi2:
-            gap2 = 0.0
-            dgap2 = 0.0
-        else:
-            _, gap2, dgap2 = hermite(tables, g2, x_lo, x_hi, h_grid, inv_h, x2)
-        pen = sigma * delta + lat - offset - gap1 - gap2 - e1 - e2
-        if use_offsets:
-            pen -= tooth_offsets[g1, i1] + tooth_offsets[g2, i2]
-        if pen <= 0.0:
-            continue
-        if pen > pen_max:
-            pen_max = pen
-        dp1 = sigma * (1.0 - dgap1) - de1  # dp/ds1 [-]
-        dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
-        pdot = dp1 * v1 + dp2 * v2 + lat_rate
-        if tooth_law:
-            # int(f): the family as a run-time int, one compiled hermite for every call
-            _, kj, dkj = hermite(model.pair_stiffness, int(f), x_lo, x_hi, h_grid, inv_h, x1)
-            if use_factors:  # this pair's teeth: the factor is constant along its path
-                fac = model.tooth_stiffness_factor[PINION, i1] \
-                    * model.tooth_stiffness_factor[GEAR, i2]
-                kj *= fac
-                dkj *= fac
-            scratch[SC.slot, n_touch] = j
-            scratch[SC.x1, n_touch] = x1
-            scratch[SC.pen, n_touch] = pen
-            scratch[SC.pdot, n_touch] = pdot
-            scratch[SC.dp1, n_touch] = dp1
-            scratch[SC.dp2, n_touch] = dp2
-            scratch[SC.k, n_touch] = kj
-            scratch[SC.dk, n_touch] = dkj
-            n_touch += 1
-            fel_sum += kj * pen
-            continue
-        force, fel = impact_force(pen, pdot, k, ex, c_max, d_max)
-        pot += fel * pen * inv_e1  # k p^(e+1)/(e+1), contact.impact_potential
-        # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0
-        pdamp += (force - fel) * pdot
-        if force <= 0.0:
-            continue
-        if full:
-            slot_force[f, j] = force
-        f_sum += force
-        n_contact += 1
-        q1 -= force * dp1
-        q2 -= force * dp2
-        if use_friction:
-            fr, fm1, fm2, fp = _friction(prm, x1, omega1, omega2, slide, force, mu_s, mu_d)
-            m1f += fm1
-            m2f -= fm2
-            ff_sum += fr
-            fpow += fp
-    if n_touch > 0:  # tooth law, second pass: damping shared by elastic force (docstring)
-        v_mesh = sigma * kin.deltadot + lat_rate  # the mesh deflection rate [mm/s]
-        # damping force per unit elastic force [-]
-        damp = prm[P.mesh_damping] * v_mesh / max(fel_sum, prm[P.damping_force_ref])
-        for m in range(n_touch):
-            pen = scratch[SC.pen, m]
-            fel = scratch[SC.k, m] * pen
-            force = max(0.0, fel + fel * damp)
-            pot += 0.5 * fel * pen
-            # the position-dependent stiffness's generalized force, dV/dx1 dx1/ds1
-            q1 -= 0.5 * pen * pen * scratch[SC.dk, m] * sigma
-            if force <= 0.0:  # clamped: the damping cancels the elastic force along p
-                pdamp -= fel * scratch[SC.pdot, m]
-                continue
-            # the damping part acts along the mesh deflection (d(sigma delta)/ds1 = sigma,
-            # /ds2 = -sigma), the coordinate whose rate it opposes: it dissipates
-            # F_d v_mesh = c_m v_mesh^2 w_j >= 0 (on the pair's own rate, which holds its gap
-            # closure under relief, extended contact or errors, it could also feed energy in)
-            fd = force - fel
-            pdamp += fd * v_mesh
-            if full:
-                slot_force[f, int(scratch[SC.slot, m])] = force
-            f_sum += force
-            n_contact += 1
-            q1 -= fel * scratch[SC.dp1, m] + fd * sigma
-            q2 -= fel * scratch[SC.dp2, m] - fd * sigma
-            if use_friction:
-                fr, fm1, fm2, fp = _friction(prm, scratch[SC.x1, m], omega1, omega2, slide,
-                                             force, mu_s, mu_d)
-                m1f += fm1
-                m2f -= fm2
-                ff_sum += fr
-                fpow += fp
+    if sigma * kin.delta + app.along - fam[f, F.offset] + fam[f, F.overlap] <= 0.0:
+        return FlankForces(0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no touch
+    n_touch, fel_sum, pen_max = _gather(f, sigma, kin, app, model, scratch)
+    # the mesh deflection rate [mm/s]
+    shared = (sigma, sigma * kin.deltadot + app.rate, fel_sum)
+    q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot = _pair_forces(
+        f, kin, app, model, shared, scratch, n_touch, slot_force, full)
     return FlankForces(q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot, pen_max)

@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from gearcli.core.layout import TABLE_GAP, TABLE_SLOPE
-from gearcli.core.nrt import jit_noalloc
+from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
 
 @jit_noalloc
@@ -96,3 +96,21 @@ def hermite_many(tables, k, x_lo, x_hi, x, value, slope):
         inside, v, s = hermite(tables, k, x_lo, x_hi, h, inv_h, x[i])
         value[i] = v if inside else math.nan
         slope[i] = s if inside else math.nan
+
+
+@jit_noalloc_inline
+def linear(table, g, i, x_lo, inv_h, x):
+    """Linear interpolation of row ``table[g, i]`` at ``x`` [mm] and its slope (the stiffness
+    factors of a tooth, docs/theory.md §4b.2): ``f_m + t (f_m+1 - f_m)`` and
+    ``(f_m+1 - f_m) / h``, ``m = floor((x - x_lo)/h)`` (clamped to the last interval),
+    ``t = (x - x_lo)/h - m``, for ``x_lo <= x <= x_lo + (n - 1) h`` (``inv_h = 1/h``
+    [1/mm], ``n = table.shape[2] >= 2``). The slope is the derivative of the interpolant
+    itself (piecewise constant), so forces derived from it are exact gradients of the
+    interpolated potential."""
+    q = (x - x_lo) * inv_h
+    m = int(q)
+    if m > table.shape[2] - 2:
+        m = table.shape[2] - 2
+    a = table[g, i, m]
+    b = table[g, i, m + 1]
+    return a + (q - m) * (b - a), (b - a) * inv_h

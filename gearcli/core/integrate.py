@@ -15,8 +15,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from gearcli.core.bundles import EMPTY_2D, EMPTY_3D, Model, Out
+from gearcli.core.bundles import EMPTY_3D, Model, Out
 from gearcli.core.derive import derive
+from gearcli.core.laws import KNOWN_LAWS
 from gearcli.core.layout import (
     COAST_FLANKS,
     COLUMN_NAMES,
@@ -26,7 +27,6 @@ from gearcli.core.layout import (
     DRIVE_SPEED,
     DRIVE_TORQUE,
     EXTREMA_NAMES,
-    LAW_IMPACT,
     LAW_TOOTH,
     LAYOUT_KEY,
     N_COLUMNS,
@@ -133,6 +133,14 @@ def chunk_ends(t_start: float, t_end: float) -> np.ndarray:
     return ends
 
 
+def _factor_table(factors) -> np.ndarray:
+    """Per-tooth stiffness factors as the kernel's table (N_GEARS, z, n_positions >= 2): a 2-D
+    array (N_GEARS, z) of factors constant along the path becomes two equal columns (linear
+    interpolation between equal values returns the value exactly, its slope is 0)."""
+    a = np.asarray(factors, dtype=np.float64)
+    return np.repeat(a[:, :, None], 2, axis=2) if a.ndim == 2 else a
+
+
 def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
                  tooth_offsets=None, **arrays) -> Model:
     """The kernel's read-only data (:class:`gearcli.core.bundles.Model`) from plain arrays,
@@ -143,6 +151,8 @@ def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
     unknown = sorted(set(arrays) - set(Model._field_defaults))
     if unknown:
         raise ValueError(f"not an optional array of the kernel model: {', '.join(unknown)}")
+    if "tooth_stiffness_factor" in arrays:  # (N_GEARS, z): constant along the path
+        arrays["tooth_stiffness_factor"] = _factor_table(arrays["tooth_stiffness_factor"])
     optional = {name: _f64(a, Model._field_defaults[name].ndim, name)
                 for name, a in arrays.items()}
     prm = _f64(params, 1, "params")
@@ -179,19 +189,23 @@ def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
     if drive_angle_pp is None:  # torque mode: unused, any valid piecewise polynomial
         drive_angle_pp = (np.zeros(0), np.zeros((1, 1)), np.zeros(1))
     law = int(prm[P.contact_law])
-    if law not in (LAW_IMPACT, LAW_TOOTH):
-        raise ValueError(f"contact_law must be {LAW_IMPACT} or {LAW_TOOTH}, got {law}")
+    if law not in KNOWN_LAWS:
+        raise ValueError(f"contact_law must be one of {KNOWN_LAWS}, got {law}")
     stiffness_shape = (N_FAMILIES, len(TABLE_ROWS), tables.shape[2])
-    if law == LAW_TOOTH and optional.get("pair_stiffness", EMPTY_3D).shape != stiffness_shape:
+    stiffness = optional.get("pair_stiffness", EMPTY_3D)
+    if (law == LAW_TOOTH or stiffness.size) and stiffness.shape != stiffness_shape:
         raise ValueError(f"the tooth law needs pair_stiffness of shape {stiffness_shape} (the gap "
                          "tables' grid)")
     derived = np.zeros(N_DERIVED)
     family = np.zeros((N_FAMILIES, N_FAMILY))
-    factors = optional.get("tooth_stiffness_factor", EMPTY_2D)
-    if factors.size and (factors.shape[0] != N_GEARS or factors.shape[1] < z_max
-                         or law != LAW_TOOTH):
-        raise ValueError(f"tooth_stiffness_factor needs the tooth law and shape ({N_GEARS}, "
-                         f">= {z_max}), got {factors.shape}")
+    factors = optional.get("tooth_stiffness_factor", EMPTY_3D)
+    if factors.shape[0] == N_GEARS:  # one flank family given: the other has the same
+        factors = optional["tooth_stiffness_factor"] = np.ascontiguousarray(
+            np.concatenate([factors] * N_FAMILIES))
+    if factors.size and (factors.shape[0] != N_TABLES or factors.shape[1] < z_max
+                         or factors.shape[2] < 2):
+        raise ValueError(f"tooth_stiffness_factor needs shape ({N_TABLES} or {N_GEARS}, "
+                         f">= {z_max}[, >= 2]), got {factors.shape}")
     derive(prm, tables, offsets, derived, family, factors)
     return Model(prm=prm.copy(), derived=derived, family=family, tables=tables,
                  tooth_offsets=offsets, drive_pp=_pp(drive_pp, "drive_pp"),
@@ -239,6 +253,11 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
         Antiderivative of ``drive_pp`` [rad] (any constant); required in speed and shaft mode.
     tooth_offsets : ndarray, shape (4 or 2, >= max(z1, z2)), optional
         Per-tooth flank offsets Ft1, Ft2[, Ft1c, Ft2c] [mm]; default zeros.
+    tooth_stiffness_factor : ndarray, shape (4 or 2, >= max(z1, z2), n >= 2), optional
+        (in ``arrays``) Stiffness factor [-] of every tooth, rows as ``tooth_offsets`` (with
+        two rows both flank families have the same), at n pinion roll positions evenly spaced
+        over [x_lo, x_hi], linearly interpolated; shape (4 or 2, >= max(z1, z2)): one factor
+        per tooth along the whole path (docs/theory.md §4b.2). Absent: no factors.
     progress : callable(t_reached, t_start, t_end), optional
         Called after every chunk (:func:`chunk_ends`) with times [s].
     **arrays : ndarray

@@ -203,8 +203,39 @@ def linearised_mesh(case: Case, geo: GeometryResult, geometric: MeshMode | None 
                                lm.zone_stiffness_N_mm(1), lm.zone_stiffness_N_mm(2))
 
 
-def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
-    """Assemble the kernel's inputs from a validated case and its checked geometry."""
+def factor_positions(tables: GapTables, n: int) -> np.ndarray:
+    """The pinion roll positions x1 [mm] of a tooth stiffness factor table with ``n`` columns:
+    ``n`` points evenly spaced over the gap tables' range [x_lo, x_hi] (docs/theory.md §4b.2)."""
+    return np.linspace(tables.x_lo, tables.x_hi, n)
+
+
+def stiffness_factor_array(factors, geo: GeometryResult) -> np.ndarray:
+    """The kernel's ``tooth_stiffness_factor`` (core.bundles.Model) from a table given by
+    the caller, checked: shape (rows, max(z1, z2), n >= 2) (columns at
+    :func:`factor_positions`) or (rows, max(z1, z2)) (constant along the path), rows 2
+    (pinion, gear; both flank families) or 4 (drive pinion, drive gear, coast pinion, coast
+    gear, as the tooth offsets); finite and >= 0 (0: the tooth carries nothing). Entries
+    beyond a gear's tooth count are not read."""
+    a = np.asarray(factors, dtype=np.float64)
+    z = max(geo.geometry.pinion.teeth, geo.geometry.gear.teeth)
+    if a.ndim not in (2, 3) or a.shape[0] not in (layout.N_GEARS, layout.N_TABLES) \
+            or a.shape[1] != z or (a.ndim == 3 and a.shape[2] < 2):
+        raise ValueError(f"tooth stiffness factors need shape ({layout.N_GEARS} or "
+                         f"{layout.N_TABLES}, {z}, n >= 2) or ({layout.N_GEARS} or "
+                         f"{layout.N_TABLES}, {z}), got {a.shape}")
+    if not np.all(np.isfinite(a)) or np.any(a < 0.0):
+        raise ValueError("tooth stiffness factors must be finite and >= 0")
+    return a
+
+
+def build_kernel_input(case: Case, geo: GeometryResult,
+                       tooth_stiffness_factor=None) -> KernelInput:
+    """Assemble the kernel's inputs from a validated case and its checked geometry.
+
+    ``tooth_stiffness_factor``: optional per-tooth, per-position stiffness factors
+    (:func:`stiffness_factor_array`; no case key yet: the fault models will set them), carried
+    to the kernel in ``arrays``. Absent, the run is the one without factors bit for bit.
+    """
     g = geo.geometry
     rb1, rb2 = g.pinion.r_b_mm, g.gear.r_b_mm
     J1, J2 = geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2
@@ -260,7 +291,10 @@ def build_kernel_input(case: Case, geo: GeometryResult) -> KernelInput:
     return KernelInput(
         params=params,
         tables=tables,
-        arrays={"tooth_offsets": offsets, **_contact_arrays(case, geo, tables)},
+        arrays={"tooth_offsets": offsets, **_contact_arrays(case, geo, tables),
+                **({} if tooth_stiffness_factor is None else {
+                    "tooth_stiffness_factor": stiffness_factor_array(tooth_stiffness_factor,
+                                                                     geo)})},
         drive_pp=drive_fn.pp.to_arrays(),
         drive_angle_pp=angle,
         load_pp=case.load.torque.pp.to_arrays(),
