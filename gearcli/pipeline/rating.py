@@ -66,7 +66,7 @@ class SimulatedLoad:
 class CaseRating:
     """The rating of a case: the ISO column, the duty cycle's damage, the simulated column."""
 
-    name: str
+    source: LoadedCase  #: the case rated
     rating_input: RatingInput  #: what was rated (engineering units)
     iso: RatingResult  #: K_v: a number or ISO 6336-1 Method B
     dynamic_factor_source: str  #: "given", "ISO 6336-1 Method B (...)"
@@ -75,6 +75,10 @@ class CaseRating:
     simulated: RatingResult | None  #: K_v (and K_γ) of the run
     simulated_peaks: dict | None  #: safeties from the run's peak stresses
     notes: tuple[str, ...]
+
+    @property
+    def name(self) -> str:
+        return self.source.name
 
     @property
     def ok(self) -> bool:
@@ -134,11 +138,12 @@ def _fatigue_limits(loaded: LoadedCase) -> list[tuple[float | None, float | None
                 missing.append(f"{role} {key}")
         out.append(limits)
     if missing:
-        raise loaded.error(("material",), "the ISO 6336 rating needs each gear's fatigue "
-                           f"limits, and these are missing: {', '.join(missing)}; expected "
-                           "material.contact_fatigue_limit and material.bending_fatigue_limit "
-                           "(shared, or per gear under gears.<gear>.material), or "
-                           "rating.<gear>.material.kind/quality/hardness (ISO 6336-5)")
+        raise CaseError(f"the ISO 6336 rating needs each gear's fatigue limits, and these "
+                        f"are missing: {', '.join(missing)}; expected "
+                        "material.contact_fatigue_limit and material.bending_fatigue_limit "
+                        "(shared, or per gear under gears.<gear>.material), or "
+                        "rating.<gear>.material.kind/quality/hardness (ISO 6336-5)",
+                        file=str(loaded.source.file), path="material")
     return out
 
 
@@ -282,7 +287,7 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
             changes["load_sharing_factor"] = simulated.load_sharing_factor
         sim = rate(dataclasses.replace(inp, **changes))
         peaks = _peaks(sim, simulated)
-    return CaseRating(loaded.name, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
+    return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
 
 
 @dataclass(frozen=True)
