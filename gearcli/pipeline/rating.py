@@ -147,6 +147,18 @@ def _fatigue_limits(loaded: LoadedCase) -> list[tuple[float | None, float | None
     return out
 
 
+def _check_proof_stress(loaded: LoadedCase) -> None:
+    """St, V, GGG, GTS need σ_0.2 for the notch sensitivity (ISO 6336-3 Y_δrelT)."""
+    from gearcli.model.iso6336.material import THROUGH_HARDENED
+
+    for role in _ROLES:
+        m = getattr(loaded.case.rating, role).material
+        if MaterialKind(m.kind) in THROUGH_HARDENED and m.proof_stress is None:
+            raise loaded.error(("rating", role, "material", "proof_stress"), f"missing: the "
+                               f"notch sensitivity of {m.kind} needs it (ISO 6336-3 Y_δrelT); "
+                               "expected the 0.2 % proof stress σ_0.2, e.g. 850 MPa")
+
+
 def _gear_input(case: Case, geo: GeometryResult, role: str, limits, f_pb_um: float) -> GearInput:
     spec, rg = getattr(case.gears, role), getattr(case.rating, role)
     gg = getattr(geo.geometry, role)
@@ -192,6 +204,7 @@ def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
     case, r = loaded.case, loaded.case.rating
     geo = geo or run_geometry(loaded)
     limits = _fatigue_limits(loaded)
+    _check_proof_stress(loaded)
     torque = _load_torque_Nmm(case)
     if not torque > 0.0:
         raise loaded.error(("load", "torque"), "the rating needs the load: the load torque is "
@@ -272,7 +285,7 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     geo = run_geometry(loaded)
     inp, source_kv, info = rating_input(loaded, geo)
     notes = []
-    if r.duty_cycle is not None and not not isinstance(r.dynamic_factor, str):
+    if r.duty_cycle is not None and isinstance(r.dynamic_factor, str):
         notes.append("duty cycle: every bin is rated with the K_v of the case's load")
     bins = _duty_bins(loaded, geo)
     try:
