@@ -271,6 +271,14 @@ def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
     return out
 
 
+def _with_kv_clause(result: RatingResult, source: str) -> RatingResult:
+    """The document with the K_v row's clause saying where K_v came from (the model writes
+    "given" for every K it is handed)."""
+    rows = tuple(dataclasses.replace(f, clause=source) if f.symbol == "K_v" else f
+                 for f in result.pair_factors)
+    return dataclasses.replace(result, pair_factors=rows)
+
+
 def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = None,
               simulated: SimulatedLoad | None = None) -> CaseRating:
     """The ISO 6336 rating of a case (module notes); ``simulated``: a run's dynamic factor
@@ -289,7 +297,7 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
         notes.append("duty cycle: every bin is rated with the K_v of the case's load")
     bins = _duty_bins(loaded, geo)
     try:
-        iso = rate(inp)
+        iso = _with_kv_clause(rate(inp), source_kv)
         damage = duty_cycle_damage(inp, bins) if bins is not None else None
     except ValueError as exc:
         raise loaded.error(("rating",), f"cannot rate this case: {exc}") from None
@@ -298,7 +306,8 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
         changes = {"dynamic_factor": simulated.dynamic_factor}
         if simulated.load_sharing_factor is not None:
             changes["load_sharing_factor"] = simulated.load_sharing_factor
-        sim = rate(dataclasses.replace(inp, **changes))
+        sim = _with_kv_clause(rate(dataclasses.replace(inp, **changes)),
+                              "simulated: the run's F_max/F_static")
         peaks = _peaks(sim, simulated)
     return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
 

@@ -201,6 +201,7 @@ def test_simulated_dynamic_factor_needs_a_run_and_takes_the_runs():
                   simulated=SimulatedLoad(1.3, sigma_H_peak_MPa=(1100.0, 1000.0)))
     assert r.iso.factor("K_v").value != 1.3  # the ISO column: Method B
     assert r.simulated.factor("K_v").value == 1.3
+    assert r.simulated.factor("K_v").clause.startswith("simulated")
     ratio = math.sqrt(r.iso.factor("K_v").value / 1.3)
     assert r.simulated.pinion.S_H == pytest.approx(r.iso.pinion.S_H * ratio, rel=1e-12)
     assert r.simulated_peaks["pinion"]["S_H"] == pytest.approx(
@@ -217,6 +218,7 @@ def test_iso_dynamic_factor_is_the_one_gearcli_mesh_prints():
     assert r.iso.factor("K_v").value == pytest.approx(mesh["iso6336_method_b"]["k_v"],
                                                       rel=1e-12)
     assert r.dynamic_factor_source.startswith("ISO 6336-1 Method B")
+    assert r.iso.factor("K_v").clause == r.dynamic_factor_source  # the table says where from
     with_ka = rate_case(ISO_PAIR, [*LIMITS, "rating.application_factor=1.5"])
     assert with_ka.iso_dynamic["line_load_N_mm"] == pytest.approx(
         1.5 * r.iso_dynamic["line_load_N_mm"], rel=1e-12)
