@@ -111,3 +111,19 @@ def test_rate_is_listed_with_an_example():
     res = runner.invoke(app, ["rate", "--help"])
     assert res.exit_code == 0 and "Example: gearcli rate" in res.output
     assert "rate" in runner.invoke(app, ["--help"]).output
+
+
+def test_duty_cycle_rows_and_their_verdict():
+    """One bin at the case's load: the sun flank's damage at S_H,min 1.25 is
+    175200/60783 h = 2.88 > 1 (fail), the roots' 0; with S_H,min 1.2 (below the sun's S_H
+    1.21) the flank's life at S_H,min is infinite and every damage 0 (pass)."""
+    bins = "rating.duty_cycle=[{torque: 108070.365564, speed: 246.77511, time_share: 1}]"
+    res = runner.invoke(app, ["rate", NREL, "--set", bins])
+    assert res.exit_code == 4, res.output
+    assert "duty-cycle damage" in res.output and "2.8824" in res.output
+    doc = json.loads(runner.invoke(app, ["rate", NREL, "--set", bins, "--json"]).output)
+    assert doc["duty_cycle"]["gear"]["bending"] == 0.0
+    assert f"{doc['duty_cycle']['pinion']['pitting']:.2f}" == "2.88"
+    ok = runner.invoke(app, ["rate", NREL, "--set", bins, "--set",
+                             "rating.minimum_safety.pitting=1.2", "--json"])
+    assert ok.exit_code == 0 and json.loads(ok.output)["duty_cycle"]["pinion"]["pitting"] == 0
