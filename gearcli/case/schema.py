@@ -17,6 +17,7 @@ from gearcli.case.schema_drive import Bearing, Bearings, Drive, Load, MotorCurve
 from gearcli.case.schema_gears import Gear, Gears, InertiaSpec, Material, Rack, Teeth
 from gearcli.case.schema_mesh import IMPACT_KEYS, TOOTH_KEYS, Contact, Friction
 from gearcli.case.schema_mods import Errors, Modifications, PitchDeviation, Relief, Runout
+from gearcli.case.schema_rating import Rating
 from gearcli.case.section import Coefficient, FieldError, Section, pair, raise_all
 from gearcli.case.types import Frequency, Length, Time, qfield, unit_system
 
@@ -99,6 +100,7 @@ class Case(Section):
     errors: Errors = Field(default_factory=Errors)
     run: Run
     checks: Checks = Field(default_factory=Checks)
+    rating: Rating = Field(default_factory=Rating, description="ISO 6336 rating (gearcli rate)")
 
     @model_validator(mode="wrap")
     @classmethod

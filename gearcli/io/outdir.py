@@ -39,15 +39,15 @@ MARKER = "manifest.json"
 
 #: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py),
 #: analyze (analysis_io.ANALYSIS_FILES), stress (stress.STRESS_FILES), report, mesh -o
-#: (pipeline/mesh.py) and speed-curve studies (pipeline/speed_curve.py). With ``force`` these
-#: go with the earlier results and everything else moves into the new folder;
+#: (pipeline/mesh.py), rate -o (cli/rate.py) and speed-curve studies (pipeline/speed_curve.py).
+#: With ``force`` these go with the earlier results and everything else moves into the new folder;
 #: tests/cli/test_force_keeps_user_files.py checks the list against what the commands write
 #: (a name missing here would only be moved over, stale, never lost).
 RESULT_NAMES = frozenset({
     MARKER, "summary.json", "timeseries.csv", "timeseries.parquet", "zoom.csv",
     "analysis.json", "spectrum.csv", "harmonics.csv", "stress.csv", "stress.json",
     "report.html", "report.md", "figures", "mesh.json", "mesh.csv", "mesh.png",
-    "summary.csv", "speed_curve.json", "speed_curve.png",
+    "summary.csv", "speed_curve.json", "speed_curve.png", "rating.json",
 })
 
 

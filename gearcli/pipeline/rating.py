@@ -1,0 +1,349 @@
+"""`gearcli rate`: the ISO 6336 Method B rating of a case's pair (docs/theory.md, "ISO 6336
+rating"), and the inspection dimensions of its gears.
+
+typed case (+ its checked geometry, pipeline.geometry) → :class:`RatingInput` →
+:func:`gearcli.model.iso6336.rate.rate` (the ISO column) and, with a ``rating.duty_cycle``,
+:func:`gearcli.model.iso6336.spectrum.duty_cycle_damage` (ISO 6336-6).
+
+The load is the case's: the load torque at the end of its ramps on the body ``load.applied_to``
+(per mesh path: a planet's share) and the pinion speed of the drive (``drive.speed`` final
+value or ``drive.reference_speed``), relative to the carrier where there is one. Their pinion
+torque is T1 = F_n r_b1 with F_n = T_load / r_b(loaded body) (the normal force of the
+quasi-static mesh, docs/theory.md §7.3), so F_t = 2000 T1/d1 = F_n cos α.
+
+K_v: ``rating.dynamic_factor`` a number as given; ``iso`` ISO 6336-1 Method B as `gearcli
+mesh` computes it (pipeline.mesh_input.iso_dynamic, gearcli/model/iso_kv.py) with the line load
+F_t K_A/b; ``simulated`` needs a run's dynamic factor (:class:`SimulatedLoad`, passed by the
+caller that has a run): without one it is an error, the ISO column then takes Method B.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+from gearcli.case.load import LoadedCase, load_case
+from gearcli.case.schema import Case
+from gearcli.errors import CaseError
+from gearcli.model.iso6336.common import Edition
+from gearcli.model.iso6336.document import RatingResult
+from gearcli.model.iso6336.inputs import GearInput, RatingInput
+from gearcli.model.iso6336.inspection import InspectionDimensions, inspection_dimensions
+from gearcli.model.iso6336.material import MaterialKind, Quality
+from gearcli.model.iso6336.rate import rate
+from gearcli.model.iso6336.spectrum import DutyCycleDamage, LoadBin, duty_cycle_damage
+from gearcli.pipeline.geometry import GeometryResult, run_geometry
+
+__all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
+           "case_inspection", "RPM_PER_RAD_S"]
+
+RPM_PER_RAD_S = 30.0 / math.pi
+_ROLES = ("pinion", "gear")
+
+
+@dataclass(frozen=True)
+class SimulatedLoad:
+    """What a simulation run gives the rating (passed by the caller that has the run).
+
+    ``dynamic_factor`` the run's max F / F_static [-] replaces K_v; ``load_sharing_factor``,
+    when given, K_γ; ``sigma_H_peak_MPa``, ``sigma_F_peak_MPa`` (pinion, gear) the peak dynamic
+    contact and root stresses of `gearcli stress` [N/mm²], each rated against the ISO strength
+    σ_HG, σ_FG at the required life (S = σ_G/σ_peak)."""
+
+    dynamic_factor: float
+    load_sharing_factor: float | None = None
+    sigma_H_peak_MPa: tuple[float, float] | None = None
+    sigma_F_peak_MPa: tuple[float, float] | None = None
+
+    def __post_init__(self):
+        if not self.dynamic_factor > 0.0:
+            raise ValueError(f"dynamic_factor must be > 0, got {self.dynamic_factor!r}")
+
+
+@dataclass(frozen=True)
+class CaseRating:
+    """The rating of a case: the ISO column, the duty cycle's damage, the simulated column."""
+
+    source: LoadedCase  #: the case rated
+    rating_input: RatingInput  #: what was rated (engineering units)
+    iso: RatingResult  #: K_v: a number or ISO 6336-1 Method B
+    dynamic_factor_source: str  #: "given", "ISO 6336-1 Method B (...)"
+    iso_dynamic: dict | None  #: Method B data when K_v is 'iso' (resonance ratio, range)
+    duty_cycle: DutyCycleDamage | None
+    simulated: RatingResult | None  #: K_v (and K_γ) of the run
+    simulated_peaks: dict | None  #: safeties from the run's peak stresses
+    notes: tuple[str, ...]
+
+    @property
+    def name(self) -> str:
+        return self.source.name
+
+    @property
+    def ok(self) -> bool:
+        """Every safety at or above its minimum (both columns), every damage ≤ 1."""
+        ok = self.iso.ok and (self.simulated is None or self.simulated.ok)
+        if self.duty_cycle is not None:
+            d = self.duty_cycle
+            ok = ok and all(x <= 1.0 for g in (d.pinion, d.gear) for x in (g.pitting, g.bending))
+        return ok
+
+    def to_dict(self) -> dict:
+        from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+
+        inp = self.rating_input
+        return {
+            "schema_version": RESULTS_SCHEMA_VERSION, "case": self.name,
+            "method": "ISO 6336 Method B", "edition": self.iso.edition,
+            "verdict": "pass" if self.ok else "fail",
+            "load": {"pinion_torque_Nm": inp.pinion_torque_Nm,
+                     "pinion_speed_rpm": inp.pinion_speed_rpm, "life_h": inp.life_h,
+                     "dynamic_factor_source": self.dynamic_factor_source,
+                     "iso_dynamic": self.iso_dynamic},
+            "iso": self.iso.to_dict(),
+            "duty_cycle": None if self.duty_cycle is None else self.duty_cycle.to_dict(),
+            "simulated": None if self.simulated is None else {
+                **self.simulated.to_dict(), "peaks": self.simulated_peaks},
+            "notes": list(self.notes),
+        }
+
+
+def _load_torque_Nmm(case: Case) -> float:
+    """The load torque at the end of its ramps [N·mm] (as pipeline.mesh_input's static force)."""
+    pp = case.load.torque.pp
+    final = pp.final_value()
+    return float(final if final is not None else pp(case.run.end_time))
+
+
+def _pinion_torque_Nm(case: Case, geo: GeometryResult, load_torque_Nmm: float) -> float:
+    """T1 [N·m] of a load torque [N·mm] on the body load.applied_to (module notes)."""
+    g = geo.geometry
+    r_loaded = g.gear.r_b_mm if case.load.applied_to == "gear" else g.pinion.r_b_mm
+    return load_torque_Nmm / r_loaded * g.pinion.r_b_mm / 1000.0
+
+
+def _fatigue_limits(loaded: LoadedCase) -> list[tuple[float | None, float | None]]:
+    """(σ_Hlim, σ_Flim) given per gear (its material, else the case's); a CaseError naming
+    what is missing when neither they nor an ISO 6336-5 hardness are given."""
+    case = loaded.case
+    out, missing = [], []
+    for role in _ROLES:
+        mat = getattr(case.gears, role).material or case.material
+        hard = getattr(case.rating, role).material.hardness
+        limits = (mat.contact_fatigue_limit, mat.bending_fatigue_limit)
+        for key, value in zip(("contact_fatigue_limit", "bending_fatigue_limit"), limits,
+                              strict=True):
+            if value is None and hard is None:
+                missing.append(f"{role} {key}")
+        out.append(limits)
+    if missing:
+        raise CaseError(f"the ISO 6336 rating needs each gear's fatigue limits, and these "
+                        f"are missing: {', '.join(missing)}; expected "
+                        "material.contact_fatigue_limit and material.bending_fatigue_limit "
+                        "(shared, or per gear under gears.<gear>.material), or "
+                        "rating.<gear>.material.kind/quality/hardness (ISO 6336-5)",
+                        file=str(loaded.source.file), path="material")
+    return out
+
+
+def _check_proof_stress(loaded: LoadedCase) -> None:
+    """St, V, GGG, GTS need σ_0.2 for the notch sensitivity (ISO 6336-3 Y_δrelT)."""
+    from gearcli.model.iso6336.material import THROUGH_HARDENED
+
+    for role in _ROLES:
+        m = getattr(loaded.case.rating, role).material
+        if MaterialKind(m.kind) in THROUGH_HARDENED and m.proof_stress is None:
+            raise loaded.error(("rating", role, "material", "proof_stress"), f"missing: the "
+                               f"notch sensitivity of {m.kind} needs it (ISO 6336-3 Y_δrelT); "
+                               "expected the 0.2 % proof stress σ_0.2, e.g. 850 MPa")
+
+
+def _gear_input(case: Case, geo: GeometryResult, role: str, limits, f_pb_um: float) -> GearInput:
+    spec, rg = getattr(case.gears, role), getattr(case.rating, role)
+    gg = getattr(geo.geometry, role)
+    mat = spec.material or case.material
+    allow = rg.thickness_allowances or (-spec.thickness_allowance, -spec.thickness_allowance)
+    own_fpb = rg.base_pitch_deviation
+    return GearInput(
+        teeth=spec.teeth, face_width_mm=gg.face_width_mm, profile_shift=spec.profile_shift,
+        tip_diameter_mm=gg.d_a_mm, material=MaterialKind(rg.material.kind),
+        quality=Quality(rg.material.quality), surface_hardness=rg.material.hardness,
+        sigma_h_lim_MPa=limits[0], sigma_f_lim_MPa=limits[1], youngs_MPa=mat.youngs_modulus,
+        poisson=mat.poisson_ratio, proof_stress_MPa=rg.material.proof_stress,
+        flank_roughness_rz_um=1e3 * rg.roughness.flank,
+        root_roughness_rz_um=1e3 * rg.roughness.root,
+        base_pitch_deviation_um=f_pb_um if own_fpb is None else 1e3 * own_fpb,
+        accuracy_grade=rg.accuracy_grade, rim_thickness_mm=rg.rim_thickness, idler=rg.idler,
+        contacts_per_revolution=rg.contacts_per_revolution,
+        thickness_allowances_mm=(float(allow[0]), float(allow[1])),
+        ball_diameter_mm=rg.ball_diameter)
+
+
+def _iso_kv(iso: dict, speed_rpm: float, k_a: float) -> tuple[float, dict]:
+    """K_v by ISO 6336-1 Method B at the pinion speed with the line load F_t K_A/b."""
+    from gearcli.model.iso_kv import dynamic_factor
+    from gearcli.pipeline.mesh_input import KV_KEYS
+
+    args = {k: iso[k] for k in KV_KEYS}
+    args["line_load_N_mm"] = iso["line_load_N_mm"] * k_a
+    ratio = speed_rpm / iso["resonance_speed_rpm"]
+    kv = dynamic_factor(ratio, **args)
+    info = {"resonance_speed_rpm": iso["resonance_speed_rpm"], "resonance_ratio": ratio,
+            "speed_range": str(kv.range_name), "line_load_N_mm": args["line_load_N_mm"],
+            "c_prime_N_mm_um": iso["c_prime_N_mm_um"], "f_pb_eff_um": iso["f_pb_eff_um"],
+            "tip_relief_um": iso["tip_relief_um"], "k_v": float(kv.k_v)}
+    return float(kv.k_v), info
+
+
+def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
+                 ) -> tuple[RatingInput, str, dict | None]:
+    """(the RatingInput of the case, the source of its K_v, the Method B data or None)."""
+    from gearcli.pipeline.mesh_input import iso_dynamic
+
+    case, r = loaded.case, loaded.case.rating
+    geo = geo or run_geometry(loaded)
+    limits = _fatigue_limits(loaded)
+    _check_proof_stress(loaded)
+    torque = _load_torque_Nmm(case)
+    if not torque > 0.0:
+        raise loaded.error(("load", "torque"), "the rating needs the load: the load torque is "
+                           "zero; expected a load torque > 0")
+    if not geo.pinion_speed_rad_s:
+        raise loaded.error(("drive",), "the rating needs the pinion speed; expected "
+                           "drive.speed (or drive.reference_speed with a torque drive) > 0")
+    speed_rpm = abs(geo.pinion_speed_rad_s) * RPM_PER_RAD_S
+    iso = iso_dynamic(case, geo)
+    if not isinstance(r.dynamic_factor, str):
+        k_v, source, info = r.dynamic_factor, "given", None
+    else:
+        k_v, info = _iso_kv(iso, speed_rpm, r.application_factor)
+        source = f"ISO 6336-1 Method B ({info['speed_range']}, N = {info['resonance_ratio']:.3g})"
+    gears = [_gear_input(case, geo, role, lim, iso["f_pb_eff_um"])
+             for role, lim in zip(_ROLES, limits, strict=True)]
+    g, rack = geo.geometry, case.gears.rack
+    try:
+        inp = RatingInput(
+            module_mm=g.module_mm, pinion=gears[0], gear=gears[1],
+            pinion_torque_Nm=_pinion_torque_Nm(case, geo, torque), pinion_speed_rpm=speed_rpm,
+            life_h=r.life / 3600.0, pressure_angle_deg=math.degrees(g.pressure_angle_rad),
+            centre_distance_mm=g.a_w_mm, addendum_coefficient=rack.addendum,
+            dedendum_coefficient=rack.dedendum, root_radius_coefficient=rack.root_radius,
+            application_factor=r.application_factor, load_sharing_factor=r.load_sharing_factor,
+            dynamic_factor=k_v, face_load_factor=r.face_load_factor,
+            transverse_load_factor=r.transverse_load_factor,
+            mesh_stiffness_N_mm_um=(r.mesh_stiffness if r.mesh_stiffness is not None
+                                    else iso["c_gamma_alpha_N_mm_um"]),
+            shaft_misalignment_um=1e3 * r.shaft_misalignment,
+            manufacturing_misalignment_um=1e3 * r.manufacturing_misalignment,
+            viscosity_40_mm2_s=r.lubricant.viscosity_40,
+            minimum_safety_pitting=r.minimum_safety.pitting,
+            minimum_safety_bending=r.minimum_safety.bending,
+            pitting_permitted=r.pitting_permitted, optimum_long_life=r.optimum_long_life,
+            edition=Edition(str(r.edition)))
+    except ValueError as exc:
+        raise loaded.error(("rating",), f"cannot rate this case: {exc}") from None
+    return inp, source, info
+
+
+def _duty_bins(loaded: LoadedCase, geo: GeometryResult) -> list[LoadBin] | None:
+    bins = loaded.case.rating.duty_cycle
+    if bins is None:
+        return None
+    return [LoadBin(_pinion_torque_Nm(loaded.case, geo, b.torque),
+                    b.speed * RPM_PER_RAD_S, b.time_share) for b in bins]
+
+
+def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
+    """Safeties of the run's peak stresses against the ISO strengths at the required life."""
+    if sim.sigma_H_peak_MPa is None and sim.sigma_F_peak_MPa is None:
+        return None
+    out = {}
+    for i, g in enumerate((result.pinion, result.gear)):
+        row = {}
+        if sim.sigma_H_peak_MPa is not None:
+            s = sim.sigma_H_peak_MPa[i]
+            row.update(sigma_H_peak_MPa=s, S_H=g.sigma_HG_MPa / s, S_H_min=g.S_H_min)
+        if sim.sigma_F_peak_MPa is not None:
+            s = sim.sigma_F_peak_MPa[i]
+            row.update(sigma_F_peak_MPa=s, S_F=g.sigma_FG_MPa / s, S_F_min=g.S_F_min)
+        out[g.name] = row
+    return out
+
+
+def _with_kv_clause(result: RatingResult, source: str) -> RatingResult:
+    """The document with the K_v row's clause saying where K_v came from (the model writes
+    "given" for every K it is handed)."""
+    rows = tuple(dataclasses.replace(f, clause=source) if f.symbol == "K_v" else f
+                 for f in result.pair_factors)
+    return dataclasses.replace(result, pair_factors=rows)
+
+
+def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = None,
+              simulated: SimulatedLoad | None = None) -> CaseRating:
+    """The ISO 6336 rating of a case (module notes); ``simulated``: a run's dynamic factor
+    (and stress peaks) for the simulated column."""
+    loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
+    r = loaded.case.rating
+    if r.dynamic_factor == "simulated" and simulated is None:
+        raise loaded.error(("rating", "dynamic_factor"), "'simulated' takes K_v from a "
+                           "simulation run, and `gearcli rate` rates the case alone; expected "
+                           "'iso' or a number here (the simulated rating comes with a run)",
+                           "simulated", True)
+    geo = run_geometry(loaded)
+    inp, source_kv, info = rating_input(loaded, geo)
+    notes = []
+    if r.duty_cycle is not None and isinstance(r.dynamic_factor, str):
+        notes.append("duty cycle: every bin is rated with the K_v of the case's load")
+    bins = _duty_bins(loaded, geo)
+    try:
+        iso = _with_kv_clause(rate(inp), source_kv)
+        damage = duty_cycle_damage(inp, bins) if bins is not None else None
+    except ValueError as exc:
+        raise loaded.error(("rating",), f"cannot rate this case: {exc}") from None
+    sim = peaks = None
+    if simulated is not None:
+        changes = {"dynamic_factor": simulated.dynamic_factor}
+        if simulated.load_sharing_factor is not None:
+            changes["load_sharing_factor"] = simulated.load_sharing_factor
+        sim = _with_kv_clause(rate(dataclasses.replace(inp, **changes)),
+                              "simulated: the run's F_max/F_static")
+        peaks = _peaks(sim, simulated)
+    return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
+
+
+@dataclass(frozen=True)
+class PairInspection:
+    """Inspection dimensions of both gears (tuples: nominal, upper, lower allowance) [mm]."""
+
+    pinion: InspectionDimensions
+    gear: InspectionDimensions
+    allowances_mm: tuple[tuple[float, float], tuple[float, float]]  #: (upper, lower) per gear
+
+    def to_dict(self) -> dict:
+        return {"pinion": {**self.pinion.to_dict(),
+                           "thickness_allowances_mm": list(self.allowances_mm[0])},
+                "gear": {**self.gear.to_dict(),
+                         "thickness_allowances_mm": list(self.allowances_mm[1])}}
+
+
+def case_inspection(source: str | Path | LoadedCase, geo: GeometryResult | None = None,
+                    overrides: list[str] | None = None) -> PairInspection:
+    """Span W_k, balls (theoretical, next standard or rating.<gear>.ball_diameter), M_dK and
+    chordal tooth thickness/height of both gears at the nominal thickness and at the
+    allowances rating.<gear>.thickness_allowances (default: both −gears.<gear>.
+    thickness_allowance); docs/theory.md, "ISO 6336 rating" §6."""
+    loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
+    case = loaded.case
+    geo = geo or run_geometry(loaded)
+    g = geo.geometry
+    out, allowances = [], []
+    for role in _ROLES:
+        spec, rg, gg = getattr(case.gears, role), getattr(case.rating, role), getattr(g, role)
+        allow = rg.thickness_allowances or (-spec.thickness_allowance, -spec.thickness_allowance)
+        allow = (float(allow[0]), float(allow[1]))
+        allowances.append(allow)
+        out.append(inspection_dimensions(spec.teeth, spec.profile_shift, g.module_mm,
+                                         g.pressure_angle_rad, gg.d_a_mm, allow,
+                                         rg.ball_diameter))
+    return PairInspection(out[0], out[1], (allowances[0], allowances[1]))
