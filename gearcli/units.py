@@ -81,6 +81,51 @@ QUADRATIC_DAMPING = Dim(
 MOTOR_SLOPE = Dim("motor-curve slope", "N*mm*s/rad", "N*mm*s/rad", "'2 N*m*s/rad'", True)
 
 
+#: Unit systems of bare numbers in a case file (its ``units:`` key), by quantity (``Dim.name``):
+#: the unit a bare number is in and its factor to the internal unit (pint's factor, bit for
+#: bit: tests/unit/test_case_units.py compares them). A quantity a system does not list keeps
+#: its Dim's default. "adams" is the default: Adams MMKS with degrees (mm, N*mm, kg, deg, deg/s).
+#: "engineering": rpm, N*m and kg*m^2 at the shafts, kg/m^3; mm, MPa, deg, Hz, s stay.
+#: "si": the coherent SI units (m, rad, rad/s, N*m, kg/m^3, kg*m^2, N/m, ...). Stresses and
+#: moduli stay in MPa in every system (ISO 6336's unit, as in the display units of
+#: gearcli/display_units.py: 1500 meaning Pa would be a silent slip of 1e6), and the Adams
+#: contact stiffness k [N/mm^e] keeps its unit.
+#: Shaft quantities in N*m (both named systems).
+_N_M = {
+    "torque": ("N*m", 1000.0),
+    "density": ("kg/m^3", 1.0000000000000002e-12),
+    "polar moment of inertia": ("kg*m^2", 1000.0),
+    "torsional stiffness": ("N*m/rad", 1000.0),
+    "torsional damping": ("N*m*s/rad", 1000.0),
+    "quadratic torque coefficient": ("N*m*s^2/rad^2", 1000.0),
+    "motor-curve slope": ("N*m*s/rad", 1000.0),
+}
+UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
+    "adams": {},
+    "engineering": {"angular velocity": ("rpm", 0.10471975511965977), **_N_M},  # 2 pi / 60
+    "si": {
+        "length": ("m", 1000.0),
+        "angle": ("rad", 1.0),
+        "angular velocity": ("rad/s", 1.0),
+        "velocity": ("m/s", 1000.0),
+        "stiffness": ("N/m", 0.001),
+        "damping": ("N*s/m", 0.001),
+        **_N_M,
+    },
+}
+
+
+@functools.cache
+def in_system(dim: Dim, system: str | None) -> Dim:
+    """``dim`` with the default unit (and factor) of bare numbers in unit ``system`` (a key of
+    :data:`UNIT_SYSTEMS`; None: the default, "adams")."""
+    unit, factor = UNIT_SYSTEMS.get(system or "adams", {}).get(dim.name, (dim.default,
+                                                                           dim.factor))
+    if unit == dim.default:
+        return dim
+    return Dim(dim.name, unit, dim.internal, dim.example, dim.angular, factor)
+
+
 def contact_stiffness_dim(exponent: float) -> Dim:
     """Dimension of the Adams IMPACT stiffness k for force exponent e: N/mm^e."""
     e = f"{exponent:g}"
@@ -113,9 +158,8 @@ def parse_quantity(value: object, dim: Dim) -> float:
     ------
     UnitError : unparseable, wrong dimension, non-finite
     """
-    expected = (
-        f"a {dim.name} as a number in {dim.default} or a string with units, e.g. {dim.example}"
-    )
+    expected = (f"{article(dim.name)} {dim.name} as a number in {dim.default} or a string "
+                f"with units, e.g. {dim.example}")
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise UnitError(f"expected {expected}")
     if isinstance(value, int | float):
@@ -133,7 +177,7 @@ def parse_quantity(value: object, dim: Dim) -> float:
     own = own_unit_quantity(text, dim)
     if own is not None:
         if not math.isfinite(own):
-            raise UnitError(f"expected a finite {dim.name}")
+            raise UnitError(f"expected {article(dim.name)} finite {dim.name}")
         return own
     ureg = registry()
     try:
@@ -149,10 +193,11 @@ def parse_quantity(value: object, dim: Dim) -> float:
         out = float(q.to(dim.internal).magnitude)
     except Exception:
         raise UnitError(
-            f"wrong dimension: '{q.units:~}' is not a {dim.name}; expected {expected}"
+            f"wrong dimension: '{q.units:~}' is not {article(dim.name)} {dim.name}; "
+            f"expected {expected}"
         ) from None
     if not math.isfinite(out):
-        raise UnitError(f"expected a finite {dim.name}")
+        raise UnitError(f"expected {article(dim.name)} finite {dim.name}")
     return out
 
 
@@ -206,7 +251,13 @@ def default_to_internal(number: float, dim: Dim) -> float:
 def _refuse_cycles(text: str, dim: Dim) -> None:
     """pint treats Hz as 1/s = rad/s; for angular quantities that silently loses 2π."""
     if dim.angular and any(tok in text for tok in ("Hz", "hertz")):
-        raise UnitError(f"'Hz' is ambiguous for a {dim.name}; write rev/s, rpm, deg/s or rad/s")
+        raise UnitError(f"'Hz' is ambiguous for {article(dim.name)} {dim.name}; expected rev/s, "
+                        "rpm, deg/s or rad/s")
+
+
+def article(noun: str) -> str:
+    """'a' or 'an' before ``noun`` (by its first letter: "an angular velocity")."""
+    return "an" if noun[:1].lower() in "aeiou" else "a"
 
 
 def format_internal(value: float, dim: Dim) -> str:

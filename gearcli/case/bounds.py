@@ -14,6 +14,7 @@ from collections.abc import Iterator
 
 from pydantic import BaseModel
 
+from gearcli import units
 from gearcli.case.types import TimeFunction
 from gearcli.units import Dim
 
@@ -44,23 +45,27 @@ COUNT_LIMITS = {"teeth": 10_000}
 INT_LIMIT = 2**63 - 1
 
 
-def magnitude_errors(case: BaseModel) -> Iterator[tuple[tuple, object, str]]:
-    """(key path, value, message) of every value beyond its plausible magnitude."""
-    yield from _walk(case, ())
+def magnitude_errors(case: BaseModel, system: str | None = None
+                     ) -> Iterator[tuple[tuple, object, str]]:
+    """(key path, value, message) of every value beyond its plausible magnitude; limits are
+    shown in the unit of bare numbers in unit ``system`` (the case's ``units:``)."""
+    yield from _walk(case, (), system)
 
 
-def _walk(model: BaseModel, loc: tuple) -> Iterator[tuple[tuple, object, str]]:
+def _walk(model: BaseModel, loc: tuple, system) -> Iterator[tuple[tuple, object, str]]:
     for name, field in type(model).model_fields.items():
         value = getattr(model, name)
-        yield from _check(value, (*loc, name), name, _dim_of(field), model)
+        dim = _dim_of(field)
+        yield from _check(value, (*loc, name), name,
+                          units.in_system(dim, system) if dim else None, system)
 
 
-def _check(value, loc, name, dim, parent) -> Iterator[tuple[tuple, object, str]]:
+def _check(value, loc, name, dim, system) -> Iterator[tuple[tuple, object, str]]:
     if isinstance(value, BaseModel):
-        yield from _walk(value, loc)
+        yield from _walk(value, loc, system)
     elif isinstance(value, list | tuple):
         for i, item in enumerate(value):
-            yield from _check(item, (*loc, i), name, dim, parent)
+            yield from _check(item, (*loc, i), name, dim, system)
     elif isinstance(value, bool) or value is None or isinstance(value, str):
         return
     elif isinstance(value, int):
@@ -76,9 +81,10 @@ def _check(value, loc, name, dim, parent) -> Iterator[tuple[tuple, object, str]]
             yield loc, value, (f"expected a {label} of at least {shown} (no gear material is "
                                "lighter or softer)")
     elif isinstance(value, TimeFunction):
-        if not _function_peak(value) <= _limit(value.dim):
-            yield loc, None, (f"reaches {_shown(_function_peak(value), value.dim)}; "
-                              + _message(value.dim))
+        shown = dim or value.dim  # the field's unit of bare numbers
+        if not _function_peak(value) <= _limit(shown):
+            yield loc, None, (f"reaches {_shown(_function_peak(value), shown)}; "
+                              + _message(shown))
 
 
 def _function_peak(fn: TimeFunction) -> float:

@@ -1,7 +1,8 @@
 """Load a case file: YAML -> validated :class:`~gearcli.case.schema.Case`, errors located.
 
 Every failure is a :class:`~gearcli.errors.CaseError` formatted as
-``FILE:LINE: key.path: got VALUE; expected ...`` plus the offending YAML line.
+``FILE:LINE: key.path: got VALUE; PROBLEM; expected ALLOWED`` plus the offending YAML line;
+all errors of a file are reported together (:class:`CaseErrors`, one line each).
 """
 
 from __future__ import annotations
@@ -12,10 +13,12 @@ from pathlib import Path
 
 from pydantic import ValidationError
 
+from gearcli import units
 from gearcli.case.bounds import magnitude_errors
 from gearcli.case.keypaths import allowed_keys, field_at
 from gearcli.case.overrides import apply_overrides
-from gearcli.case.schema import Case, FieldError
+from gearcli.case.schema import Case
+from gearcli.case.section import FieldError, FieldErrors, compose
 from gearcli.case.yamlsrc import Loc, Source, parse_source, read_source
 from gearcli.errors import CaseError
 
@@ -34,8 +37,7 @@ class LoadedCase:
     def error_at(self, loc: Loc, message: str):
         """:meth:`error` quoting the value as written at ``loc`` (none for a section or a
         list): for checks of the validated case that point back at the YAML."""
-        value, has_value = _raw_value(self.source.data, loc)
-        return self.error(loc, message, value, has_value and not isinstance(value, dict | list))
+        return self.error(loc, message, *_shown_value(self.source.data, loc))
 
 
 def load_case(path: str | Path, overrides: list[str] | None = None) -> LoadedCase:
@@ -59,35 +61,90 @@ def load_case_text(text: str, name: str = "<case>") -> LoadedCase:
 
 
 def validate_source(src: Source, stem: str) -> LoadedCase:
+    """Validate the parsed case; every error of the file is reported at once
+    (:class:`CaseErrors`), each naming its line, key, value and what is allowed."""
     try:
         case = Case.model_validate(src.data)
     except ValidationError as exc:
-        raise _first_error(exc, src) from None
-    for loc, _, message in magnitude_errors(case):
-        value, has_value = _raw_value(src.data, loc)
-        raise src.error(loc, message, value, has_value and not isinstance(value, dict | list))
+        raise CaseErrors.of(_schema_errors(exc, src)) from None
+    found = [src.error(loc, message, *_shown_value(src.data, loc))
+             for loc, _, message in magnitude_errors(case, case.units)]
+    if found:
+        raise CaseErrors.of(found)
     return LoadedCase(case, src, case.name or stem)
 
 
-def _first_error(exc: ValidationError, src: Source) -> CaseError:
-    """The first (by line) validation error as a located CaseError, with a count of the rest."""
-    errors = []
+class CaseErrors(CaseError):
+    """Every error of one case file, in the order of their lines: one line each
+    (``FILE:LINE: key: got VALUE; ... expected ...``), without the quoted YAML lines. Its
+    ``file``, ``line``, ``path``, ... are the first error's; ``errors`` holds them all."""
+
+    #: At most this many errors are listed; the rest are counted.
+    MAX_SHOWN = 25
+
+    def __init__(self, errors: list[CaseError]) -> None:
+        self.errors = errors
+        first = errors[0]
+        super().__init__(first.message, file=first.file, line=first.line, path=first.path,
+                         value=first.value, has_value=first.has_value,
+                         source_line=first.source_line)
+
+    @staticmethod
+    def of(errors: list[CaseError]) -> CaseError:
+        """One error as itself (with its YAML line), several as a :class:`CaseErrors`."""
+        return errors[0] if len(errors) == 1 else CaseErrors(errors)
+
+    def format(self) -> str:
+        lines = [CaseError(e.message, file=e.file, line=e.line, path=e.path, value=e.value,
+                           has_value=e.has_value).format() for e in self.errors[:self.MAX_SHOWN]]
+        rest = len(self.errors) - self.MAX_SHOWN
+        if rest > 0:
+            lines.append(f"... and {rest} more error{'s' if rest > 1 else ''}")
+        return "\n".join(lines)
+
+
+def _schema_errors(exc: ValidationError, src: Source) -> list[CaseError]:
+    """Every validation error, located, one per key, by line; a missing key that an unknown
+    key of the same section (a typo, with its did-you-mean) explains is left out."""
+    found: dict[Loc, tuple] = {}
     for err in exc.errors():
         loc = data_loc(tuple(err["loc"]), src.data)
         cause = err.get("ctx", {}).get("error")
-        if isinstance(cause, FieldError):
-            loc = (*loc, *cause.loc)
-        missing = err["type"] == "missing"  # an unknown key (a typo) explains a missing one
+        parts = cause.errors if isinstance(cause, FieldErrors) else [cause]
+        for part in parts:
+            where = (*loc, *part.loc) if isinstance(part, FieldError) else loc
+            found.setdefault(where, (err, part))  # a union's branches: the first one's
+    typos = {(loc[:-1], close) for loc, (err, _) in found.items()
+             if err["type"] == "extra_forbidden" for close in _close_keys(loc)}
+    errors = []
+    for loc, (err, cause) in found.items():
+        missing = err["type"] == "missing" or (isinstance(cause, FieldError)
+                                                and cause.problem.startswith("missing"))
+        if missing and (loc[:-1], loc[-1]) in typos:
+            continue
         errors.append((missing, src.line_of(loc) or 0, loc, err, cause))
     errors.sort(key=lambda e: e[:2])
-    _, line, loc, err, cause = errors[0]
-    message = _message(err, cause, loc)
-    if len(errors) > 1:
-        message += f" (+{len(errors) - 1} more error{'s' if len(errors) > 2 else ''})"
-    value, has_value = _raw_value(src.data, loc)
-    if err["type"] == "missing" or isinstance(cause, FieldError) or isinstance(value, dict | list):
-        has_value = False
-    return src.error(loc, message, value, has_value)
+    declared = src.data.get("units") if isinstance(src.data, dict) else None
+    system = declared if declared in units.UNIT_SYSTEMS else None
+    return [src.error(loc, _message(err, cause, loc, system),
+                      *(_shown_value(src.data, loc) if err["type"] != "missing" else (None,
+                                                                                       False)))
+            for _, _, loc, err, cause in errors]
+
+
+def _shown_value(data: object, loc: Loc) -> tuple[object, bool]:
+    """The value as written at ``loc`` and whether an error shows it (not for a section)."""
+    value, has_value = _raw_value(data, loc)
+    if isinstance(value, dict):  # a mapping value (a time function's) yes, a section no
+        field = field_at(Case, loc)
+        has_value = field is not None and not allowed_keys(Case, loc)
+    return value, has_value
+
+
+def _close_keys(loc: Loc) -> list[str]:
+    """The schema keys an unknown key at ``loc`` may be a typo of."""
+    return difflib.get_close_matches(str(loc[-1]), allowed_keys(Case, loc[:-1]), n=1,
+                                     cutoff=0.6)
 
 
 def _raw_value(data: object, loc: Loc) -> tuple[object, bool]:
@@ -119,46 +176,37 @@ def data_loc(loc: tuple, data: object) -> Loc:
     return tuple(out)
 
 
-def _message(err: dict, cause: Exception | None, loc: Loc) -> str:
+def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -> str:
+    """What is wrong and what is allowed (:func:`~gearcli.case.section.compose`); the loader
+    adds file, line, key and value. A validator's own error says both itself."""
     kind = err["type"]
     if kind == "extra_forbidden":
-        allowed = allowed_keys(Case, loc[:-1])
-        msg = "unknown key"
-        close = difflib.get_close_matches(str(loc[-1]), allowed, n=1, cutoff=0.6)
-        if close:
-            msg += f" (did you mean '{close[0]}'?)"
-        return msg + "; expected one of: " + ", ".join(allowed)
+        close = _close_keys(loc)
+        return compose("unknown key" + (f" (did you mean '{close[0]}'?)" if close else ""),
+                       "one of: " + ", ".join(allowed_keys(Case, loc[:-1])))
     if kind == "missing":
-        return "missing required key"
+        return compose("missing required key", _what(loc))
     if cause is not None:
-        text = str(cause)
-        return (
-            text
-            if text.startswith(
-                (
-                    "expected",
-                    "missing",
-                    "cannot",
-                    "wrong",
-                    "give",
-                    "only",
-                    "a load",
-                    "malformed",
-                    "'",
-                )
-            )
-            else "expected: " + text
-        )
-    limit = _limit_message(err, loc)
+        return str(cause)
+    limit = _limit_message(err, loc, system)
     if limit:
         return limit
     msg = err["msg"]
     for prefix in ("Input should be ", "Value error, "):
-        if msg.startswith(prefix):
-            msg = msg[len(prefix) :]
+        msg = msg.removeprefix(prefix)
     msg = msg.replace("greater than or equal to", ">=").replace("less than or equal to", "<=")
     msg = msg.replace("greater than", ">").replace("less than", "<")
-    return "expected " + msg
+    return compose("", msg)
+
+
+def _what(loc: Loc) -> str:
+    """What a required key holds: its schema description, or a section's keys."""
+    field = field_at(Case, loc)
+    keys = allowed_keys(Case, loc)
+    if keys:
+        return f"a '{loc[-1]}' section (keys: {', '.join(keys)})"
+    text = (field.description or "") if field is not None else ""
+    return text.removesuffix(" (required)") or f"a value for '{loc[-1]}'"
 
 
 _LIMITS = {
@@ -169,8 +217,9 @@ _LIMITS = {
 }
 
 
-def _limit_message(err: dict, loc: Loc) -> str | None:
-    """'expected > 0 mm': a bound of a quantity field, in the field's default unit."""
+def _limit_message(err: dict, loc: Loc, system: str | None) -> str | None:
+    """'expected > 0 mm': a bound of a quantity field, in the unit of its bare numbers (the
+    field's default unit, or the declared ``units:`` system's)."""
     if err["type"] not in _LIMITS:
         return None
     op, key = _LIMITS[err["type"]]
@@ -182,8 +231,9 @@ def _limit_message(err: dict, loc: Loc) -> str | None:
     if limit is None:
         return None
     if isinstance(limit, int) and not isinstance(limit, bool):  # counts, seeds: exact
-        return f"expected {op} {limit}"
+        return compose("", f"{op} {limit}")
     if dim is None:  # a plain number (a coefficient): the bound as written, not pydantic's
-        return f"expected {op} {float(limit):g}"  # fixed-point 0.000000000000023
-    return f"expected {op} {float(limit) / dim.factor:g} {dim.default}"
+        return compose("", f"{op} {float(limit):g}")  # fixed-point 0.000000000000023
+    dim = units.in_system(dim, system)
+    return compose("", f"{op} {float(limit) / dim.factor:g} {dim.default}")
 

@@ -1,6 +1,7 @@
 """Annotated pydantic field types for case files: quantities with units and time functions.
 
-A quantity field accepts a bare number in its documented default unit or a string with units
+A quantity field accepts a bare number in its documented default unit (or in the unit of the
+case's declared ``units:`` system, :func:`bare`) or a string with units
 (parsed by pint, see :mod:`gearcli.units`) and stores the value in internal units. In JSON
 output (the resolved case) it is written back as "<value> <internal unit>", which loads again
 to the identical float.
@@ -9,13 +10,35 @@ to the identical float.
 from __future__ import annotations
 
 import functools
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Annotated, Any
 
 from pydantic import BeforeValidator, Field, PlainSerializer, WithJsonSchema
 
 from gearcli import guards, units
+from gearcli.case.section import compose
 from gearcli.units import Dim
+
+#: The unit system of bare numbers while a case validates: its ``units:`` key (None: the
+#: default, "adams"; see :data:`gearcli.units.UNIT_SYSTEMS`). Set by the Case's validator.
+UNIT_SYSTEM: ContextVar[str | None] = ContextVar("gearcli_case_units", default=None)
+
+
+@contextmanager
+def unit_system(system: str | None):
+    """Validate in unit system ``system`` (bare numbers of each quantity in its unit)."""
+    token = UNIT_SYSTEM.set(system if system in units.UNIT_SYSTEMS else None)
+    try:
+        yield
+    finally:
+        UNIT_SYSTEM.reset(token)
+
+
+def bare(dim: Dim) -> Dim:
+    """``dim`` as bare numbers mean it in the case being validated (its ``units:``)."""
+    return units.in_system(dim, UNIT_SYSTEM.get())
 
 
 def checked_quantity(value: Any, dim: Dim) -> float:
@@ -35,7 +58,7 @@ def checked_unit(unit: str, dim: Dim) -> float:
 
 def _quantity_validator(dim: Dim):
     def validate(value: Any) -> float:
-        return checked_quantity(value, dim)
+        return checked_quantity(value, bare(dim))
 
     validate.dim = dim  # lets error messages show limits in the default unit
     return validate
@@ -138,7 +161,8 @@ def _time_function_validator(dim: Dim):
 
         if isinstance(value, TimeFunction):
             return value
-        unit = dim.default
+        own = bare(dim)  # the unit of its bare numbers (and the exact factor of that unit)
+        unit = own.default
         if isinstance(value, dict):
             extra = set(value) - {"function", "unit"}
             if extra or "function" not in value:
@@ -147,8 +171,8 @@ def _time_function_validator(dim: Dim):
                     "'STEP(time, 0, 0, 1, 450)') and optional 'unit'"
                 )
             unit_given = "unit" in value
-            unit = str(value.get("unit", dim.default))
-            checked_unit(unit, dim)  # validates the unit and its dimension
+            unit = str(value.get("unit", own.default))
+            checked_unit(unit, own)  # validates the unit and its dimension
             value = value["function"]
             if isinstance(value, int | float) and not isinstance(value, bool):
                 value = repr(float(value))
@@ -159,7 +183,7 @@ def _time_function_validator(dim: Dim):
                 constant = (f"{value} {unit}" if value.lstrip().startswith("(")
                             else f"({value}) {unit}")
                 try:
-                    checked_quantity(constant, dim)
+                    checked_quantity(constant, own)
                 except ValueError:
                     raise ValueError(
                         f"expected a number or an expression as the function of a mapping "
@@ -168,16 +192,17 @@ def _time_function_validator(dim: Dim):
                 value = constant
         if isinstance(value, bool) or not isinstance(value, int | float | str):
             raise ValueError(
-                f"expected a {dim.name} ({dim.default}): a number, a string with units, or an "
-                "expression such as 'STEP(time, 0, 0, 1, 3000)'"
+                f"expected {units.article(dim.name)} {dim.name} ({own.default}): a number, a "
+                "string with units, or an expression such as 'STEP(time, 0, 0, 1, 3000)'"
             )
         if isinstance(value, str) and is_expression(value):
             try:
                 parse_time_function(value)
             except ExpressionError as exc:
-                raise ValueError(f"malformed expression: {exc}") from None
-            return TimeFunction(" ".join(value.split()), unit, dim)
-        constant = checked_quantity(value, dim)
+                raise ValueError(compose(f"malformed expression: {exc}", "an expression of "
+                                         "time such as 'STEP(time, 0, 0, 1, 3000)'")) from None
+            return TimeFunction(" ".join(value.split()), unit, own)
+        constant = checked_quantity(value, own)
         return TimeFunction(repr(constant), dim.internal, dim)
 
     return validate
@@ -221,6 +246,7 @@ def time_field(dim: Dim, description: str, default: float | None = ...) -> Any:
     return Field(
         default=TimeFunction(repr(value), dim.internal, dim),
         description=text + f" (default {default:g} {dim.default})",
+        json_schema_extra={"default": default},  # as a case file writes it, not the object
     )
 
 

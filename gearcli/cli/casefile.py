@@ -59,15 +59,27 @@ def schema(
 @app.command()
 @handle_errors
 def new(path: Path = typer.Argument(..., help="Where to write the starter case (.yaml); "
-                                     "'-' prints it.")) -> None:
-    """Write a commented starter case (the seed study); never overwrites a file.
+                                     "'-' prints it."),
+        template: str = typer.Option("pair", "--template", "-t", metavar="pair|seed|drivetrain",
+                                     help="pair (default): a commented spur pair in "
+                                          "engineering units (rpm, N*m, mm) that runs clean; "
+                                          "seed: the seed article's Adams case; drivetrain: "
+                                          "the seed pair on bearings between shafts and "
+                                          "inertias.")) -> None:
+    """Write a commented starter case; never overwrites a file.
 
-    Example: gearcli new mycase.yaml, or gearcli new - > mycase.yaml"""
-    from gearcli.case.starter import starter_text
+    Example: gearcli new mypair.yaml, gearcli new --template seed seed.yaml, or
+    gearcli new - > mycase.yaml"""
+    from gearcli.case.starter import TEMPLATES, starter_text
+    from gearcli.errors import OutputError
     from gearcli.io.files import write_new_text
 
+    if template not in TEMPLATES:
+        raise OutputError(f"--template {template}: expected one of: {', '.join(TEMPLATES)}")
+    text = starter_text(template)
     if str(path) == "-":  # the shell convention: standard output
-        typer.echo(starter_text(), nl=False)
+        typer.echo(text, nl=False)
         return
-    write_new_text(path, starter_text())
-    typer.echo(f"wrote {path} (the seed case; edit it, then: gearcli geometry {path})")
+    write_new_text(path, text)
+    typer.echo(f"wrote {path} (the '{template}' template; edit it, then: gearcli geometry "
+               f"{path}, gearcli simulate {path})")

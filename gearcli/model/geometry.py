@@ -440,8 +440,27 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
                 f"({zone}); allowed: d_Nf >= d_Ff" + (
                     "" if g.undercut else
                     f" ({_FILLET_CURE.format(gear=role, mate=mate)})"))
-    return tuple(out)
+    return tuple(_pressure_angle_first(out, alpha))
 
+
+def _pressure_angle_first(found: list[Finding], alpha: float) -> list[Finding]:
+    """Led by a finding naming the pressure angle, the input that causes them, when the pair
+    fails with one far outside the range of racks (0.349 deg for 0.349 rad: interference)."""
+    errors, deg = [f for f in found if f.severity == "error"], math.degrees(alpha)
+    low, high = PRESSURE_ANGLE_RANGE_DEG
+    if not errors or low <= deg <= high:
+        return found
+    fails = ", ".join(dict.fromkeys(f.code.replace("_", " ") + (f" ({f.subject})" * bool(
+        f.subject)) for f in errors))
+    return [Finding("error", "pressure_angle", f"pressure angle alpha = {deg:.4g} deg is far "
+                    f"outside the {low:g} ... {high:g} deg of gear racks (ISO 53: 20 deg) and the "
+                    f"pair fails ({fails}); allowed: a pressure angle in deg, usually {low:g} ... "
+                    f"{high:g}" + (f" ({deg:.4g} rad would be {math.degrees(deg):.4g} deg: write "
+                                   f"'{deg:.4g} rad')" if deg < 1.0 else "")), *found]
+
+
+#: Pressure angles of racks in use [deg], generously: ISO 53 20, old AGMA 14.5, Niemann/Winter II 28
+PRESSURE_ANGLE_RANGE_DEG = (10.0, 35.0)
 
 #: Largest face width to pinion reference diameter ratio b/d1 without a warning: the upper end
 #: of VDI 2736-2:2014's initial-design range 0.2 <= b/d1 <= 2.0 (a thermoplastic-gear standard;

@@ -30,6 +30,7 @@ class GeometryResult:
 
 # Which case key an error finding is about, by code (and gear, where it names one).
 _FINDING_KEYS = {
+    "pressure_angle": ("gears", "pressure_angle"),
     "contact_ratio": ("gears", "centre_distance"),
     "centre_distance": ("gears", "centre_distance"),
     "interference": ("gears", "{gear}", "teeth"),  # or its profile shift: _interference_key
@@ -64,6 +65,7 @@ _FINDING_LEVERS = {
 # When several errors hold, report the root cause first (a wrong centre distance also breaks
 # clearance and contact ratio).
 _ROOT_CAUSE_ORDER = [
+    "pressure_angle",
     "centre_distance",
     "root_diameter",
     "tip_diameter",

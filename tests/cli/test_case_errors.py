@@ -188,6 +188,8 @@ def test_missing_section_required_by_a_set_option_names_the_option(seed_text, wr
                               "model=lateral-torsional"])
     assert res.exit_code == 1
     lines = res.output.strip().splitlines()
-    assert len(lines) == 1, res.output
-    assert lines[0].startswith(f"error: {path} with --set model=lateral-torsional: "
-                               "bearings.pinion.stiffness_x: missing;")
+    keys = [f"bearings.{gear}.stiffness_{axis}" for gear in ("pinion", "gear") for axis in "xy"]
+    assert len(lines) == len(keys), res.output  # every missing key, one line each
+    for i, (line, key) in enumerate(zip(lines, keys, strict=True)):
+        assert line.startswith(("error: " if i == 0 else "")
+                               + f"{path} with --set model=lateral-torsional: {key}: missing;")

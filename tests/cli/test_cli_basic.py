@@ -53,10 +53,10 @@ def test_schema_is_json_schema():
 
 def test_new_writes_seed_and_refuses_overwrite(tmp_path):
     target = tmp_path / "mine.yaml"
-    result = runner.invoke(app, ["new", str(target)])
+    result = runner.invoke(app, ["new", "--template", "seed", str(target)])
     assert result.exit_code == 0, result.output
     assert target.read_text() == SEED.read_text()
-    result = runner.invoke(app, ["new", str(target)])
+    result = runner.invoke(app, ["new", "--template", "seed", str(target)])
     assert result.exit_code == 1
     assert "already exists" in result.stderr
     assert target.read_text() == SEED.read_text()
@@ -112,7 +112,7 @@ def test_simulate_of_an_impact_case_imports_no_unused_heavy_modules(tmp_path):
 
 def test_new_dash_prints_the_starter_case(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    result = runner.invoke(app, ["new", "-"])
+    result = runner.invoke(app, ["new", "-t", "seed", "-"])
     assert result.exit_code == 0, result.output
     assert result.stdout == SEED.read_text()
     assert not (tmp_path / "-").exists()  # it wrote a file named '-'

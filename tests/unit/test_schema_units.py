@@ -23,6 +23,12 @@ def test_defaults_and_limits_are_in_the_default_units():
     assert rho["exclusiveMinimum"] == 0.0
 
 
+def test_a_time_function_default_is_written_as_a_case_file_writes_it():
+    """Issue 29: the default of load.torque was the internal TimeFunction object."""
+    torque = json.loads(generate())["$defs"]["Load"]["properties"]["torque"]
+    assert torque["default"] == 0.0 and "[N*mm]" in torque["description"]
+
+
 def test_study_schema():
     res = runner.invoke(app, ["schema", "--study"])
     assert res.exit_code == 0
