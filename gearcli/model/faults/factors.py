@@ -92,10 +92,11 @@ from gearcli.model.faults.records import (
 from gearcli.model.geometry import PairGeometry
 from gearcli.model.pair_stiffness import PairStiffness, pair_contact
 from gearcli.model.rating import root_section
-from gearcli.model.tooth_stiffness import tooth_section
+from gearcli.model.tooth_stiffness import ToothCompliance, tooth_section
 from gearcli.model.toothform import ToothForm
 
-__all__ = ["CrackSection", "crack_section", "fault_factors", "MIN_LIGAMENT_MM"]
+__all__ = ["CrackSection", "crack_section", "crack_compliance", "fault_factors",
+           "revolution_stiffness", "RevolutionStiffness", "MIN_LIGAMENT_MM"]
 
 #: Thinnest ligament half thickness [mm] the crack model integrates (a thinner one is broken).
 MIN_LIGAMENT_MM = 1e-6
@@ -177,18 +178,27 @@ def crack_section(gear: ToothForm, depth_mm: float, angle_deg: float) -> CrackSe
     return CrackSection(sec.y0_mm, y_c, h_c, h_q, nodes, cum, spline)
 
 
+def crack_compliance(gear: ToothForm, healthy: ToothCompliance, y_point_mm, y_load_mm,
+                     depth_mm: float, angle_deg: float) -> np.ndarray:
+    """Compliance [mm/N] a root crack adds to a tooth loaded at height ``y_point`` with the
+    load line crossing the centreline at ``y_load`` (module notes): Δ(1/k_b) + Δ(1/k_s) +
+    Δ(1/k_a) = (1/k_b) ΔQ/Q + (1/k_s + 1/k_a) ΔJ_3/J_3, ``healthy`` the tooth's compliances
+    there (tooth_stiffness.tooth_compliance_at)."""
+    sec = tooth_section(gear)
+    crack = crack_section(gear, depth_mm, angle_deg)
+    j, dj = sec.integrals(y_point_mm), crack.integrals(y_point_mm)
+    s_l = np.asarray(y_load_mm, float) - sec.y0_mm
+    q, dq = (s_l * s_l * v[0] - 2.0 * s_l * v[1] + v[2] for v in (j, dj))
+    return healthy.bending_mm_N * dq / q + (healthy.shear_mm_N + healthy.axial_mm_N) * dj[3] / j[3]
+
+
 def _crack_factor(pair: PairGeometry, ps: PairStiffness, contact, g: int,
                   fault: RootCrack) -> np.ndarray:
-    gear = (pair.pinion, pair.gear)[g]
-    y_p = (contact.y_point1_mm, contact.y_point2_mm)[g]
-    y_l = (contact.y_load1_mm, contact.y_load2_mm)[g]
-    tooth = (ps.pinion, ps.gear)[g]
-    sec = tooth_section(gear)
-    crack = crack_section(gear, fault.depth_mm, fault.angle_deg)
-    j, dj = sec.integrals(y_p), crack.integrals(y_p)
-    s_l = y_l - sec.y0_mm
-    q, dq = (s_l * s_l * v[0] - 2.0 * s_l * v[1] + v[2] for v in (j, dj))
-    added = tooth.bending_mm_N * dq / q + (tooth.shear_mm_N + tooth.axial_mm_N) * dj[3] / j[3]
+    """f = 1 − w (1 − 1/(1 + k ΔC)) (module notes)."""
+    added = crack_compliance((pair.pinion, pair.gear)[g], (ps.pinion, ps.gear)[g],
+                             (contact.y_point1_mm, contact.y_point2_mm)[g],
+                             (contact.y_load1_mm, contact.y_load2_mm)[g],
+                             fault.depth_mm, fault.angle_deg)
     full = 1.0 / (1.0 + ps.k_N_mm * added)
     return 1.0 - fault.width * (1.0 - full)
 
@@ -286,3 +296,45 @@ def fault_factors(pair: PairGeometry, stiffness: PairStiffness, faults, *,
             raise TypeError(f"not a tooth fault: {fault!r}")
         table[g, fault.tooth] *= f
     return table
+
+
+@dataclass(frozen=True)
+class RevolutionStiffness:
+    """Rigid-kinematics mesh stiffness over whole mesh periods from t = 0, faulted and healthy."""
+
+    s1_mm: np.ndarray  #: pinion roll from t = 0, r_b1 θ1 [mm]
+    k_mesh_N_mm: np.ndarray  #: Σ_j k_pair(x_j) f_P f_G over the pairs on the path [N/mm]
+    healthy_N_mm: np.ndarray  #: Σ_j k_pair(x_j) [N/mm]
+    pinion_tooth: np.ndarray  #: pinion tooth at C's pair slot (the pair m = round(s1/p_b))
+
+
+def revolution_stiffness(pair: PairGeometry, stiffness_at, faults, *, pitches: int | None = None,
+                         points_per_pitch: int = 200,
+                         deflection_mm: float = 0.0) -> RevolutionStiffness:
+    """The mesh stiffness of the unloaded rigid kinematics over ``pitches`` mesh periods
+    (default one pinion revolution, z1) with the faults' factors at each pair's own position.
+
+    At pinion roll s1 the pair m (holding pinion tooth m mod z1 and gear tooth m mod z2,
+    docs/theory.md "Tooth faults") is at x = x_C + s1 − m p_b; the pairs on the path
+    (0 ≤ x ≤ g_α) add up (pair_stiffness.mesh_stiffness, here with the factors evaluated at
+    their exact positions, not interpolated). ``stiffness_at``: x [mm] -> the healthy
+    PairStiffness there (pair_stiffness.pair_stiffness with the case's material and bores).
+    """
+    z1, z2, p_b, g_a = pair.pinion.teeth, pair.gear.teeth, pair.p_b_mm, pair.g_alpha_mm
+    pitches = z1 if pitches is None else pitches
+    s1 = np.arange(pitches * points_per_pitch) * (p_b / points_per_pitch)
+    x_c = pair.C_mm - pair.A_mm
+    m_lo = math.floor((x_c - g_a) / p_b) - 1
+    m = np.arange(m_lo, pitches + math.ceil(x_c / p_b) + 2)
+    x = x_c + s1[None, :] - p_b * m[:, None]
+    on = (x >= 0.0) & (x <= g_a)
+    ps = stiffness_at(x[on])
+    table = fault_factors(pair, ps, faults, deflection_mm=deflection_mm)
+    mm = np.broadcast_to(m[:, None], x.shape)[on]
+    col = np.arange(mm.size)
+    k = np.zeros(x.shape)
+    healthy = np.zeros(x.shape)
+    healthy[on] = ps.k_N_mm
+    k[on] = ps.k_N_mm * table[0, mm % z1, col] * table[1, mm % z2, col]
+    return RevolutionStiffness(s1, k.sum(axis=0), healthy.sum(axis=0),
+                               np.round(s1 / p_b).astype(int) % z1)
