@@ -126,30 +126,6 @@ def _gap(tables, g, x, zero_lo, zero_hi, grid):
     return gap, dgap
 
 
-@jit_noalloc_inline
-def _pair_stiffness(model, f, x1, i1, i2, k, grid, stiff):
-    """Stiffness k_j [N/mm^e] of the pair at pinion roll position ``x1`` [mm] holding pinion
-    tooth ``i1`` and gear tooth ``i2``, and dk_j/dx1 [N/mm^(e+1)] (docs/theory.md §4b.2).
-
-    ``stiff = (table, factors, inv_hf)``: with ``table`` k(x1) and its slope from
-    ``model.pair_stiffness[f]`` (cubic Hermite on the gap tables' ``grid``), else the constant
-    ``k``; with ``factors`` times f_P(i1, x1) f_G(i2, x1), each linearly interpolated in
-    ``model.tooth_stiffness_factor`` on its own uniform grid over [x_lo, x_hi] (``inv_hf``
-    [1/mm] the inverse of its step): k_j = k f_P f_G, dk_j/dx1 = k' f_P f_G + k (f_P' f_G +
-    f_P f_G'). Without factors nothing is multiplied."""
-    table, factors, inv_hf = stiff
-    dk = 0.0
-    if table:
-        x_lo, x_hi, h, inv_h = grid
-        # int(f): the family as a run-time int, one compiled hermite for every call
-        _, k, dk = hermite(model.pair_stiffness, int(f), x_lo, x_hi, h, inv_h, x1)
-    if factors:
-        fac, dfac = _factors(model.tooth_stiffness_factor, i1, i2, grid[0], inv_hf, x1)
-        dk = dk * fac + k * dfac
-        k *= fac
-    return k, dk
-
-
 @jit_noalloc
 def _factors(table, i1, i2, x_lo, inv_hf, x1):
     """The pair's stiffness factor f_P(i1, x1) f_G(i2, x1) [-] and its slope by x1 [1/mm]
@@ -163,7 +139,14 @@ def _factors(table, i1, i2, x_lo, inv_hf, x1):
 def _gather(f, sigma, kin, app, model, scratch):
     """First pass over the slots of flank family ``f``: every pair in contact (p > 0) into
     ``scratch`` (layout.SC: slot, x1, p, p', dp/ds1, dp/ds2, k, dk/dx1). Returns their count,
-    the sum of k p over them [N] and the largest penetration [mm] (0 if none)."""
+    the sum of k p over them [N] and the largest penetration [mm] (0 if none).
+
+    The stiffness k_j [N/mm^e] of the pair at pinion roll position x1 [mm] holding pinion
+    tooth i1 and gear tooth i2, and dk_j/dx1 [N/mm^(e+1)] (docs/theory.md §4b.2): with a
+    ``model.pair_stiffness`` table (the tooth law) k(x1) and its slope (cubic Hermite on the
+    gap tables' grid), else the constant ``prm[P.k_contact]``; with stiffness factors times
+    f_P(i1, x1) f_G(i2, x1) (:func:`_factors`), k_j' = k' f_P f_G + k (f_P f_G)'. Without
+    factors nothing is multiplied."""
     prm = model.prm
     derived = model.derived
     fam = model.family
@@ -188,7 +171,7 @@ def _gather(f, sigma, kin, app, model, scratch):
     inv_hf = 0.0
     if factors:
         inv_hf = (model.tooth_stiffness_factor.shape[2] - 1) / (x_hi - x_lo)
-    stiff = (model.pair_stiffness.size != 0, factors, inv_hf)
+    table = model.pair_stiffness.size != 0
     u, n = _slot_phase(sigma * kin.s1 - fam[f, F.phase0], p_b, derived[D.inv_p_b])
     # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (rhs.py docstring)
     use_offsets = derived[D.tooth_offsets_used] != 0.0
@@ -230,7 +213,15 @@ def _gather(f, sigma, kin, app, model, scratch):
             pen_max = pen
         dp1 = sigma * (1.0 - dgap1) - de1  # dp/ds1 [-]
         dp2 = -sigma * (1.0 + dgap2) - de2  # dp/ds2 [-]
-        kj, dkj = _pair_stiffness(model, f, x1, i1, i2, k, grid, stiff)
+        kj = k
+        dkj = 0.0
+        if table:
+            # int(f): the family as a run-time int, one compiled hermite for every call
+            _, kj, dkj = hermite(model.pair_stiffness, int(f), x_lo, x_hi, grid[2], grid[3], x1)
+        if factors:
+            fac, dfac = _factors(model.tooth_stiffness_factor, i1, i2, x_lo, inv_hf, x1)
+            dkj = dkj * fac + kj * dfac
+            kj *= fac
         scratch[SC.slot, n_touch] = j
         scratch[SC.x1, n_touch] = x1
         scratch[SC.pen, n_touch] = pen
@@ -311,8 +302,8 @@ def flank(f, kin, app, model, slot_force, scratch, full):
         False at the inner Runge-Kutta stages, where only the derivatives are used.
 
     Two passes: :func:`_gather` finds the pairs in contact with their penetration, its rate
-    and derivatives and their stiffness (:func:`_pair_stiffness`: the tooth law's table k(x1),
-    the per-tooth, per-position stiffness factors); :func:`_pair_forces` applies the contact
+    and derivatives and their stiffness (the tooth law's table k(x1), the per-tooth,
+    per-position stiffness factors); :func:`_pair_forces` applies the contact
     law (``prm[P.contact_law]``, one call of :func:`gearcli.core.laws.pair_force` per pair;
     the laws and their closed forms are in :mod:`gearcli.core.laws`) and adds friction.
 

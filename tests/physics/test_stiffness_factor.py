@@ -1,5 +1,5 @@
 """Per-tooth, per-position stiffness factors (docs/theory.md §4b.2; core/flank.py
-``_pair_stiffness``, core/bundles.py ``Model.tooth_stiffness_factor``) in the running kernel.
+``_gather``, ``_factors``; core/bundles.py ``Model.tooth_stiffness_factor``) in the running kernel.
 
 * a table of ones gives the run without a table bit for bit (both laws, through the pipeline,
   pipeline/kernel_input.py);
@@ -30,48 +30,35 @@ from gearcli.model.timefunction import PiecewisePolynomial as PP
 from gearcli.pipeline.geometry import run_geometry
 from gearcli.pipeline.kernel_input import build_kernel_input
 from tests.conftest import ROOT
-from tests.physics.test_kernel import (
-    BASE,
-    G_ALPHA,
-    MESH_PERIOD,
-    OMEGA1,
-    P_B,
-    R_B1,
-    R_B2,
-    T_LOAD,
-    Z1,
-    Z2,
-    extended_tables,
-    n_slots,
-    pp_arrays,
-)
+from tests.physics import test_kernel as tk
 
 K0 = 1.4e6  # pair stiffness [N/mm] (tests/physics/test_tooth_law.py)
-F_STATIC = T_LOAD / R_B2  # static normal force [N]
+F_STATIC = tk.T_LOAD / tk.R_B2  # static normal force [N]
 WEAK = 3  # the weakened pinion tooth
 BAND = (8.0, 24.0)  # its band of roll positions x1 [mm]: double zone [0, 16.6), single beyond
-N_POS = 93  # factor table columns over [0, G_ALPHA]: step 0.50 mm
+N_POS = 93  # factor table columns over [0, g_alpha]: step 0.50 mm
 
 
 def _run(law, factors=None, t_end=1.0, **extra):
     """Speed drive at 0.2 OMEGA1 with load ramps over 0.1 s, rigid tables on [0, g_alpha]
     (zero gap on the path), drive flanks only. Tooth law: constant k = K0 and mesh damping at
-    zeta ~ 0.1 of the mesh mode; IMPACT: BASE (k = 1e5 N/mm^1.5, e = 1.5, c_max = 100 N s/mm).
+    zeta ~ 0.1 of the mesh mode; IMPACT: BASE of test_kernel.py (k = 1e5 N/mm^1.5, e = 1.5,
+    c_max = 100 N s/mm).
     ``t_end`` 1 s: settled from 0.3 s, then more than one pinion revolution (0.6 s)."""
-    tables, x_lo, x_hi = np.zeros((4, 2, 2)), 0.0, G_ALPHA
+    tables, x_lo, x_hi = np.zeros((4, 2, 2)), 0.0, tk.G_ALPHA
     arrays = {} if factors is None else {"tooth_stiffness_factor": factors}
-    values = dict(BASE, x_lo=x_lo, x_hi=x_hi, n_slots=n_slots(x_lo, x_hi),
+    values = dict(tk.BASE, x_lo=x_lo, x_hi=x_hi, n_slots=tk.n_slots(x_lo, x_hi),
                   drive_mode=layout.DRIVE_SPEED, t_end=t_end, coast_flanks=0.0, rtol=1e-9,
                   atol_delta=1e-10, atol_deltadot=1e-6, contact_law=law, **extra)
     if law == layout.LAW_TOOTH:
         stiffness = np.full((layout.N_FAMILIES, 2, 2), K0)
         stiffness[:, 1] = 0.0
         arrays["pair_stiffness"] = stiffness
-        values["mesh_damping"] = 2.0 * 0.1 * math.sqrt(1.56 * K0 * BASE["J2"] / R_B2**2)
-    speed, load = PP.step(0.0, 0.0, 0.1, 0.2 * OMEGA1), PP.step(0.0, 0.0, 0.1, T_LOAD)
+        values["mesh_damping"] = 2.0 * 0.1 * math.sqrt(1.56 * K0 * tk.BASE["J2"] / tk.R_B2**2)
+    speed, load = PP.step(0.0, 0.0, 0.1, 0.2 * tk.OMEGA1), PP.step(0.0, 0.0, 0.1, tk.T_LOAD)
     res = simulate(layout.make_params(**values), tables, t_out=np.linspace(0.0, t_end, 6001),
-                   drive_pp=pp_arrays(speed), load_pp=pp_arrays(load),
-                   drive_angle_pp=pp_arrays(speed.antiderivative()), **arrays)
+                   drive_pp=tk.pp_arrays(speed), load_pp=tk.pp_arrays(load),
+                   drive_angle_pp=tk.pp_arrays(speed.antiderivative()), **arrays)
     assert res.ok, res.message
     return res
 
@@ -80,9 +67,10 @@ def _positions(res):
     """Steady samples: slot 0's roll position x1 = u [mm], its pinion tooth, pairs in contact
     (x_lo = 0, phase 0, tooth index 0: slot j holds tooth (n - j) mod z1, core/rhs.py)."""
     steady = res.column("t_s") > 0.3
-    s1 = res.column("theta1_rad")[steady] * R_B1
-    n = np.floor(s1 / P_B)
-    return steady, s1 - n * P_B, np.mod(n.astype(int), Z1), res.column("pairs_in_contact")[steady]
+    s1 = res.column("theta1_rad")[steady] * tk.R_B1
+    n = np.floor(s1 / tk.P_B)
+    pairs = res.column("pairs_in_contact")[steady]
+    return steady, s1 - n * tk.P_B, np.mod(n.astype(int), tk.Z1), pairs
 
 
 def test_a_factor_band_on_one_tooth_softens_that_tooth_there_only():
@@ -92,8 +80,8 @@ def test_a_factor_band_on_one_tooth_softens_that_tooth_there_only():
     tooth law's statics (test_tooth_law.py; measured below 1e-6); the load share is exact
     (equal penetrations, damping shared in proportion to the elastic forces, docs/theory.md
     §4c) at every sample."""
-    x = np.linspace(0.0, G_ALPHA, N_POS)  # the columns' x1 (kernel_input.factor_positions)
-    factors = np.ones((layout.N_GEARS, Z2, N_POS))
+    x = np.linspace(0.0, tk.G_ALPHA, N_POS)  # the columns' x1 (kernel_input.factor_positions)
+    factors = np.ones((layout.N_GEARS, tk.Z2, N_POS))
     inside = (x >= BAND[0]) & (x <= BAND[1])
     factors[layout.PINION, WEAK, inside] = 0.5
     flat = (x[inside][0], x[inside][-1])
@@ -111,7 +99,7 @@ def test_a_factor_band_on_one_tooth_softens_that_tooth_there_only():
     assert np.median(delta[in_band & double]) == pytest.approx(F_STATIC / (1.5 * K0), rel=0.01)
     share = res.slot_force[steady, 0] / res.column("force_total_N")[steady]
     np.testing.assert_allclose(share[in_band & double], 1.0 / 3.0, rtol=1e-9)
-    others = double & (tooth != WEAK) & (tooth != (WEAK + 1) % Z1)  # weak tooth in no slot
+    others = double & (tooth != WEAK) & (tooth != (WEAK + 1) % tk.Z1)  # weak tooth in no slot
     np.testing.assert_allclose(share[others], 0.5, rtol=1e-9)
     # outside the band the weak tooth is a sound one
     assert np.median(delta[out_band & single]) == pytest.approx(F_STATIC / K0, rel=0.01)
@@ -123,7 +111,7 @@ def test_a_constant_factor_scales_the_mesh_stiffness(c_pinion, c_gear):
     """Every pinion tooth c_pinion, every gear tooth c_gear (a 3-D table, constant): the pair
     stiffness is K0 c_pinion c_gear, so the single- and double-pair deflections are F/(c K0)
     and F/(2 c K0) with c = c_pinion c_gear (tooth law, tolerance 1 % as above)."""
-    factors = np.empty((layout.N_GEARS, Z2, 5))
+    factors = np.empty((layout.N_GEARS, tk.Z2, 5))
     factors[layout.PINION], factors[layout.GEAR] = c_pinion, c_gear
     res = _run(layout.LAW_TOOTH, factors, t_end=0.6)
     steady, _, _, pairs = _positions(res)
@@ -138,8 +126,8 @@ def test_a_constant_factor_scales_the_impact_stiffness():
     the path; the gear's ones) the single-pair deflection is (F/(c k))^(1/e), c^(-1/e) = 0.543
     times the plain run's (tolerance 1 %, overdamped contact, zeta ~ 1.5, settles within a
     mesh cycle)."""
-    c, k, e = 2.5, BASE["k_contact"], BASE["exponent"]
-    factors = np.ones((layout.N_GEARS, Z2))
+    c, k, e = 2.5, tk.BASE["k_contact"], tk.BASE["exponent"]
+    factors = np.ones((layout.N_GEARS, tk.Z2))
     factors[layout.PINION] = c
     plain = _run(layout.LAW_IMPACT, t_end=0.6)
     stiff = _run(layout.LAW_IMPACT, factors, t_end=0.6)
@@ -159,15 +147,15 @@ def test_energy_is_conserved_with_factors_along_the_path(law):
     (test_kernel.py, test_tooth_law.py). The -dV/dk dk/dx1 force is what makes it so: measured
     drifts 5.3e-4 (IMPACT) and 5.9e-5 (tooth) of the largest contact energy; with the factors'
     slope left out of dk/dx1, 0.44 and 0.19 (and 1.9e-5, 2.9e-3 of the total)."""
-    tables, x_lo, x_hi = extended_tables()
-    t_end = 30 * MESH_PERIOD
+    tables, x_lo, x_hi = tk.extended_tables()
+    t_end = 30 * tk.MESH_PERIOD
     x = np.linspace(x_lo, x_hi, 37)
-    teeth = np.arange(Z2)[None, :, None]
+    teeth = np.arange(tk.Z2)[None, :, None]
     gears = np.arange(layout.N_GEARS)[:, None, None]
     factors = 1.0 + 0.3 * np.sin(2.0 * math.pi * x[None, None, :] / (x_hi - x_lo)
                                  * (1 + gears) + teeth)
-    values = dict(BASE, x_lo=x_lo, x_hi=x_hi, n_slots=n_slots(x_lo, x_hi),
-                  drive_mode=layout.DRIVE_TORQUE, t_end=t_end, omega1_init=OMEGA1,
+    values = dict(tk.BASE, x_lo=x_lo, x_hi=x_hi, n_slots=tk.n_slots(x_lo, x_hi),
+                  drive_mode=layout.DRIVE_TORQUE, t_end=t_end, omega1_init=tk.OMEGA1,
                   contact_law=law, c_max=0.0,
                   rtol=1e-10, atol_delta=1e-10, atol_deltadot=1e-7)
     # the initial rattle of each law's own energy test
@@ -178,15 +166,16 @@ def test_energy_is_conserved_with_factors_along_the_path(law):
         stiffness = np.zeros((layout.N_FAMILIES, 2, tables.shape[2]))
         stiffness[:, 0] = K0
         arrays["pair_stiffness"] = stiffness
-    zero = pp_arrays(PP.constant(0.0))
+    zero = tk.pp_arrays(PP.constant(0.0))
     res = simulate(layout.make_params(**values), tables, t_out=np.linspace(0.0, t_end, 2001),
                    drive_pp=zero, load_pp=zero, **arrays)
     assert res.ok, res.message
-    energy = res.column("kinetic_energy_mJ") + res.column("contact_energy_mJ")
-    assert res.column("force_total_N").max() > 500 and res.column("force_coast_N").max() > 500
+    assert min(res.column("force_total_N").max(), res.column("force_coast_N").max()) > 500
+    c = res.column
+    energy = c("kinetic_energy_mJ") + c("contact_energy_mJ")
     drift = np.abs(energy - energy[0]).max()
-    assert drift < 1e-6 * energy[0], f"relative energy drift {drift / energy[0]:.2e}"
-    assert drift < 1e-3 * res.column("contact_energy_mJ").max()
+    of_total, of_contact = drift / energy[0], drift / c("contact_energy_mJ").max()
+    assert of_total < 1e-6 and of_contact < 1e-3, (of_total, of_contact)
 
 
 @pytest.mark.parametrize("case, overrides", [
@@ -226,10 +215,10 @@ def test_refused_factor_tables():
                        (np.full((layout.N_GEARS, z, 5), np.nan), "finite")):
         with pytest.raises(ValueError, match=match):
             build_kernel_input(loaded.case, geo, tooth_stiffness_factor=bad)
-    tables, x_lo, x_hi = extended_tables()
-    prm = layout.make_params(**BASE, x_lo=x_lo, x_hi=x_hi, n_slots=n_slots(x_lo, x_hi),
+    tables, x_lo, x_hi = tk.extended_tables()
+    prm = layout.make_params(**tk.BASE, x_lo=x_lo, x_hi=x_hi, n_slots=tk.n_slots(x_lo, x_hi),
                              drive_mode=layout.DRIVE_TORQUE, t_end=0.01)
-    zero = pp_arrays(PP.constant(0.0))
-    for bad in (np.ones((layout.N_GEARS, Z2, 1)), np.ones((3, Z2, 4)), np.ones(Z2)):
+    zero = tk.pp_arrays(PP.constant(0.0))
+    for bad in (np.ones((layout.N_GEARS, tk.Z2, 1)), np.ones((3, tk.Z2, 4)), np.ones(tk.Z2)):
         with pytest.raises(ValueError, match="tooth_stiffness_factor"):
             kernel_model(prm, tables, drive_pp=zero, load_pp=zero, tooth_stiffness_factor=bad)

@@ -18,6 +18,7 @@ import pytest
 from gearcli.core import layout
 from gearcli.core.laws import KNOWN_LAWS, impact_law, pair_force, tooth_law
 from gearcli.core.layout import D, P
+from tests.physics.test_kernel import adams_step  # docs/theory.md §4.1, written out
 
 K_IMPACT = 1e5  # [N/mm^e]
 C_MAX, D_MAX = 100.0, 0.1  # [N s/mm], [mm]
@@ -34,16 +35,6 @@ def vectors(exponent: float = 1.5):
     derived = np.zeros(layout.N_DERIVED)
     derived[D.inv_exponent_plus_1] = 1.0 / (exponent + 1.0)
     return prm, derived
-
-
-def adams_step(x, x0, h0, x1, h1):
-    """Adams STEP (docs/theory.md §4.1), written out."""
-    if x <= x0:
-        return h0
-    if x >= x1:
-        return h1
-    d = (x - x0) / (x1 - x0)
-    return h0 + (h1 - h0) * d * d * (3.0 - 2.0 * d)
 
 
 def impact_reference(pen, rate, dp1, dp2, k, dk, sigma, e):
