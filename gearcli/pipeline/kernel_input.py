@@ -15,6 +15,7 @@ import numpy as np
 
 from gearcli.case.schema import Case, PitchDeviation
 from gearcli.case.schema import Relief as CaseRelief
+from gearcli.case.schema_faults import fault_records
 from gearcli.core import layout
 from gearcli.model.errors import cumulative_pitch_positions, runout_phases, tooth_offsets
 from gearcli.model.faults import tooth_index_offsets
@@ -266,11 +267,13 @@ def build_kernel_input(case: Case, geo: GeometryResult, tooth_stiffness_factor=N
 
     ``tooth_stiffness_factor``: optional per-tooth, per-position stiffness factors
     (:func:`stiffness_factor_array`), carried to the kernel in ``arrays``; ``faults``: tooth
-    faults (model.faults records), turned into factors by :func:`fault_factor_table` (times
-    the given factors when both are given). Absent, or faults of zero size only, the run is
-    the one without factors bit for bit. Tooth indices: docs/theory.md, "Tooth faults".
+    faults (model.faults records; default the case's ``faults:``), turned into factors by
+    :func:`fault_factor_table` (times the given factors when both are given). Absent, or
+    faults of zero size only, the run is the one without factors bit for bit. Tooth
+    indices: docs/theory.md, "Tooth faults".
     """
     g = geo.geometry
+    faults = fault_records(case.faults) if faults is None else faults
     rb1, rb2 = g.pinion.r_b_mm, g.gear.r_b_mm
     J1, J2 = geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2
     fr, dr = case.friction, case.drive
