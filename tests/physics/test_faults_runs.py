@@ -144,3 +144,22 @@ def test_the_energy_balance_closes_with_faults():
     base = energy_balance(healthy)["relative_residual"]
     got = energy_balance(faulty)["relative_residual"]
     assert got < 1e-5, (got, base)
+
+
+def test_a_case_file_fault_runs_through_the_pipeline():
+    """``faults:`` in the case (as `gearcli simulate --set faults=...`): run_simulation uses
+    them (the kernel gets the table that build_kernel_input(faults=records) makes), the run is
+    valid and its summary's energy residual in the band above."""
+    from gearcli.pipeline.simulate import run_simulation
+
+    entry = "faults=[{kind: root_crack, gear: pinion, tooth: 2, depth: 3 mm, angle: 45 deg}]"
+    res = run_simulation(ROOT / "cases" / "iso_pair.yaml", [*FAST, "run.end_time=0.12", entry],
+                         zoom=False)
+    table = res.kernel_input.arrays["tooth_stiffness_factor"]
+    loaded = load_case(ROOT / "cases" / "iso_pair.yaml", [*FAST, "run.end_time=0.12"])
+    ki = build_kernel_input(loaded.case, run_geometry(loaded),
+                            faults=[RootCrack("pinion", 2, 3.0, 45.0)])
+    np.testing.assert_allclose(table, ki.arrays["tooth_stiffness_factor"], rtol=1e-12, atol=0)
+    assert table[0, 2].min() < 0.95 and np.all(np.delete(table, 2, axis=1)[0] == 1.0)
+    assert res.status == "ok", res.invalid_reason
+    assert res.summary["energy_balance"]["relative_residual"] < 1e-5
