@@ -18,6 +18,7 @@ import math
 import numpy as np
 import pytest
 from scipy.integrate import quad
+from scipy.optimize import brentq
 
 from gearcli.model import profile
 from gearcli.model.faults import ChippedTip, MissingTooth, RootCrack, Spall, tooth_index_offsets
@@ -100,21 +101,15 @@ def test_factors_fall_with_crack_depth_and_width():
 
 def _h_of_y(gear):
     """Half thickness h(y) of the tooth, built here: the fillet as a dense polyline of
-    profile.fillet_points (20001 points), the involute solved from y by bisection."""
+    profile.fillet_points (20001 points), the involute's radius solved from y (Brent)."""
     rad, psi = profile.fillet_points(gear, 20001)
     yf, hf = rad * np.cos(psi), rad * np.sin(psi)
 
     def h(y):
         if y <= yf[-1]:
             return float(np.interp(y, yf, hf))
-        lo, hi = gear.r_b_mm, gear.r_a_mm * 1.001
-        for _ in range(80):
-            mid = 0.5 * (lo + hi)
-            if mid * math.cos(float(profile.flank_half_angle(gear, mid))) < y:
-                lo = mid
-            else:
-                hi = mid
-        r = 0.5 * (lo + hi)
+        r = brentq(lambda r: r * math.cos(float(profile.flank_half_angle(gear, r))) - y,
+                   gear.r_b_mm, gear.r_a_mm * 1.001, xtol=1e-14)
         return r * math.sin(float(profile.flank_half_angle(gear, r)))
 
     return h, yf[0], yf[-1]

@@ -81,14 +81,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
-from gearcli.model.faults.records import (
-    GEARS,
-    ChippedTip,
-    MissingTooth,
-    RootCrack,
-    Spall,
-    is_void,
-)
+from gearcli.model.faults.records import GEARS, ChippedTip, MissingTooth, RootCrack, Spall, is_void
 from gearcli.model.geometry import PairGeometry
 from gearcli.model.pair_stiffness import PairStiffness, pair_contact
 from gearcli.model.rating import root_section
