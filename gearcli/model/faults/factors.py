@@ -298,7 +298,6 @@ class RevolutionStiffness:
     s1_mm: np.ndarray  #: pinion roll from t = 0, r_b1 θ1 [mm]
     k_mesh_N_mm: np.ndarray  #: Σ_j k_pair(x_j) f_P f_G over the pairs on the path [N/mm]
     healthy_N_mm: np.ndarray  #: Σ_j k_pair(x_j) [N/mm]
-    pinion_tooth: np.ndarray  #: pinion tooth at C's pair slot (the pair m = round(s1/p_b))
 
 
 def revolution_stiffness(pair: PairGeometry, stiffness_at, faults, *, pitches: int | None = None,
@@ -329,5 +328,4 @@ def revolution_stiffness(pair: PairGeometry, stiffness_at, faults, *, pitches: i
     healthy = np.zeros(x.shape)
     healthy[on] = ps.k_N_mm
     k[on] = ps.k_N_mm * table[0, mm % z1, col] * table[1, mm % z2, col]
-    return RevolutionStiffness(s1, k.sum(axis=0), healthy.sum(axis=0),
-                               np.round(s1 / p_b).astype(int) % z1)
+    return RevolutionStiffness(s1, k.sum(axis=0), healthy.sum(axis=0))
