@@ -41,10 +41,11 @@ class Model(NamedTuple):
     #: Tooth law (layout.LAW_TOOTH): pair stiffness k [N/mm] and its slope dk/dx [N/mm^2] per
     #: flank family on the gap tables' grid of pinion roll positions, (N_FAMILIES, 2, n)
     pair_stiffness: np.ndarray = EMPTY_3D
-    #: Stiffness factor of every tooth along the path, (N_GEARS, >= max(z1, z2), n >= 2) [-]
-    #: at n pinion roll positions evenly spaced over [x_lo, x_hi], linearly interpolated; a
-    #: pair's stiffness is k(x1) f_P(i1, x1) f_G(i2, x1) for its teeth i1, i2 (either law;
-    #: faults: cracks, spalls, missing teeth; docs/theory.md §4b.2)
+    #: Stiffness factor of every tooth along the path, (N_TABLES, >= max(z1, z2), n >= 2) [-]
+    #: (rows as tooth_offsets: flank family x gear) at n pinion roll positions evenly spaced
+    #: over [x_lo, x_hi], linearly interpolated; a pair's stiffness is k(x1) f_P(i1, x1)
+    #: f_G(i2, x1) for its teeth i1, i2 (either law; faults: cracks, spalls, missing teeth;
+    #: docs/theory.md §4b.2)
     tooth_stiffness_factor: np.ndarray = EMPTY_3D
 
 

@@ -127,11 +127,12 @@ def _gap(tables, g, x, zero_lo, zero_hi, grid):
 
 
 @jit_noalloc
-def _factors(table, i1, i2, x_lo, inv_hf, x1):
+def _factors(table, g1, g2, i1, i2, x_lo, inv_hf, x1):
     """The pair's stiffness factor f_P(i1, x1) f_G(i2, x1) [-] and its slope by x1 [1/mm]
-    (docs/theory.md §4b.2): a call, not inlined (read only in runs with factors)."""
-    fp, dfp = linear(table, PINION, i1, x_lo, inv_hf, x1)
-    fg, dfg = linear(table, GEAR, i2, x_lo, inv_hf, x1)
+    (docs/theory.md §4b.2) from rows ``g1``, ``g2`` (the flank family's pinion and gear rows,
+    derive.table_of): a call, not inlined (read only in runs with factors)."""
+    fp, dfp = linear(table, g1, i1, x_lo, inv_hf, x1)
+    fg, dfg = linear(table, g2, i2, x_lo, inv_hf, x1)
     return fp * fg, dfp * fg + fp * dfg
 
 
@@ -219,7 +220,8 @@ def _gather(f, sigma, kin, app, model, scratch):
             # int(f): the family as a run-time int, one compiled hermite for every call
             _, kj, dkj = hermite(model.pair_stiffness, int(f), x_lo, x_hi, grid[2], grid[3], x1)
         if factors:
-            fac, dfac = _factors(model.tooth_stiffness_factor, i1, i2, x_lo, inv_hf, x1)
+            fac, dfac = _factors(model.tooth_stiffness_factor, g1, g2, i1, i2, x_lo, inv_hf,
+                                 x1)
             dkj = dkj * fac + kj * dfac
             kj *= fac
         scratch[SC.slot, n_touch] = j

@@ -199,10 +199,13 @@ def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
     derived = np.zeros(N_DERIVED)
     family = np.zeros((N_FAMILIES, N_FAMILY))
     factors = optional.get("tooth_stiffness_factor", EMPTY_3D)
-    if factors.size and (factors.shape[0] != N_GEARS or factors.shape[1] < z_max
+    if factors.shape[0] == N_GEARS:  # one flank family given: the other has the same
+        factors = optional["tooth_stiffness_factor"] = np.ascontiguousarray(
+            np.concatenate([factors] * N_FAMILIES))
+    if factors.size and (factors.shape[0] != N_TABLES or factors.shape[1] < z_max
                          or factors.shape[2] < 2):
-        raise ValueError(f"tooth_stiffness_factor needs shape ({N_GEARS}, >= {z_max}) or "
-                         f"({N_GEARS}, >= {z_max}, >= 2), got {factors.shape}")
+        raise ValueError(f"tooth_stiffness_factor needs shape ({N_TABLES} or {N_GEARS}, "
+                         f">= {z_max}[, >= 2]), got {factors.shape}")
     derive(prm, tables, offsets, derived, family, factors)
     return Model(prm=prm.copy(), derived=derived, family=family, tables=tables,
                  tooth_offsets=offsets, drive_pp=_pp(drive_pp, "drive_pp"),
@@ -250,11 +253,11 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
         Antiderivative of ``drive_pp`` [rad] (any constant); required in speed and shaft mode.
     tooth_offsets : ndarray, shape (4 or 2, >= max(z1, z2)), optional
         Per-tooth flank offsets Ft1, Ft2[, Ft1c, Ft2c] [mm]; default zeros.
-    tooth_stiffness_factor : ndarray, shape (2, >= max(z1, z2), n >= 2), optional
-        (in ``arrays``) Stiffness factor [-] of every pinion (row 0) and gear (row 1) tooth at
-        n pinion roll positions evenly spaced over [x_lo, x_hi], linearly interpolated; shape
-        (2, >= max(z1, z2)): one factor per tooth along the whole path (docs/theory.md §4b.2).
-        Absent: no factors.
+    tooth_stiffness_factor : ndarray, shape (4 or 2, >= max(z1, z2), n >= 2), optional
+        (in ``arrays``) Stiffness factor [-] of every tooth, rows as ``tooth_offsets`` (with
+        two rows both flank families have the same), at n pinion roll positions evenly spaced
+        over [x_lo, x_hi], linearly interpolated; shape (4 or 2, >= max(z1, z2)): one factor
+        per tooth along the whole path (docs/theory.md §4b.2). Absent: no factors.
     progress : callable(t_reached, t_start, t_end), optional
         Called after every chunk (:func:`chunk_ends`) with times [s].
     **arrays : ndarray

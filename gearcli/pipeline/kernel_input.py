@@ -213,15 +213,18 @@ def factor_positions(tables: GapTables, n: int) -> np.ndarray:
 
 def stiffness_factor_array(factors, geo: GeometryResult) -> np.ndarray:
     """The kernel's ``tooth_stiffness_factor`` (core.bundles.Model) from a table given by
-    the caller, checked: shape (2, max(z1, z2), n >= 2) (pinion row 0, gear row 1, columns at
-    :func:`factor_positions`) or (2, max(z1, z2)) (constant along the path); finite and
-    >= 0 (0: the tooth carries nothing). Entries beyond a gear's tooth count are not read."""
+    the caller, checked: shape (rows, max(z1, z2), n >= 2) (columns at
+    :func:`factor_positions`) or (rows, max(z1, z2)) (constant along the path), rows 2
+    (pinion, gear; both flank families) or 4 (drive pinion, drive gear, coast pinion, coast
+    gear, as the tooth offsets); finite and >= 0 (0: the tooth carries nothing). Entries
+    beyond a gear's tooth count are not read."""
     a = np.asarray(factors, dtype=np.float64)
     z = max(geo.geometry.pinion.teeth, geo.geometry.gear.teeth)
-    if a.ndim not in (2, 3) or a.shape[:2] != (layout.N_GEARS, z) or (a.ndim == 3
-                                                                     and a.shape[2] < 2):
-        raise ValueError(f"tooth stiffness factors need shape ({layout.N_GEARS}, {z}, n >= 2) "
-                         f"or ({layout.N_GEARS}, {z}), got {a.shape}")
+    if a.ndim not in (2, 3) or a.shape[0] not in (layout.N_GEARS, layout.N_TABLES) \
+            or a.shape[1] != z or (a.ndim == 3 and a.shape[2] < 2):
+        raise ValueError(f"tooth stiffness factors need shape ({layout.N_GEARS} or "
+                         f"{layout.N_TABLES}, {z}, n >= 2) or ({layout.N_GEARS} or "
+                         f"{layout.N_TABLES}, {z}), got {a.shape}")
     if not np.all(np.isfinite(a)) or np.any(a < 0.0):
         raise ValueError("tooth stiffness factors must be finite and >= 0")
     return a
@@ -250,14 +253,17 @@ def fault_factor_table(case: Case, geo: GeometryResult, tables: GapTables, mesh:
 
 
 def _factors(case, geo, tables, mesh, explicit, faults):
-    """The run's factor table: the caller's (checked), the faults', or their product."""
+    """The run's factor table: the caller's (checked), the faults' (four rows), or their
+    product (a two-row table serves both flank families, a 2-D one the whole path)."""
     table = None if explicit is None else stiffness_factor_array(explicit, geo)
     if faults:
         n = table.shape[2] if table is not None and table.ndim == 3 else None
         fault_table = fault_factor_table(case, geo, tables, mesh, faults, n)
-        if fault_table is not None:
-            table = fault_table if table is None else fault_table * (
-                table if table.ndim == 3 else table[:, :, None])
+        if fault_table is not None and table is not None:
+            given = table if table.ndim == 3 else table[:, :, None]
+            table = fault_table * np.tile(given, (layout.N_TABLES // given.shape[0], 1, 1))
+        elif fault_table is not None:
+            table = fault_table
     return {} if table is None else {"tooth_stiffness_factor": table}
 
 

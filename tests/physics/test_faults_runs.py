@@ -163,3 +163,18 @@ def test_a_case_file_fault_runs_through_the_pipeline():
     assert table[0, 2].min() < 0.95 and np.all(np.delete(table, 2, axis=1)[0] == 1.0)
     assert res.status == "ok", res.invalid_reason
     assert res.summary["energy_balance"]["relative_residual"] < 1e-5
+
+
+def test_given_factors_multiply_the_faults():
+    """build_kernel_input with a table of the caller's and faults: the product, the caller's
+    two rows serving both flank families (a table of 2.0 doubles every fault factor)."""
+    loaded = load_case(ROOT / "cases" / "iso_pair.yaml")
+    geo = run_geometry(loaded)
+    faults = [RootCrack("gear", 4, 3.0), ChippedTip("pinion", 2, 1.0, 0.5)]
+    alone = build_kernel_input(loaded.case, geo, faults=faults).arrays["tooth_stiffness_factor"]
+    given = np.full((2, 43, alone.shape[2]), 2.0)
+    both = build_kernel_input(loaded.case, geo, tooth_stiffness_factor=given, faults=faults)
+    np.testing.assert_array_equal(both.arrays["tooth_stiffness_factor"], 2.0 * alone)
+    flat = build_kernel_input(loaded.case, geo, tooth_stiffness_factor=np.full((2, 43), 2.0),
+                              faults=faults)
+    np.testing.assert_array_equal(flat.arrays["tooth_stiffness_factor"], 2.0 * alone)

@@ -106,6 +106,27 @@ def test_a_factor_band_on_one_tooth_softens_that_tooth_there_only():
     assert np.median(delta[single & (tooth != WEAK)]) == pytest.approx(F_STATIC / K0, rel=0.01)
 
 
+def test_factor_rows_belong_to_their_flank_family():
+    """Four rows (drive pinion, drive gear, coast pinion, coast gear, as the tooth offsets): a
+    band of 1/2 on the coast pinion's tooth WEAK leaves a drive-only run bit for bit as it is
+    without factors (its drive rows are ones); the same band on the drive pinion's row softens
+    the drive run (single-pair deflection 2 F/K0 inside the band, as above)."""
+    x = np.linspace(0.0, tk.G_ALPHA, N_POS)
+    band = (x >= BAND[0]) & (x <= BAND[1])
+    plain = _run(layout.LAW_TOOTH)
+    for family in (layout.COAST_FLANKS, layout.DRIVE_FLANKS):
+        factors = np.ones((layout.N_TABLES, tk.Z2, N_POS))
+        factors[family * layout.N_GEARS + layout.PINION, WEAK, band] = 0.5
+        res = _run(layout.LAW_TOOTH, factors)
+        same = np.array_equal(plain.series, res.series)
+        assert same == (family == layout.COAST_FLANKS)
+    steady, u, tooth, pairs = _positions(res)
+    weak = (tooth == WEAK) & (pairs == 1) & (u >= x[band][0]) & (u <= x[band][-1])
+    assert weak.sum() > 20
+    delta = res.column("delta_mm")[steady][weak]
+    assert np.median(delta) == pytest.approx(2.0 * F_STATIC / K0, rel=0.01)
+
+
 @pytest.mark.parametrize("c_pinion, c_gear", [(0.4, 1.0), (2.5, 1.0), (1.0, 0.4), (1.6, 1.6)])
 def test_a_constant_factor_scales_the_mesh_stiffness(c_pinion, c_gear):
     """Every pinion tooth c_pinion, every gear tooth c_gear (a 3-D table, constant): the pair

@@ -58,7 +58,7 @@ def _path(pair, n=201):
 def test_zero_size_faults_are_exact_ones(fault):
     ps = _stiffness(SEED, _path(SEED))
     table = fault_factors(SEED, ps, [fault])
-    assert table.shape == (2, 25, ps.x_mm.size)
+    assert table.shape == (4, 25, ps.x_mm.size)
     assert np.all(table == 1.0)
 
 
@@ -96,7 +96,7 @@ def test_factors_fall_with_crack_depth_and_width():
     np.testing.assert_allclose(fw[2], 0.5 * (fw[0] + fw[4]), rtol=1e-14)
     # the other teeth and the other gear are untouched
     table = fault_factors(SEED, ps, [RootCrack("pinion", 2, 6.0)])
-    assert np.all(np.delete(table[0], 2, axis=0) == 1.0) and np.all(table[1] == 1.0)
+    assert np.all(np.delete(table[0], 2, axis=0) == 1.0) and np.all(table[1:] == 1.0)
 
 
 def _h_of_y(gear):
@@ -243,6 +243,24 @@ def test_spall_and_chip_act_over_their_span_only():
     assert np.all(chip[above] == 0.0) and np.all(chip[~above] == 1.0)
     half = fault_factors(pair, ps, [ChippedTip("gear", 7, 3.0, width=0.5)])[1, 7]
     assert np.all((half[above] > 0.0) & (half[above] < 1.0)) and np.all(half[~above] == 1.0)
+
+
+def test_flank_rows():
+    """Rows drive pinion, drive gear, coast pinion, coast gear (core.layout TABLE_*): a crack
+    (closed under coast load) and a spall (on the drive flank) only on the drive row; a
+    missing tooth and a chipped tip on both, the coast row the drive row's function of the
+    coast roll position (symmetric teeth)."""
+    ps = _stiffness(SEED, _path(SEED))
+    table = fault_factors(SEED, ps, [
+        RootCrack("pinion", 1, 5.0), Spall("gear", 2, 5.0, 0.5, 0.1, diameter_mm=250.0),
+        MissingTooth("pinion", 3), ChippedTip("gear", 4, 2.0, width=0.6)])
+    assert table[0, 1].min() < 0.99 and np.all(table[2, 1] == 1.0)
+    assert table[1, 2].min() < 0.99 and np.all(table[3, 2] == 1.0)
+    assert np.all(table[[0, 2], 3] == 0.0)
+    assert table[1, 4].min() < 0.99
+    np.testing.assert_array_equal(table[3, 4], table[1, 4])
+    ones = np.delete(table, [1, 2, 3, 4], axis=1)
+    assert np.all(ones == 1.0)
 
 
 def test_faults_on_one_tooth_multiply():

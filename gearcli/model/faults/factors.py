@@ -81,6 +81,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
+from gearcli.core.layout import N_TABLES, TABLE_G1, TABLE_G1_COAST, TABLE_G2, TABLE_G2_COAST
 from gearcli.model.faults.records import GEARS, ChippedTip, MissingTooth, RootCrack, Spall, is_void
 from gearcli.model.geometry import PairGeometry
 from gearcli.model.pair_stiffness import PairStiffness, pair_contact
@@ -94,6 +95,9 @@ __all__ = ["CrackSection", "crack_section", "crack_compliance", "fault_factors",
 #: Thinnest ligament half thickness [mm] the crack model integrates (a thinner one is broken).
 MIN_LIGAMENT_MM = 1e-6
 _GAUSS = np.polynomial.legendre.leggauss(10)
+#: The factor table's rows of each gear (pinion, gear) on the drive and the coast flanks.
+DRIVE_ROWS = (TABLE_G1, TABLE_G2)
+COAST_ROWS = (TABLE_G1_COAST, TABLE_G2_COAST)
 
 
 # --- root crack: the cracked-section integrals ------------------------------------------------
@@ -244,7 +248,12 @@ def _chip_factor(pair: PairGeometry, ps: PairStiffness, g: int, fault: ChippedTi
 
 def fault_factors(pair: PairGeometry, stiffness: PairStiffness, faults, *,
                   deflection_mm: float = 0.0) -> np.ndarray:
-    """The kernel's factor table f[g, i, m] (docs/theory.md §4b.2) for ``faults``.
+    """The kernel's factor table f[r, i, m] (docs/theory.md §4b.2) for ``faults``.
+
+    Rows as the kernel's (core.layout TABLE_*): drive pinion, drive gear, coast pinion, coast
+    gear. A crack (on the drive side's fillet: closed under coast load) and a spall (on the
+    drive flank) act on the drive rows; a missing tooth and a chipped tip on both families
+    (symmetric teeth: the coast pair at its own roll position x1 is the drive pair's mirror).
 
     Parameters
     ----------
@@ -262,12 +271,12 @@ def fault_factors(pair: PairGeometry, stiffness: PairStiffness, faults, *,
     Returns
     -------
     ndarray
-        (2, max(z1, z2), n) factors [-], ones where no fault acts; zero-size faults
+        (4, max(z1, z2), n) factors [-], ones where no fault acts; zero-size faults
         (:func:`is_void`) leave exact ones.
     """
     x = np.asarray(stiffness.x_mm, float)
     teeth = (pair.pinion.teeth, pair.gear.teeth)
-    table = np.ones((2, max(teeth), x.size))
+    table = np.ones((N_TABLES, max(teeth), x.size))
     contact = None
     for fault in faults:
         g = GEARS.index(fault.gear)
@@ -287,7 +296,9 @@ def fault_factors(pair: PairGeometry, stiffness: PairStiffness, faults, *,
             f = _chip_factor(pair, stiffness, g, fault)
         else:
             raise TypeError(f"not a tooth fault: {fault!r}")
-        table[g, fault.tooth] *= f
+        both = isinstance(fault, (MissingTooth, ChippedTip))
+        for row in ((DRIVE_ROWS[g], COAST_ROWS[g]) if both else (DRIVE_ROWS[g],)):
+            table[row, fault.tooth] *= f
     return table
 
 
@@ -327,5 +338,5 @@ def revolution_stiffness(pair: PairGeometry, stiffness_at, faults, *, pitches: i
     k = np.zeros(x.shape)
     healthy = np.zeros(x.shape)
     healthy[on] = ps.k_N_mm
-    k[on] = ps.k_N_mm * table[0, mm % z1, col] * table[1, mm % z2, col]
+    k[on] = ps.k_N_mm * table[TABLE_G1, mm % z1, col] * table[TABLE_G2, mm % z2, col]
     return RevolutionStiffness(s1, k.sum(axis=0), healthy.sum(axis=0))
