@@ -28,7 +28,7 @@ from gearcli.core import layout
 from gearcli.core.integrate import kernel_model, simulate
 from gearcli.model.timefunction import PiecewisePolynomial as PP
 from gearcli.pipeline.geometry import run_geometry
-from gearcli.pipeline.kernel_input import build_kernel_input
+from gearcli.pipeline.kernel_input import build_kernel_input, factor_positions
 from tests.conftest import ROOT
 from tests.physics import test_kernel as tk
 
@@ -215,6 +215,9 @@ def test_a_table_of_ones_is_no_table(case, overrides):
     for factors in (None, np.ones((layout.N_GEARS, z, 7))):
         ki = build_kernel_input(loaded.case, geo, tooth_stiffness_factor=factors)
         assert ("tooth_stiffness_factor" in ki.arrays) == (factors is not None)
+        x = factor_positions(ki.tables, 7)  # the columns: the gap tables' range, evenly
+        assert (x[0], x[-1]) == (ki.tables.x_lo, ki.tables.x_hi)
+        assert np.allclose(np.diff(x), (ki.tables.x_hi - ki.tables.x_lo) / 6, rtol=1e-12)
         runs.append(simulate(ki.params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
                              load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
                              **ki.arrays))
