@@ -14,6 +14,7 @@ from pydantic import Field, Strict, model_serializer, model_validator
 
 from gearcli import units
 from gearcli.case.schema_drive import Bearing, Bearings, Drive, Load, MotorCurve, Shaft
+from gearcli.case.schema_faults import Fault
 from gearcli.case.schema_gears import Gear, Gears, InertiaSpec, Material, Rack, Teeth
 from gearcli.case.schema_mesh import IMPACT_KEYS, TOOTH_KEYS, Contact, Friction
 from gearcli.case.schema_mods import Errors, Modifications, PitchDeviation, Relief, Runout
@@ -101,6 +102,8 @@ class Case(Section):
     run: Run
     checks: Checks = Field(default_factory=Checks)
     rating: Rating = Field(default_factory=Rating, description="ISO 6336 rating (gearcli rate)")
+    faults: list[Fault] = Field(default_factory=list, description="damaged teeth: root_crack, "
+                                "spall, chipped_tip, missing_tooth (docs/theory.md, Tooth faults)")
 
     @model_validator(mode="wrap")
     @classmethod
@@ -123,7 +126,7 @@ class Case(Section):
     @model_validator(mode="after")
     def _cross_checks(self):
         """Keys whose meaning depends on another section (every one is reported)."""
-        found = [*self._bearings_of_the_model(), *self._pitch_lists()]
+        found = [*self._bearings_of_the_model(), *self._pitch_lists(), *self._fault_teeth()]
         if self.load.applied_to == "pinion" and self.drive.type == "speed":
             found.append(FieldError(
                 ("load", "applied_to"), "a torque on a motion-driven body never reaches the "
@@ -159,3 +162,9 @@ class Case(Section):
                                         f"{len(dev.values)} entries", f"one per tooth of the "
                                         f"{name} (gears.{name}.teeth: {teeth})"))
         return found
+
+    def _fault_teeth(self) -> list[FieldError]:
+        return [FieldError(("faults", str(i), "tooth"), f"tooth {f.tooth}",
+                           f"0 ... {teeth - 1} (gears.{f.gear}.teeth: {teeth})")
+                for i, f in enumerate(self.faults)
+                if f.tooth >= (teeth := getattr(self.gears, f.gear).teeth)]

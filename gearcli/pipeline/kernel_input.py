@@ -15,8 +15,10 @@ import numpy as np
 
 from gearcli.case.schema import Case, PitchDeviation
 from gearcli.case.schema import Relief as CaseRelief
+from gearcli.case.schema_faults import fault_records
 from gearcli.core import layout
 from gearcli.model.errors import cumulative_pitch_positions, runout_phases, tooth_offsets
+from gearcli.model.faults import tooth_index_offsets
 from gearcli.model.gap import GapTables, Modifications, Relief, gap_tables, slot_layout
 from gearcli.model.geometry import mesh_frequencies
 from gearcli.model.mesh import MeshMode
@@ -228,15 +230,56 @@ def stiffness_factor_array(factors, geo: GeometryResult) -> np.ndarray:
     return a
 
 
-def build_kernel_input(case: Case, geo: GeometryResult,
-                       tooth_stiffness_factor=None) -> KernelInput:
+#: Factor-table columns per base pitch for tooth faults (a step of p_b/200: 0.15 mm at m = 10).
+FAULT_POSITIONS_PER_PITCH = 200
+
+
+def fault_factor_table(case: Case, geo: GeometryResult, tables: GapTables, mesh: MeshMode,
+                       faults, columns: int | None = None) -> np.ndarray | None:
+    """The factor table of tooth ``faults`` (model.faults records) at :func:`factor_positions`
+    (``columns`` of them, default FAULT_POSITIONS_PER_PITCH per base pitch): the case's healthy
+    pair stiffness there, spalls against the static deflection (docs/theory.md, "Tooth
+    faults"). None when every fault has zero size (the run is the healthy one bit for bit)."""
+    from gearcli.model.faults import is_void
+    from gearcli.model.faults.factors import fault_factors
+
+    g = geo.geometry
+    if columns is None:
+        columns = math.ceil((tables.x_hi - tables.x_lo) / g.p_b_mm * FAULT_POSITIONS_PER_PITCH) + 1
+    x = factor_positions(tables, columns)
+    table = fault_factors(g, tooth_stiffness(case, geo, x), faults,
+                          deflection_mm=mesh.loaded_deflection_mm)
+    return None if all(is_void(f) for f in faults) else table
+
+
+def _factors(case, geo, tables, mesh, explicit, faults):
+    """The run's factor table: the caller's (checked), the faults' (four rows), or their
+    product (a two-row table serves both flank families, a 2-D one the whole path)."""
+    table = None if explicit is None else stiffness_factor_array(explicit, geo)
+    if faults:
+        n = table.shape[2] if table is not None and table.ndim == 3 else None
+        fault_table = fault_factor_table(case, geo, tables, mesh, faults, n)
+        if fault_table is not None and table is not None:
+            given = table if table.ndim == 3 else table[:, :, None]
+            table = fault_table * np.tile(given, (layout.N_TABLES // given.shape[0], 1, 1))
+        elif fault_table is not None:
+            table = fault_table
+    return {} if table is None else {"tooth_stiffness_factor": table}
+
+
+def build_kernel_input(case: Case, geo: GeometryResult, tooth_stiffness_factor=None,
+                       faults=None) -> KernelInput:
     """Assemble the kernel's inputs from a validated case and its checked geometry.
 
     ``tooth_stiffness_factor``: optional per-tooth, per-position stiffness factors
-    (:func:`stiffness_factor_array`; no case key yet: the fault models will set them), carried
-    to the kernel in ``arrays``. Absent, the run is the one without factors bit for bit.
+    (:func:`stiffness_factor_array`), carried to the kernel in ``arrays``; ``faults``: tooth
+    faults (model.faults records; default the case's ``faults:``), turned into factors by
+    :func:`fault_factor_table` (times the given factors when both are given). Absent, or
+    faults of zero size only, the run is the one without factors bit for bit. Tooth
+    indices: docs/theory.md, "Tooth faults".
     """
     g = geo.geometry
+    faults = fault_records(case.faults) if faults is None else faults
     rb1, rb2 = g.pinion.r_b_mm, g.gear.r_b_mm
     J1, J2 = geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2
     fr, dr = case.friction, case.drive
@@ -266,7 +309,8 @@ def build_kernel_input(case: Case, geo: GeometryResult,
         r_b1=rb1, r_b2=rb2, J1=J1, J2=J2,
         z1=g.pinion.teeth, z2=g.gear.teeth,
         p_b=g.p_b_mm, T1A=g.A_mm, T1T2=g.T1T2_mm,
-        x_lo=tables.x_lo, x_hi=tables.x_hi, **slot_layout(g, tables), backlash_n=g.j_n_mm,
+        x_lo=tables.x_lo, x_hi=tables.x_hi, **(slots := slot_layout(g, tables)),
+        **tooth_index_offsets(g, tables.x_lo, slots), backlash_n=g.j_n_mm,
         ecc1=ecc1, ecc2=ecc2, **runout_phases(phi1, phi2, g.alpha_w_rad),
         **_contact_params(case, geo, mesh),
         mu_s=fr.static_coefficient if fr.enabled else 0.0,
@@ -292,9 +336,7 @@ def build_kernel_input(case: Case, geo: GeometryResult,
         params=params,
         tables=tables,
         arrays={"tooth_offsets": offsets, **_contact_arrays(case, geo, tables),
-                **({} if tooth_stiffness_factor is None else {
-                    "tooth_stiffness_factor": stiffness_factor_array(tooth_stiffness_factor,
-                                                                     geo)})},
+                **_factors(case, geo, tables, mesh, tooth_stiffness_factor, faults)},
         drive_pp=drive_fn.pp.to_arrays(),
         drive_angle_pp=angle,
         load_pp=case.load.torque.pp.to_arrays(),
