@@ -34,9 +34,10 @@ demo: $(STAMP)
 	if [ $$rc -eq 4 ]; then echo "(exit 4: a check failed or the run is outside the model's \
 	validity; the verdicts are in $(OUT)/report.html)"; elif [ $$rc -ne 0 ]; then exit $$rc; fi
 
-# The suite's duration, measured with `time make test` (2-core VM shared with other jobs, warm
-# solver cache, chromium present): update it when the suite changes much.
-TEST_DURATION := about 4 minutes on 2 cores
+# The suite's duration, measured with `time make test` (1098 tests, warm solver cache, chromium
+# present, 2-core VM at load average 7-14 from other jobs): 13 min wall, 4 min of CPU (user +
+# sys), so an estimated 2-4 min on two quiet cores. Update it when the suite changes much.
+TEST_DURATION := ~4 CPU-minutes (measured 13 min wall on a busy 2-core VM; estimated 2-4 min on 2 quiet cores)
 test: lint browser
 	@echo "running the test suite (pytest -n $(JOBS)): $(TEST_DURATION); make test-fast skips the slow tests"
 	$(BIN)/python -m pytest -n $(JOBS) -q
