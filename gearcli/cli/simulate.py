@@ -34,7 +34,8 @@ def simulate(
         help="Time series as 'csv' (10 significant digits) or 'parquet' (full precision, "
              "compressed: long runs; needs -o DIR)."),
 ) -> None:
-    """Integrate the 2-DOF tooth-contact model; write timeseries.csv (or .parquet),
+    """Integrate the tooth-contact model (torsional or lateral-torsional, with the case's shafts
+    and inertias); write timeseries.csv (or .parquet),
     summary.json, manifest.json (atomically; never over earlier results without --force).
 
     Example: gearcli simulate cases/seed.yaml -o out/seed --set run.end_time=2
