@@ -71,11 +71,18 @@ def _slot_teeth(res, ki, geo):
     return (int(prm[P.tooth_k1]) + n[:, None] - j[None, :]) % g.pinion.teeth
 
 
-def test_a_missing_tooth_carries_nothing():
-    """Pinion tooth 4 missing: every drive slot holding it has force exactly 0 (factor 0, the
-    damping share is proportional to the elastic force, docs/theory.md §4c); every other
-    pinion tooth carries in some sample of the steady part."""
-    res, ki, geo = _run([*FAST, "run.end_time=0.16"], [MissingTooth("pinion", 4)])
+SEED_FAST = ["drive.speed=STEP(time, 0, 0, 0.02, 3000)", "load.torque=STEP(time, 0, 0, 0.02, "
+             "4.5e+05)", "run.end_time=0.25"]
+
+
+@pytest.mark.parametrize("case, overrides", [("iso_pair.yaml", [*FAST, "run.end_time=0.16"]),
+                                             ("seed.yaml", SEED_FAST)])
+def test_a_missing_tooth_carries_nothing(case, overrides):
+    """Pinion tooth 4 missing: every drive slot holding it has force exactly 0 (factor 0; the
+    tooth law's damping share is proportional to the elastic force, docs/theory.md §4c, the
+    IMPACT law's c_max is scaled by the factor, §4b.2); every other pinion tooth carries in
+    some sample of the steady part. Both contact laws: iso_pair (tooth law), seed (IMPACT)."""
+    res, ki, geo = _run(overrides, [MissingTooth("pinion", 4)], case)
     teeth = _slot_teeth(res, ki, geo)
     force = res.slot_force  # drive slots
     steady = res.column("t_s") > T_STEADY
