@@ -20,70 +20,232 @@ from typing import Any
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.io.metrics import METRICS
 
-__all__ = ["SCHEMA_VERSION", "Summary", "AnalysisMetrics", "GearStress", "Mode",
-           "MeshSummary", "json_schema", "KINDS"]
+__all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
+           "AnalysisMetrics", "ResonanceMargin", "Check", "GearStress", "Mode", "MeshSummary",
+           "PointLines", "PLACES", "shown", "shown_values", "sweep_metrics", "json_schema", "KINDS"]
 
 
-def _field(key: str, default: Any = math.nan):
-    """A field with the label and stored unit of metric ``key`` (gearcli/io/metrics.py)."""
-    m = METRICS.get(key)
+#: Where a metric is shown (field metadata ``show``): the tables of `gearcli simulate`
+#: ("simulate") and `gearcli analyze` ("analyze"), the report's results table ("report"), the
+#: columns of a sweep's summary.csv ("sweep"), its trend table and figure ("trend") and the
+#: further panels of its speed figure ("trend_plot"), the report's summary line ("headline").
+PLACES = ("simulate", "analyze", "report", "sweep", "trend", "trend_plot", "headline")
+
+
+def _field(key: str, default: Any = math.nan, show: str = "", *, required: bool = False,
+           omit_none: bool = False, nested: type | None = None, metric: str | None = None,
+           **extra):
+    """A field of a document: ``key`` its name, with the label and stored unit of metric
+    ``metric or key`` (gearcli/io/metrics.py); ``show`` the places it is shown
+    (:data:`PLACES`, space-separated); ``required``: a stored document without it is refused
+    (gearcli/io/results.py); ``omit_none``: left out of the JSON when None; ``nested``: the
+    document class of its value (a tuple of them when the default is a tuple); ``extra``
+    further metadata."""
+    m = METRICS.get(metric or key)
+    places = frozenset(show.split())
+    assert places <= set(PLACES), places
     meta = {"label": m.label, "unit": m.unit} if m else {"label": key.replace("_", " ")}
+    meta.update(show=places, required=required, omit_none=omit_none, nested=nested,
+                metric=metric or key, **extra)
+    if isinstance(default, list | dict):
+        return dataclasses.field(default_factory=lambda: type(default)(default), metadata=meta)
     return dataclasses.field(default=default, metadata=meta)
 
 
-def _pick(cls, values: Mapping[str, Any]) -> dict[str, Any]:
-    """The entries of ``values`` that are fields of ``cls`` (lists of pairs as tuples)."""
-    names = {f.name for f in dataclasses.fields(cls)}
-    out = {k: v for k, v in values.items() if k in names}
-    if isinstance(out.get("window_s"), list):
-        out["window_s"] = tuple(out["window_s"])
-    return out
+def _plain(value):
+    """A field's value as JSON data (documents as dicts, tuples as lists)."""
+    if isinstance(value, _Document):
+        return value.to_dict()
+    if isinstance(value, tuple | list):
+        return [_plain(v) for v in value]
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    return value
 
 
 class _Document:
+    """A result document: ``to_dict()`` is its JSON (fields in order, the keys of the files),
+    ``from_document()`` reads it back (absent keys take the field's default)."""
+
     def to_dict(self) -> dict[str, Any]:
-        return dataclasses.asdict(self)
+        out = {}
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if value is None and f.metadata.get("omit_none"):
+                continue
+            out[f.name] = _plain(value)
+        return out
+
+    @classmethod
+    def from_document(cls, doc: Mapping[str, Any]):
+        values = {}
+        for f in dataclasses.fields(cls):
+            if f.name not in doc:
+                continue
+            value, nested = doc[f.name], f.metadata.get("nested")
+            if nested is not None and value is not None:
+                many = isinstance(value, list | tuple)
+                value = (tuple(nested.from_document(v) for v in value) if many
+                         else nested.from_document(value))
+            elif isinstance(value, list):
+                value = tuple(value)
+            values[f.name] = value
+        return cls(**values)
+
+
+def shown(cls, place: str) -> tuple[str, ...]:
+    """The metric keys of ``cls``'s fields shown at ``place`` (:data:`PLACES`), in field order;
+    nested documents (not lists of them) contribute theirs."""
+    out: list[str] = []
+    for f in dataclasses.fields(cls):
+        nested = f.metadata.get("nested")
+        if nested is not None and not isinstance(f.default, tuple):
+            out.extend(shown(nested, place))
+        elif place in f.metadata.get("show", ()):
+            out.append(f.metadata["metric"])
+    return tuple(out)
+
+
+def shown_values(doc: _Document, place: str) -> dict[str, Any]:
+    """{metric key: value} of the fields of ``doc`` shown at ``place``, in order."""
+    out: dict[str, Any] = {}
+    for f in dataclasses.fields(doc):
+        nested = f.metadata.get("nested")
+        value = getattr(doc, f.name)
+        if nested is not None and isinstance(value, _Document):
+            out.update(shown_values(value, place))
+        elif place in f.metadata.get("show", ()):
+            out[f.metadata["metric"]] = value
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class EnergyBalance(_Document):
+    """ΔE_kin + ΔV against the net work in over the run [N·mm = mJ] (summary.json's
+    ``scalars.energy_balance``; gearcli.pipeline.simulate.energy_balance)."""
+
+    work_in_mJ: float = _field("work_in_mJ")
+    work_load_mJ: float = _field("work_load_mJ")
+    loss_bearing_mJ: float = _field("loss_bearing_mJ")
+    loss_damping_mJ: float = _field("loss_damping_mJ")
+    loss_friction_mJ: float = _field("loss_friction_mJ")
+    delta_kinetic_mJ: float = _field("delta_kinetic_mJ")
+    delta_contact_mJ: float = _field("delta_contact_mJ")
+    delta_spring_mJ: float = _field("delta_spring_mJ")
+    residual_mJ: float = _field("residual_mJ")
+    relative_residual: float = _field("relative_residual", show="simulate", required=True,
+                                      metric="energy_relative_residual")
+
+
+@dataclasses.dataclass(frozen=True)
+class StoredMode(_Document):
+    """A mode as summary.json keeps it (``scalars.modes``; the full one: :class:`Mode`)."""
+
+    mode: int = _field("mode", 0, required=True)
+    natural_frequency_Hz: float | None = _field("natural_frequency_Hz", None, required=True)
+    damping_ratio: float | None = _field("damping_ratio", None, required=True)
+    description: str = _field("description", "")
+    rigid_body: bool = _field("rigid_body", False, required=True)
 
 
 @dataclasses.dataclass(frozen=True)
 class Summary(_Document):
     """The scalars of a run over its steady window (summary.json's ``scalars``)."""
 
-    dynamic_factor: float | None = _field("dynamic_factor", None)
-    force_max_N: float = _field("force_max_N")
-    force_max_t_s: float = _field("force_max_t_s")
-    force_min_N: float = _field("force_min_N")
-    force_mean_N: float = _field("force_mean_N")
-    force_rms_N: float = _field("force_rms_N")
-    force_static_N: float = _field("force_static_N")
-    dte_mean_mm: float = _field("dte_mean_mm")
-    dte_peak_to_peak_mm: float = _field("dte_peak_to_peak_mm")
-    dte_rms_mm: float = _field("dte_rms_mm")
-    contact_loss_fraction: float = _field("contact_loss_fraction")
-    coast_force_max_N: float = _field("coast_force_max_N")
-    pairs_in_contact_mean: float = _field("pairs_in_contact_mean")
-    speed_ratio_mean: float = _field("speed_ratio_mean")
-    speed_ratio_theory: float = _field("speed_ratio_theory")
-    pinion_speed_mean_deg_s: float = _field("pinion_speed_mean_deg_s")
-    gear_speed_mean_deg_s: float = _field("gear_speed_mean_deg_s")
-    gear_mesh_frequency_Hz: float | None = _field("gear_mesh_frequency_Hz", None)
-    mesh_natural_frequency_Hz: float = _field("mesh_natural_frequency_Hz")
-    mesh_damping_ratio: float = _field("mesh_damping_ratio")
-    mesh_stiffness_N_mm: float = _field("mesh_stiffness_N_mm")
-    static_deflection_mm: float = _field("static_deflection_mm")
-    output_rate_Hz: float = _field("output_rate_Hz")
-    window_s: tuple[float, float] = _field("window_s", (math.nan, math.nan))
-    energy_relative_residual: float = _field("energy_relative_residual")
-    status: str = _field("status", "ok")  # validity of the run: "ok" or "invalid"
-    invalid_reason: str = _field("invalid_reason", "")
+    window_s: tuple[float, float] = _field("window_s", (math.nan, math.nan), required=True)
+    window_reason: str = _field("window_reason", "", required=True)
+    samples_in_window: int = _field("samples_in_window", 0)
+    output_rate_Hz: float = _field("output_rate_Hz", required=True)
+    gear_mesh_frequency_Hz: float | None = _field("gear_mesh_frequency_Hz", None,
+                                                  "simulate sweep", required=True)
+    pinion_speed_mean_deg_s: float = _field("pinion_speed_mean_deg_s", show="simulate sweep",
+                                            required=True)
+    gear_speed_mean_deg_s: float = _field("gear_speed_mean_deg_s", show="simulate sweep",
+                                          required=True)
+    speed_ratio_mean: float = _field("speed_ratio_mean", show="simulate")
+    speed_ratio_theory: float = _field("speed_ratio_theory", show="simulate")
+    force_mean_N: float = _field("force_mean_N", show="simulate sweep")
+    force_rms_N: float = _field("force_rms_N", show="sweep")
+    force_max_N: float = _field("force_max_N", show="simulate sweep trend", required=True)
+    force_max_t_s: float = _field("force_max_t_s", required=True)
+    force_min_N: float = _field("force_min_N", show="simulate sweep")
+    force_static_N: float = _field("force_static_N", show="simulate sweep", required=True)
+    dynamic_factor: float | None = _field("dynamic_factor", None, "simulate sweep trend")
+    dte_mean_mm: float = _field("dte_mean_mm", show="simulate sweep")
+    dte_peak_to_peak_mm: float = _field("dte_peak_to_peak_mm", show="simulate sweep trend")
+    dte_rms_mm: float = _field("dte_rms_mm", show="sweep trend_plot")
+    pairs_in_contact_mean: float = _field("pairs_in_contact_mean", show="sweep")
+    contact_loss_fraction: float = _field("contact_loss_fraction", show="simulate sweep")
+    coast_force_max_N: float = _field("coast_force_max_N", show="sweep")
+    mesh_stiffness_N_mm: float = _field("mesh_stiffness_N_mm", show="simulate sweep")
+    single_pair_stiffness_N_mm: float | None = _field("single_pair_stiffness_N_mm", None,
+                                                      "sweep")
+    double_pair_stiffness_N_mm: float | None = _field("double_pair_stiffness_N_mm", None)
+    static_deflection_mm: float = _field("static_deflection_mm", show="simulate")
+    mesh_natural_frequency_Hz: float = _field("mesh_natural_frequency_Hz",
+                                              show="simulate sweep trend_plot", required=True)
+    mesh_damping_ratio: float = _field("mesh_damping_ratio", show="simulate sweep",
+                                       required=True)
+    energy_balance: EnergyBalance = _field("energy_balance", EnergyBalance(),
+                                           nested=EnergyBalance)
+    modes: tuple[StoredMode, ...] = _field("modes", (), nested=StoredMode)
 
-    @classmethod
-    def from_scalars(cls, scalars: Mapping[str, Any], status: str = "ok",
-                     invalid_reason: str = "") -> Summary:
-        balance = scalars.get("energy_balance") or {}
-        return cls(**_pick(cls, scalars),
-                   energy_relative_residual=balance.get("relative_residual", math.nan),
-                   status=status, invalid_reason=invalid_reason)
+    @property
+    def energy_relative_residual(self) -> float:
+        return self.energy_balance.relative_residual
+
+
+@dataclasses.dataclass(frozen=True)
+class PointLines(_Document):
+    """The metrics of a sweep point besides its :class:`Summary`'s (summary.csv's columns after
+    them): the mesh-line amplitudes at f_z of the steady window's spectra (``signal``: the
+    time-series column; gearcli/pipeline/sweep_metrics.py) and the energy residual."""
+
+    gear_speed_gmf_amplitude_rad_s: float | None = _field(
+        "gear_speed_gmf_amplitude_rad_s", None, "sweep trend", signal="omega2_rad_s")
+    dte_gmf_amplitude_mm: float | None = _field("dte_gmf_amplitude_mm", None, "sweep",
+                                                signal="delta_mm")
+    force_gmf_amplitude_N: float | None = _field("force_gmf_amplitude_N", None, "sweep",
+                                                 signal="force_total_N")
+    energy_balance_relative_residual: float | None = _field(
+        "energy_balance_relative_residual", None, "sweep", metric="energy_relative_residual")
+
+
+def sweep_metrics(place: str = "sweep") -> tuple[str, ...]:
+    """The metrics of a sweep point shown at ``place`` ("sweep": summary.csv's metric columns;
+    "trend", "trend_plot"): the :class:`Summary`'s, then the :class:`PointLines`'."""
+    return shown(Summary, place) + tuple(
+        f.name for f in dataclasses.fields(PointLines) if place in f.metadata["show"])
+
+
+@dataclasses.dataclass(frozen=True)
+class SummaryDocument(_Document):
+    """summary.json: the run's status, solver counters, warnings and :class:`Summary`."""
+
+    schema_version: int = _field("schema_version", SCHEMA_VERSION)
+    case: str | None = _field("case", None)
+    status: str = _field("status", "ok")  # validity of the run: "ok" or "invalid"
+    invalid_reason: str | None = _field("invalid_reason", None, omit_none=True)
+    solver: Mapping[str, Any] = _field("solver", {})
+    rows: int = _field("rows", 0)
+    slots: int = _field("slots", 0)
+    warnings: tuple[str, ...] = _field("warnings", ())
+    scalars: Summary = _field("scalars", Summary(), nested=Summary)
+
+
+@dataclasses.dataclass(frozen=True)
+class ResonanceMargin(_Document):
+    """A mesh harmonic k f_z against a mode (analysis.json's ``metrics.resonance_margins``)."""
+
+    harmonic: int = _field("harmonic", 0)
+    mode: int | None = _field("mode", None)
+    excitation_Hz: float = _field("excitation_Hz")
+    mode_Hz: float = _field("mode_Hz")
+    margin_percent: float = _field("margin_percent")
+    resonant_peak: bool = _field("resonant_peak", False)
+
+
+_TABLES = "analyze report"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -92,47 +254,61 @@ class AnalysisMetrics(_Document):
 
     window_s: tuple[float, float] = _field("window_s", (math.nan, math.nan))
     window_reason: str = _field("window_reason", "")
-    samples: int = _field("samples", 0)
-    pinion_speed_mean_deg_s: float = _field("pinion_speed_mean_deg_s")
-    gear_speed_mean_deg_s: float = _field("gear_speed_mean_deg_s")
-    speed_ratio: float = _field("speed_ratio")
-    speed_ratio_theory: float = _field("speed_ratio_theory")
-    speed_ratio_error_percent: float = _field("speed_ratio_error_percent")
-    gear_speed_fluctuation_percent: float = _field("gear_speed_fluctuation_percent")
-    force_mean_N: float = _field("force_mean_N")
-    force_rms_N: float = _field("force_rms_N")
-    force_max_N: float = _field("force_max_N")
-    force_max_t_s: float = _field("force_max_t_s")
+    samples: int = _field("samples", 0, "report")
+    pinion_speed_mean_deg_s: float = _field("pinion_speed_mean_deg_s", show="report")
+    gear_speed_mean_deg_s: float = _field("gear_speed_mean_deg_s", show=_TABLES)
+    speed_ratio: float = _field("speed_ratio", show="report")
+    speed_ratio_theory: float = _field("speed_ratio_theory", show="report")
+    speed_ratio_error_percent: float = _field("speed_ratio_error_percent", show=_TABLES)
+    gear_speed_fluctuation_percent: float = _field("gear_speed_fluctuation_percent",
+                                                   show=_TABLES)
+    force_mean_N: float = _field("force_mean_N", show=_TABLES)
+    force_rms_N: float = _field("force_rms_N", show=_TABLES)
+    force_max_N: float = _field("force_max_N", show=_TABLES + " headline")
+    force_max_t_s: float = _field("force_max_t_s", show="report")
     force_max_source: str = _field("force_max_source", "")
-    force_min_N: float = _field("force_min_N")
-    force_static_N: float = _field("force_static_N")
-    dynamic_factor: float | None = _field("dynamic_factor", None)
-    dte_mean_mm: float = _field("dte_mean_mm")
-    dte_peak_to_peak_mm: float = _field("dte_peak_to_peak_mm")
-    dte_rms_mm: float = _field("dte_rms_mm")
-    contact_loss_fraction: float = _field("contact_loss_fraction")
-    coast_impacts: int = _field("coast_impacts", 0)
-    friction_loss_W: float | None = _field("friction_loss_W", None)
-    damping_loss_W: float | None = _field("damping_loss_W", None)
-    input_power_W: float | None = _field("input_power_W", None)
-    mesh_efficiency: float | None = _field("mesh_efficiency", None)
-    drive_torque_mean_Nmm: float | None = _field("drive_torque_mean_Nmm", None)
-    drive_torque_ripple_Nmm: float | None = _field("drive_torque_ripple_Nmm", None)
-    mesh_natural_frequency_Hz: float | None = _field("mesh_natural_frequency_Hz", None)
-    mesh_damping_ratio: float | None = _field("mesh_damping_ratio", None)
-    gear_mesh_frequency_Hz: float | None = _field("gear_mesh_frequency_Hz", None)
-    pinion_shaft_Hz: float | None = _field("pinion_shaft_Hz", None)
-    gear_shaft_Hz: float | None = _field("gear_shaft_Hz", None)
-    output_rate_Hz: float = _field("output_rate_Hz")
-    frequency_resolution_Hz: float = _field("frequency_resolution_Hz")
-    resonance_margins_percent: tuple[float, ...] = _field("resonance_margins_percent", ())
+    force_min_N: float = _field("force_min_N", show="report")
+    force_static_N: float = _field("force_static_N", show=_TABLES)
+    dynamic_factor: float | None = _field("dynamic_factor", None, _TABLES + " headline")
+    dte_mean_mm: float = _field("dte_mean_mm", show="report")
+    dte_peak_to_peak_mm: float = _field("dte_peak_to_peak_mm", show=_TABLES + " headline")
+    dte_rms_mm: float = _field("dte_rms_mm", show=_TABLES)
+    contact_loss_fraction: float = _field("contact_loss_fraction", show=_TABLES)
+    coast_impacts: int = _field("coast_impacts", 0, _TABLES)
+    friction_loss_W: float | None = _field("friction_loss_W", None, _TABLES)
+    damping_loss_W: float | None = _field("damping_loss_W", None, _TABLES)
+    input_power_W: float | None = _field("input_power_W", None, "report")
+    mesh_efficiency: float | None = _field("mesh_efficiency", None, _TABLES + " headline")
+    drive_torque_mean_Nmm: float | None = _field("drive_torque_mean_Nmm", None, "report")
+    drive_torque_ripple_Nmm: float | None = _field("drive_torque_ripple_Nmm", None, "report")
+    mesh_natural_frequency_Hz: float | None = _field("mesh_natural_frequency_Hz", None,
+                                                     _TABLES)
+    mesh_damping_ratio: float | None = _field("mesh_damping_ratio", None, _TABLES)
+    gear_mesh_frequency_Hz: float | None = _field("gear_mesh_frequency_Hz", None,
+                                                  _TABLES + " headline")
+    pinion_shaft_Hz: float | None = _field("pinion_shaft_Hz", None, "report")
+    gear_shaft_Hz: float | None = _field("gear_shaft_Hz", None, "report")
+    output_rate_Hz: float = _field("output_rate_Hz", show="report")
+    frequency_resolution_Hz: float = _field("frequency_resolution_Hz", show="report")
+    resonance_margins_percent: tuple[float, ...] = _field("resonance_margins_percent", (),
+                                                          "report")
+    resonance_margins: tuple[ResonanceMargin, ...] | None = _field(
+        "resonance_margins", None, omit_none=True, nested=ResonanceMargin)
 
-    @classmethod
-    def from_metrics(cls, metrics: Mapping[str, Any]) -> AnalysisMetrics:
-        values = _pick(cls, metrics)
-        if "resonance_margins_percent" in values:
-            values["resonance_margins_percent"] = tuple(values["resonance_margins_percent"])
-        return cls(**values)
+
+@dataclasses.dataclass
+class Check(_Document):
+    """A check of `gearcli analyze` or `gearcli modal` (analysis.json's and the modal JSON's
+    ``checks``): its value against the limit (a text), passed or not."""
+
+    name: str
+    value: float | str | None
+    limit: str
+    passed: bool
+    note: str = ""
+    #: False when the check could not apply (the note says why); it then passes, and the
+    #: tables print "not checked" instead of "pass"
+    checked: bool = True
 
 
 @dataclasses.dataclass(frozen=True)
@@ -174,10 +350,6 @@ class Mode(_Document):
     description: str = _field("description", "")
     shape: Mapping[str, float] = _field("shape", None)
 
-    @classmethod
-    def from_document(cls, mode: Mapping[str, Any]) -> Mode:
-        return cls(**_pick(cls, mode))
-
 
 @dataclasses.dataclass(frozen=True)
 class MeshSummary(_Document):
@@ -203,7 +375,7 @@ class MeshSummary(_Document):
         ste = {k if k.startswith("unloaded") else f"ste_{k}": v for k, v in doc["ste"].items()}
         flat = {"force_N": doc["force_N"], **ste, **doc["stiffness"],
                 **doc.get("iso6336_method_b", {})}
-        return cls(**_pick(cls, flat))
+        return super().from_document(flat)
 
 
 def _finite(value) -> bool:
@@ -226,8 +398,17 @@ def json_schema(kind: str = "summary") -> dict:
     if kind not in KINDS:
         raise ValueError(f"results schema {kind!r}: expected one of {', '.join(KINDS)}")
 
+    obj = {"type": "object"}
+
     def typed(cls, drop=()) -> dict:
         schema = TypeAdapter(cls).json_schema()
+        schema.pop("$defs", None)  # nested documents: described as open objects below
+        for f in dataclasses.fields(cls):
+            nested = f.metadata.get("nested")
+            if nested is not None and f.name in schema["properties"]:
+                many = isinstance(f.default, tuple) or f.name == "resonance_margins"
+                schema["properties"][f.name] = ({"type": "array", "items": obj} if many
+                                                else dict(obj))
         for name in drop:
             schema["properties"].pop(name, None)
         for prop in schema["properties"].values():  # NaN is not JSON: no such defaults
@@ -244,11 +425,8 @@ def json_schema(kind: str = "summary") -> dict:
 
     base = {"$schema": "https://json-schema.org/draft/2020-12/schema", "type": "object"}
     version = {"const": SCHEMA_VERSION}
-    obj = {"type": "object"}
     if kind == "summary":
-        scalars = typed(Summary, ("status", "invalid_reason", "energy_relative_residual"))
-        scalars["properties"]["energy_balance"] = obj
-        scalars["properties"]["modes"] = {"type": "array", "items": obj}
+        scalars = typed(Summary)
         props = {"schema_version": version, "case": {"type": "string"},
                  "status": {"enum": ["ok", "invalid"]}, "invalid_reason": {"type": "string"},
                  "solver": obj, "rows": {"type": "integer", "minimum": 1},

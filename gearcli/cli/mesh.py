@@ -52,7 +52,7 @@ def mesh(
     if out is not None:
         check_target(out, force)  # before the work, not after
     analysis = api.mesh(case, set_, load_N=load, harris=harris)
-    res, doc, units = analysis.result, analysis.document(), display_units()
+    res, doc, units = analysis, analysis.document(), display_units()
     if out is not None:
         write_mesh(res, out, force, set_, units, doc)
     if plot is not None:

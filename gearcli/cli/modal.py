@@ -53,7 +53,7 @@ def modal(
     speeds = option_quantities(speed_range, "ANGULAR_VELOCITY", "--speed-range")
     modal_result = api.modal(case, set_, None if speeds is None else
                              (math.degrees(speeds[0]), math.degrees(speeds[1])))
-    res, doc = modal_result.result, modal_result.document()
+    res, doc = modal_result, modal_result.document()
     if plot is not None:
         save_campbell_plot(res, plot, units)
     if as_json:

@@ -46,7 +46,7 @@ def stress(
     check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
     rating = api.stress(folder, option_quantities(window, "TIME", "--window"),
                         require_limits=safety)
-    result = rating.result
+    result = rating
     doc = write_stress(result, rating.document())
     if plot is not None:
         save_stress_plot(result, plot)

@@ -53,6 +53,8 @@ METRICS: dict[str, Metric] = {
     "mesh_natural_frequency_Hz": Metric("mesh mode natural frequency f_n", "Hz"),
     "mesh_damping_ratio": Metric("mesh mode damping ratio ζ", "–"),
     "mesh_stiffness_N_mm": Metric("mesh stiffness (linearised)", "N/mm"),
+    "single_pair_stiffness_N_mm": Metric("mesh stiffness, single pair (linearised)", "N/mm"),
+    "double_pair_stiffness_N_mm": Metric("mesh stiffness, two pairs (linearised)", "N/mm"),
     "static_deflection_mm": Metric("static deflection", "mm", True),
     "resonance_margins_percent": Metric("distance of k·f_z from the nearest mode (k = 1, 2, ..)",
                                         "%"),

@@ -1,7 +1,14 @@
-"""Read a gearcli results folder back (for analyze and report), refusing bad folders."""
+"""Read a gearcli results folder back (for analyze and report), refusing bad folders.
+
+The one place where a stored summary.json is read by its keys: :func:`check_summary` refuses a
+document without the entries later steps read (the fields marked ``required`` in
+gearcli/results.py, with the schema_version check), then it becomes a typed
+:class:`gearcli.results.SummaryDocument`.
+"""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -10,6 +17,7 @@ import numpy as np
 
 from gearcli.errors import InvalidResultError, ResultsError
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+from gearcli.results import StoredMode, Summary, SummaryDocument
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -20,7 +28,7 @@ TIMESERIES = ("timeseries.csv", "timeseries.parquet")
 class StoredRun:
     folder: Path
     manifest: dict
-    summary: dict
+    summary: SummaryDocument
     columns: dict[str, np.ndarray]
 
     def column(self, name: str) -> np.ndarray:
@@ -65,7 +73,7 @@ def read_run(folder: str | Path) -> StoredRun:
         raise ResultsError(f"{series}: no {', '.join(missing)} column"
                            f"{'s' if len(missing) > 1 else ''}; expected a table written by "
                            "gearcli simulate (was it edited?)")
-    return StoredRun(p, manifest, summary, columns)
+    return StoredRun(p, manifest, SummaryDocument.from_document(summary), columns)
 
 
 #: Columns of timeseries.csv that analyze, stress and report read.
@@ -73,16 +81,26 @@ REQUIRED_COLUMNS = ("t_s", "omega1_rad_s", "omega2_rad_s", "delta_mm", "force_to
                     "force_coast_N", "pairs_in_contact", "friction_power_mW",
                     "drive_torque_Nmm", "load_torque_Nmm")
 _NUMBER, _OPTIONAL, _TEXT, _PAIR = "a number", "a number or null", "text", "two numbers"
+
+
+def _kind(annotation: str) -> str:
+    """What a field's annotation (gearcli/results.py) asks of its stored value."""
+    if annotation.startswith("tuple[float, float]"):
+        return _PAIR
+    if annotation == "str":
+        return _TEXT
+    return _OPTIONAL if "None" in annotation else _NUMBER
+
+
+def _required(cls) -> dict[str, str]:
+    return {f.name: _kind(str(f.type)) for f in dataclasses.fields(cls)
+            if f.metadata.get("required") and f.type != "bool"}
+
+
 #: Entries of summary.json's "scalars" that analyze, stress and report read, by kind.
-REQUIRED_SCALARS = {
-    "window_s": _PAIR, "window_reason": _TEXT, "output_rate_Hz": _NUMBER,
-    "gear_mesh_frequency_Hz": _OPTIONAL, "pinion_speed_mean_deg_s": _NUMBER,
-    "gear_speed_mean_deg_s": _NUMBER, "force_max_N": _NUMBER, "force_max_t_s": _NUMBER,
-    "force_static_N": _NUMBER, "mesh_natural_frequency_Hz": _NUMBER,
-    "mesh_damping_ratio": _NUMBER,
-}
-#: Keys of each entry of scalars.modes (optional list).
-MODE_KEYS = {"mode": _NUMBER, "natural_frequency_Hz": _OPTIONAL, "damping_ratio": _OPTIONAL}
+REQUIRED_SCALARS = _required(Summary)
+#: Keys of each entry of scalars.modes (optional list; ``rigid_body`` is checked apart).
+MODE_KEYS = _required(StoredMode)
 
 
 def _is(value, kind: str) -> bool:

@@ -28,12 +28,17 @@ from gearcli.pipeline.mesh_input import (
     iso_stiffness,
     tooth_stiffness,
 )
+from gearcli.results import MeshSummary
 
 ARCSEC_PER_RAD = 180.0 / math.pi * 3600.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class MeshAnalysis:
+    """Quasi-static loaded tooth contact of a pair (`gearcli mesh`, :func:`gearcli.mesh`):
+    :attr:`summary` STE [µm], mesh stiffness [N/mm] against ISO 6336-1 c′b and c_γα b, n_E1
+    and K_v; :attr:`table` per pinion roll position (mesh.csv); ``notes`` what it leaves out."""
+
     source: LoadedCase  #: the case analysed
     name: str
     geometry: GeometryResult
@@ -42,6 +47,29 @@ class MeshAnalysis:
     iso: IsoStiffness
     harris: tuple[np.ndarray, np.ndarray] | None  #: loads [N], STE peak-to-peak [mm]
     notes: tuple[str, ...]  #: what the quasi-static model leaves out for this case
+
+    @property
+    def summary(self) -> MeshSummary:
+        return MeshSummary.from_document(mesh_document(self))
+
+    @property
+    def table(self):
+        """Per pinion roll position ``roll_mm``: STE, unloaded TE [µm], mesh stiffness [N/mm],
+        pairs in contact, each pair's position [mm] and force [N] (mesh.csv), a DataFrame."""
+        import pandas as pd
+
+        columns = mesh_table(self)
+        x = columns.pop("roll_mm")
+        return pd.DataFrame(columns, index=pd.Index(x, name="roll_mm"))
+
+    def document(self) -> dict:
+        """What `gearcli mesh --json` prints."""
+        return mesh_document(self)
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (f"<Mesh {self.name}: STE {s.ste_peak_to_peak_um:.3g} µm peak to peak, mean "
+                f"stiffness {s.mesh_mean_N_mm:.4g} N/mm>")
 
 
 def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None,

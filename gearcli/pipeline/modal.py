@@ -34,6 +34,7 @@ from gearcli.model.modal import (
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import linearised_mesh
 from gearcli.pipeline.structure import build_structure, refuse_unsupported
+from gearcli.results import Check, Mode, StoredMode
 
 DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
@@ -43,19 +44,11 @@ SPEED_RANGE_FACTOR = 1.5
 MAX_SPEED_DEG_S = 1e5 * 180.0 / math.pi
 
 
-@dataclass
-class ModalCheck:
-    name: str
-    value: float | None
-    limit: str
-    passed: bool
-    note: str = ""
-    #: False when the check could not apply (the note says why): it passes, shown "not checked"
-    checked: bool = True
-
-
-@dataclass
+@dataclass(repr=False)
 class ModalAnalysis:
+    """Modes of the linearised model, crossings and the resonance-margin check (`gearcli
+    modal`, :func:`gearcli.modal`); ``modes`` the typed modes of :meth:`document`."""
+
     loaded: LoadedCase
     geometry: GeometryResult
     system: LinearSystem
@@ -66,7 +59,7 @@ class ModalAnalysis:
     case_speed_deg_s: float | None
     speed_range_deg_s: tuple[float, float]
     margins: list[Margin] = field(default_factory=list)
-    checks: list[ModalCheck] = field(default_factory=list)
+    checks: list[Check] = field(default_factory=list)
 
     @property
     def name(self) -> str:
@@ -75,6 +68,24 @@ class ModalAnalysis:
     @property
     def passed(self) -> bool:
         return all(c.passed for c in self.checks)
+
+    @property
+    def modes(self) -> list[Mode]:
+        return [Mode.from_document(m) for m in self.document()["modes"]]
+
+    def document(self) -> dict:
+        """What `gearcli modal --json` prints."""
+        return modal_document(self)
+
+    def plot(self, units: str = "engineering"):
+        """The Campbell diagram and mode shapes (a ``matplotlib.figure.Figure``); the speed
+        axis in the display ``units`` ("engineering": rpm, "si": rad/s)."""
+        return campbell_figure(self, units)
+
+    def __repr__(self) -> str:
+        f = [round(m.natural_frequency_Hz, 1) for m in self.result.modes if not m.rigid
+             and m.natural_frequency_Hz]
+        return f"<Modal {self.name}: modes at {f} Hz>"
 
 
 def _final_drive_torque_Nmm(case: Case) -> float:
@@ -115,12 +126,12 @@ def _solve(system: LinearSystem, file: str | None = None) -> ModalResult:
         raise CaseError(f"modal model: {err}", file=file) from err
 
 
-def modes_summary(result: ModalResult) -> list[dict]:
-    """JSON-ready list of the modes, one dict each: mode, natural_frequency_Hz, damping_ratio,
-    description, rigid_body (frequency and damping ratio None for rigid-body modes)."""
-    return [{"mode": m.number, "natural_frequency_Hz": m.natural_frequency_Hz,
-             "damping_ratio": m.damping_ratio, "description": m.description,
-             "rigid_body": m.rigid} for m in result.modes]
+def modes_summary(result: ModalResult) -> tuple[StoredMode, ...]:
+    """The modes as summary.json keeps them (frequency and damping ratio None for rigid-body
+    modes)."""
+    return tuple(StoredMode(mode=m.number, natural_frequency_Hz=m.natural_frequency_Hz,
+                            damping_ratio=m.damping_ratio, description=m.description,
+                            rigid_body=m.rigid) for m in result.modes)
 
 
 def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = None,
@@ -157,17 +168,17 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     return out
 
 
-def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
+def _margin_check(res: ModalAnalysis, limit: float) -> Check:
     name, lim = "resonance_margin_percent", f">= {limit:g} %"
     if res.case_speed_deg_s is None:
         speed = res.loaded.case.drive.speed
         why = ("a torque drive without drive.reference_speed" if res.system.drive == "torque"
                else "drive.speed has no constant final value" if speed.pp.final_value() is None
                else "the pinion does not turn")
-        return ModalCheck(name, None, lim, True, f"not checked: no case speed ({why}); see the "
+        return Check(name, None, lim, True, f"not checked: no case speed ({why}); see the "
                           "crossing speeds", checked=False)
     if not res.margins:
-        return ModalCheck(name, None, lim, True, "not checked: no elastic mode", checked=False)
+        return Check(name, None, lim, True, "not checked: no elastic mode", checked=False)
     near = res.margins[0]
     note = (f"nearest: {near.order} = {near.excitation_Hz:.1f} Hz vs mode {near.mode} "
             f"{near.mode_Hz:.1f} Hz")
@@ -177,13 +188,13 @@ def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
         note += (f"; mode(s) {', '.join(map(str, no_peak))} have no resonant peak (damping "
                  f"ratio >= {NO_PEAK_DAMPING_RATIO:.3f}) and are not checked")
     if not peaked:
-        return ModalCheck(name, near.margin_percent, lim, True, "not checked: no mode has a "
+        return Check(name, near.margin_percent, lim, True, "not checked: no mode has a "
                           "resonant peak; " + note, checked=False)
     ok = peaked[0].margin_percent >= limit
     if peaked and not ok:
         p = peaked[0]
         note += f"; violated by {p.order} vs mode {p.mode} ({p.margin_percent:.1f} %)"
-    return ModalCheck(name, near.margin_percent, lim, ok, note)
+    return Check(name, near.margin_percent, lim, ok, note)
 
 
 def modal_document(res: ModalAnalysis) -> dict:

@@ -98,7 +98,7 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
 
     j_n = ki.params[P.backlash_n]
     free_pinion = ki.params[P.drive_mode] != DRIVE_SPEED
-    residual = res.summary["energy_balance"]["relative_residual"]
+    residual = res.summary.energy_relative_residual
     z1 = res.geometry.geometry.pinion.teeth
     rows = []
     for i, (fz, (t0, t1)) in enumerate(zip(stairs.f_z_Hz, stairs.windows_s, strict=True)):
@@ -146,7 +146,7 @@ def run_direction(payload: dict) -> dict:
                  "contact_loss_fraction": math.nan, "status": "failed", "error": error}
                 for i, fz in enumerate(stairs.f_z_Hz)]
         return {"rows": rows, "f_n_Hz": math.nan, "error": error}
-    f_n = res.summary["mesh_natural_frequency_Hz"]
+    f_n = res.summary.mesh_natural_frequency_Hz
     return {"rows": measure_levels(res, stairs, payload["direction"], f_n, payload["first"]),
             "f_n_Hz": f_n, "error": ""}
 

@@ -42,6 +42,7 @@ from gearcli.model.rating import (
     static_rating,
 )
 from gearcli.pipeline.geometry import run_geometry
+from gearcli.results import GearStress
 
 #: Stress correction factor of the standard reference test gear (ISO 6336-3:2019, σ_FE =
 #: σ_Flim Y_ST; ISO 6336-5 gives σ_Flim for it).
@@ -51,9 +52,11 @@ SAMPLES_PER_MESH_FOR_PEAKS = 50
 STRESS_FILES = ("stress.csv", "stress.json")
 
 
-@dataclass
+@dataclass(repr=False)
 class StressResult:
-    """Stress histories of one run; arrays (samples, slots) in MPa unless named otherwise."""
+    """Stress histories of one run (`gearcli stress`, :func:`gearcli.stress`); arrays
+    (samples, slots) in MPa unless named otherwise; :attr:`pinion`, :attr:`gear` the peak
+    dynamic stresses against the ISO 6336 static values and the safety factors."""
 
     run: StoredRun
     name: str
@@ -81,11 +84,32 @@ class StressResult:
         t0, t1 = self.window_s
         return window_mask(self.t_s, t0, t1)
 
+    def document(self) -> dict:
+        """stress.json as a dict."""
+        return stress_document(self)
+
+    @property
+    def pinion(self) -> GearStress:
+        return GearStress.from_document(self.document(), "pinion")
+
+    @property
+    def gear(self) -> GearStress:
+        return GearStress.from_document(self.document(), "gear")
+
+    def __repr__(self) -> str:
+        p = self.pinion
+
+        def mpa(value):
+            return "–" if value is None else f"{value:.4g} MPa"
+
+        return (f"<Stress {self.name}: σ_H peak {mpa(p.sigma_H_peak_MPa)}, σ_F peak pinion "
+                f"{mpa(p.sigma_F_peak_MPa)}>")
+
 
 def _column_set(run: StoredRun) -> int:
     """Number of pair slots; ResultsError when the per-pair columns are missing."""
     names = run.columns
-    slots = int(run.summary.get("slots", 0) or 0)
+    slots = int(run.summary.slots or 0)
     need = ["mesh_cycle"] + [f"{p}{j}_{u}" for j in range(max(slots, 1))
                              for p, u in (("force_slot", "N"), ("x_slot", "mm"))]
     missing = [n for n in need if n not in names]
@@ -101,17 +125,15 @@ def _column_set(run: StoredRun) -> int:
 
 def _window(run: StoredRun, given) -> tuple[tuple[float, float], str]:
     t = run.column("t_s")
-    if given is None:
-        s = run.summary.get("scalars", {})
-        if "window_s" not in s:
-            return (float(t[0]), float(t[-1])), "the whole run (summary has no window)"
-        t0, t1 = s["window_s"]
-        return (float(t0), float(t1)), s.get("window_reason", "summary window")
+    s = run.summary.scalars
+    if given is None:  # a stored run has a window (io.results.check_summary)
+        t0, t1 = s.window_s
+        return (float(t0), float(t1)), s.window_reason
     t0, t1 = map(float, given)
     if not (t[0] - 1e-12 <= t0 < t1 <= t[-1] + 1e-9):
         raise ResultsError(f"--window {t0:g} {t1:g}: outside the run or empty; expected "
                            f"{t[0]:g} <= T0 < T1 <= {t[-1]:g} s")
-    f_z = run.summary.get("scalars", {}).get("gear_mesh_frequency_Hz")
+    f_z = s.gear_mesh_frequency_Hz
     if f_z and (t1 - t0) * f_z < 1.0:  # a peak over part of a mesh cycle misses pair zones
         raise ResultsError(f"--window {t0:g} {t1:g}: {t1 - t0:g} s is shorter than one mesh "
                            f"cycle (1/f_z = {1.0 / f_z:.3g} s); expected a window of at least "
@@ -164,11 +186,8 @@ def compute_stress(folder: str | Path, window: tuple[float, float] | None = None
     youngs, poisson, limits = _materials(case)
     if require_limits:
         _require_limits(run, case, limits)
-    f_static = run.summary.get("scalars", {}).get("force_static_N")
-    if f_static is None:
-        final = case.load.torque.pp.final_value()
-        f_static = abs(final if final is not None else 0.0) / geo.gear.r_b_mm
-    static = static_rating(geo, float(f_static), youngs, poisson)
+    # a stored run has its static force (io.results.check_summary)
+    static = static_rating(geo, float(run.summary.scalars.force_static_N), youngs, poisson)
 
     c = run.column
     force = np.column_stack([c(f"force_slot{j}_N") for j in range(slots)])
@@ -212,8 +231,8 @@ def _warnings(res: StressResult) -> list[str]:
             out.append(f"coast-flank contact (up to {coast:.4g} N) is not in the stress "
                        "histories (per-pair coast forces are not written); it reverses the "
                        "root stress")
-    s = res.run.summary.get("scalars", {})
-    rate, f_z = s.get("output_rate_Hz"), s.get("gear_mesh_frequency_Hz")
+    s = res.run.summary.scalars
+    rate, f_z = s.output_rate_Hz, s.gear_mesh_frequency_Hz
     if rate and f_z and rate / f_z < SAMPLES_PER_MESH_FOR_PEAKS:
         out.append(f"peaks come from the output samples: {rate / f_z:.1f} samples per mesh "
                    f"cycle (< {SAMPLES_PER_MESH_FOR_PEAKS}); raise run.output_rate for "
@@ -374,7 +393,7 @@ def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -
     from gearcli.plotting.stress import plot_stress_of_run
 
     geo = res.geometry
-    f_z = res.run.summary.get("scalars", {}).get("gear_mesh_frequency_Hz") or 0.0
+    f_z = res.run.summary.scalars.gear_mesh_frequency_Hz or 0.0
     fig = plot_stress_of_run(
         res.t_s, res.x_mm, res.force_N, res.sigma_H, res.sigma_F_pinion, res.sigma_F_gear,
         geometry=geo, static=_static_doc(res.static), window_s=res.window_s,

@@ -8,41 +8,38 @@ measured gear-mesh frequency f_z = z1 n1).
 
 from __future__ import annotations
 
+import dataclasses
+
 from gearcli.io.metrics import json_number
 from gearcli.model.geometry import mesh_frequencies
 from gearcli.pipeline.spectrum import amplitude_spectrum, measure_line
+from gearcli.results import PointLines, shown_values, sweep_metrics
 
-#: Scalars copied from the simulation summary, in column order.
-SUMMARY_METRICS = (
-    "force_max_N", "force_min_N", "force_mean_N", "force_rms_N", "force_static_N",
-    "dynamic_factor", "dte_mean_mm", "dte_peak_to_peak_mm", "dte_rms_mm",
-    "contact_loss_fraction", "coast_force_max_N", "pairs_in_contact_mean",
-    "pinion_speed_mean_deg_s", "gear_speed_mean_deg_s", "gear_mesh_frequency_Hz",
-    "mesh_stiffness_N_mm", "single_pair_stiffness_N_mm", "mesh_natural_frequency_Hz",
-    "mesh_damping_ratio",
-)
-#: Mesh-line amplitudes: (metric, kernel column).
-LINE_METRICS = (("gear_speed_gmf_amplitude_rad_s", "omega2_rad_s"),
-                ("dte_gmf_amplitude_mm", "delta_mm"),
-                ("force_gmf_amplitude_N", "force_total_N"))
-METRICS = (*SUMMARY_METRICS, *(m for m, _ in LINE_METRICS), "energy_balance_relative_residual")
+#: The metrics of a sweep point, in column order: those of the summary shown at "sweep", then
+#: the mesh-line amplitudes and the energy residual (gearcli/results.py: field metadata).
+METRICS = sweep_metrics("sweep")
 
 
 def point_metrics(res) -> dict[str, float | None]:
     """Every metric of :data:`METRICS` for one finished simulation."""
     s = res.summary
-    out: dict[str, float | None] = {m: _num(s.get(m)) for m in SUMMARY_METRICS}
+    out: dict[str, float | None] = {m: _num(v) for m, v in shown_values(s, "sweep").items()
+                                    if m in METRICS}
     k = res.kernel
     t = k.column("t_s")
     sel = (t >= res.window.t0_s - 1e-12) & (t <= res.window.t1_s + 1e-12)
     rate = res.kernel_input.output_rate_Hz
     g = res.geometry.geometry
     f_z = mesh_frequencies(g.pinion.teeth, float(k.column("omega1_rad_s")[sel].mean()), g.ratio)[0]
-    for name, column in LINE_METRICS:
-        freq, amp = amplitude_spectrum(k.column(column)[sel], rate)
-        line = measure_line(freq, amp, f_z)
-        out[name] = _num(line.amplitude) if line.resolvable else None
-    out["energy_balance_relative_residual"] = _num(s["energy_balance"]["relative_residual"])
+    lines = {}
+    for f in dataclasses.fields(PointLines):
+        if "signal" in f.metadata:
+            freq, amp = amplitude_spectrum(k.column(f.metadata["signal"])[sel], rate)
+            line = measure_line(freq, amp, f_z)
+            lines[f.name] = _num(line.amplitude) if line.resolvable else None
+    extra = PointLines(**lines, energy_balance_relative_residual=_num(
+        s.energy_relative_residual))
+    out.update(extra.to_dict())
     return out
 
 

@@ -20,17 +20,17 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.pipeline.sweep_study import MESH_FREQUENCY, Study
+from gearcli.results import sweep_metrics
 
-#: Metrics of the seed's Table 5.
-TREND_METRICS = ("force_max_N", "dynamic_factor", "dte_peak_to_peak_mm",
-                 "gear_speed_gmf_amplitude_rad_s")
+#: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results.py).
+TREND_METRICS = sweep_metrics("trend")
 TREND_COLUMNS = ("parameter", "metric", "points", "parameter_min", "parameter_max",
                  "metric_at_min", "metric_at_max", "change_percent", "ratio", "spearman_rho",
                  "direction")
 #: Most lines (combinations of the other parameters) in one trend plot.
 MAX_LINES = 8
-#: Further metrics of the speed plot.
-PLOT_METRICS = ("dte_rms_mm", "mesh_natural_frequency_Hz")
+#: Further metrics of the speed plot (field metadata "trend_plot").
+PLOT_METRICS = sweep_metrics("trend_plot")
 #: |Spearman rho| needed to call a trend monotonic.
 MONOTONIC_RHO = 0.8
 #: Relative changes below this [%] are "no effect".

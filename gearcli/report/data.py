@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -14,6 +15,7 @@ from gearcli.case.load import load_case_text
 from gearcli.errors import GearcliError, ResultsError
 from gearcli.io.results import StoredRun, read_columns, read_json, read_run
 from gearcli.model.geometry import PairGeometry, compute_pair_geometry
+from gearcli.results import AnalysisMetrics, Summary
 
 
 @dataclass(frozen=True)
@@ -44,19 +46,20 @@ class ReportData:
     def case(self) -> dict:
         return self.run.manifest["resolved_case"]
 
-    @property
-    def metrics(self) -> dict:
-        return self.analysis.get("metrics", {})
+    @cached_property
+    def metrics(self) -> AnalysisMetrics:
+        """analysis.json's metrics (checked by :func:`check_analysis`), typed."""
+        return AnalysisMetrics.from_document(self.analysis["metrics"])
 
     @property
-    def scalars(self) -> dict:
-        return self.run.summary.get("scalars", {})
+    def scalars(self) -> Summary:
+        return self.run.summary.scalars
 
     @property
     def warnings(self) -> list[str]:
         """Warnings of simulate and analyze, each once, in order."""
         out: list[str] = []
-        both = list(self.run.summary.get("warnings", [])) + list(self.analysis.get("warnings", []))
+        both = list(self.run.summary.warnings) + list(self.analysis.get("warnings", []))
         for w in both:
             if w not in out:
                 out.append(str(w))
@@ -64,12 +67,12 @@ class ReportData:
 
     @property
     def f_z_Hz(self) -> float:
-        return float(self.metrics.get("gear_mesh_frequency_Hz")
-                     or self.scalars["gear_mesh_frequency_Hz"])
+        return float(self.metrics.gear_mesh_frequency_Hz
+                     or self.scalars.gear_mesh_frequency_Hz)
 
     @property
     def window_s(self) -> tuple[float, float]:
-        w = self.analysis.get("window_s") or self.scalars["window_s"]
+        w = self.analysis.get("window_s") or self.scalars.window_s
         return float(w[0]), float(w[1])
 
     def has_errors_or_relief(self) -> bool:

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from gearcli.io.metrics import display
 from gearcli.report import tables as tb
 from gearcli.report.data import ReportData
 from gearcli.report.figures import FigureFile
+from gearcli.results import shown_values
 
 
 @dataclass(frozen=True)
@@ -85,15 +87,10 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
                          "pass") if not failed
                else Paragraph(f"Analysis FAILED: {len(failed)} of {done} checks fail "
                               f"({', '.join(map(str, failed))}).{not_checked}", "fail"))
-    m = data.metrics
     headline = []
-    for key, label in (("gear_mesh_frequency_Hz", "gear-mesh frequency f_z"),
-                       ("force_max_N", "maximum normal force"), ("dynamic_factor",
-                                                                 "dynamic factor"),
-                       ("dte_peak_to_peak_mm", "DTE peak to peak"),
-                       ("mesh_efficiency", "mesh efficiency")):
-        if isinstance(m.get(key), int | float):
-            _, value, unit = display(key, m[key], data.units)
+    for key, value in shown_values(data.metrics, "headline").items():
+        if isinstance(value, int | float) and math.isfinite(value):
+            label, value, unit = display(key, value, data.units)
             headline.append(f"{label}: {tb.fmt(value)} {unit if unit != '–' else ''}".rstrip())
     warnings = data.warnings
     overrides = [str(o) for o in data.run.manifest.get("overrides") or []]
@@ -121,6 +118,6 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
                 [NumberedFigure(k, f) for k, f in enumerate(figures, start=1)]),
         Section("Provenance", "provenance", tables(tb.provenance_table(data))),
     ]
-    name = str(data.case.get("name") or data.run.summary.get("case") or data.folder.name)
+    name = str(data.case.get("name") or data.run.summary.case or data.folder.name)
     return Document(f"gearcli report: {name}", str(data.case.get("description") or "").strip(),
                     sections)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,6 +16,7 @@ from gearcli.plotting.campbell import plot_campbell_summary
 from gearcli.plotting.geometry import plot_pair
 from gearcli.plotting.orders import plot_order_map
 from gearcli.report.data import ReportData, number
+from gearcli.results import AnalysisMetrics
 
 #: Resolution of the PNG files (the HTML embeds them) [dots per inch].
 PNG_DPI = 110
@@ -61,13 +63,14 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
             mesh_zoom, dense = end_zoom, zc
     teeth = (int(data.case["gears"]["pinion"]["teeth"]), int(data.case["gears"]["gear"]["teeth"]))
     s, m = data.scalars, data.metrics
-    f_max = m.get("force_max_N", s.get("force_max_N"))
-    t_max = m.get("force_max_t_s",
-                  s.get("force_max_t_s") if f_max == s.get("force_max_N") else None)
+    analysed = math.isfinite(m.force_max_N)  # an analysis.json before these metrics: the run's
+    f_max = m.force_max_N if analysed else s.force_max_N
+    t_max = m.force_max_t_s if math.isfinite(m.force_max_t_s) else (
+        s.force_max_t_s if f_max == s.force_max_N else None)
     force_zoom = None if t_max is None else (t_max - 1.5 * period, t_max + 1.5 * period)
     r_b2 = data.geometry.gear.r_b_mm if data.geometry else None
     static = (_static_force(c, r_b2, data.gear_side_damping) if r_b2
-              else m.get("force_static_N", s["force_static_N"]))
+              else m.force_static_N if math.isfinite(m.force_static_N) else s.force_static_N)
     slots = {f"slot {k[len('force_slot'):-2]}": v for k, v in dense.items()
              if k.startswith("force_slot") and k.endswith("_N")}
     jobs = [
@@ -101,24 +104,24 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
         jobs.insert(0, ("geometry", "The pair in mesh at its operating centre distance, drawn "
                         "from the generated tooth profiles (involute, trochoid fillet, tip), "
                         "with the line of action and the path of contact.",
-                        lambda: plot_pair(data.geometry, title=f"{data.run.summary.get('case')}: "
+                        lambda: plot_pair(data.geometry, title=f"{data.run.summary.case}: "
                                           "spur pair in mesh")))
-    modes = data.scalars.get("modes") or []
-    if any(not m.get("rigid_body") for m in modes):
+    modes = data.scalars.modes
+    if any(not m.rigid_body for m in modes):
         jobs.append(("campbell", "Campbell diagram from the modes of the linearised model "
                      "(summary.json): gear-mesh orders k·f_z against pinion speed, the modes "
                      "(dashed: overdamped, no resonant peak), crossings with peaked modes "
                      "circled and the case speed marked.",
                      lambda: plot_campbell_summary(
-                         modes, teeth[0], abs(data.scalars.get("pinion_speed_mean_deg_s", 0.0))
+                         modes, teeth[0], abs(data.scalars.pinion_speed_mean_deg_s)
                          / 6.0, int(data.case.get("checks", {}).get("harmonics", 5)),
                          units=data.units)))
     omega1 = c["omega1_rad_s"]
     # a run-up (the speed below 99 % of its final value for at least a tenth of the run, not
     # only a start-up transient): the order map
     if np.mean(np.abs(omega1) < 0.99 * abs(float(omega1[-1]))) >= 0.1:
-        elastic_Hz = [m["natural_frequency_Hz"] for m in modes
-                      if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
+        elastic_Hz = [m.natural_frequency_Hz for m in modes
+                      if not m.rigid_body and m.natural_frequency_Hz]
         jobs.append(("orders", "Order map of the run-up: short-time spectra of the mesh force "
                      "against pinion speed (left) and time (right), with the mesh orders "
                      "k·z1·n/60 (white) and the modes (dashed); dB re the largest amplitude.",
@@ -165,7 +168,7 @@ def _stress(data: ReportData):
         stack("sigma_H_slot{}_MPa", ss), stack("sigma_F_pinion_slot{}_MPa", ss),
         stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st["static"],
         window_s=tuple(st["window_s"]),
-        f_z_Hz=data.scalars.get("gear_mesh_frequency_Hz") or 0.0,  # as `gearcli stress --plot`
+        f_z_Hz=data.scalars.gear_mesh_frequency_Hz or 0.0,  # as `gearcli stress --plot`
         title=f"{st.get('case')}: tooth stresses (z1 = {geo.pinion.teeth}, "
               f"z2 = {geo.gear.teeth})")
 
@@ -242,7 +245,7 @@ def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: b
     in the display ``units`` (gear speed in rpm or rad/s, DTE in µm or m)."""
     from gearcli.display_units import unit_and_factor
 
-    m = analysis["metrics"]
+    m = AnalysisMetrics.from_document(analysis["metrics"])
     panels, lines = {}, {}
     for key, (title, col, unit) in SPECTRA.items():
         if col not in spectrum:
@@ -253,9 +256,9 @@ def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: b
                               else ln["amplitude"] * k}
                       for label, ln in (analysis.get("lines") or {}).get(key, {}).items()}
     return plots.plot_spectra(spectrum["frequency_Hz"], panels, lines,
-                              float(m["gear_mesh_frequency_Hz"]), harmonics,
-                              float(m["output_rate_Hz"]),
-                              order_Hz=float(m["pinion_shaft_Hz"]) if order_axis else None,
+                              float(m.gear_mesh_frequency_Hz), harmonics,
+                              float(m.output_rate_Hz),
+                              order_Hz=float(m.pinion_shaft_Hz) if order_axis else None,
                               db=db)
 
 
@@ -275,8 +278,7 @@ def _modifications(data: ReportData, period: float):
 
 def _errors_panel(data: ReportData, period: float) -> dict:
     errs, m = data.case["errors"], data.metrics
-    shaft = {"pinion": float(m.get("pinion_shaft_Hz") or 0.0),
-             "gear": float(m.get("gear_shaft_Hz") or 0.0)}
+    shaft = {"pinion": float(m.pinion_shaft_Hz or 0.0), "gear": float(m.gear_shaft_Hz or 0.0)}
     parts, rev_s, ecc = [], 0.0, 0.0
     for gear in ("pinion", "gear"):
         run_out = (errs.get("runout") or {}).get(gear)
@@ -296,7 +298,8 @@ def _errors_panel(data: ReportData, period: float) -> dict:
     w0, w1 = data.window_s
     span = 3.0 * rev_s if rev_s > 0 else w1 - w0
     sel = (t >= max(w0, w1 - span)) & (t <= w1)
-    rate = float(data.metrics.get("output_rate_Hz") or data.scalars["output_rate_Hz"])
+    rate = float(data.metrics.output_rate_Hz if math.isfinite(data.metrics.output_rate_Hz)
+                 else data.scalars.output_rate_Hz)
     t_mean, d_mean = plots.mesh_cycle_mean(t[sel], d[sel], rate * period)
     return {
         "t_s": t[sel], "dte_mm": d[sel], "cycle_t_s": t_mean, "cycle_mean_mm": d_mean,
@@ -337,6 +340,6 @@ def _relief_panel(data: ReportData) -> dict | None:
                              f"{extent} ({r.get('shape') or 'linear'})")
     points = {k: v - geo.A_mm for k, v in geo.line_of_action_points().items()
               if k in ("A", "B", "C", "D", "E")}
-    mean = data.metrics.get("dte_mean_mm")
+    mean = data.metrics.dte_mean_mm if math.isfinite(data.metrics.dte_mean_mm) else None
     return {"x_mm": x, "curves": curves, "points": points, "dte_mean_mm": mean,
             "label": "; ".join(parts)}

@@ -7,8 +7,9 @@ import shlex
 from dataclasses import dataclass, field
 
 from gearcli.display_units import DEFAULT, convert, unit_and_factor
-from gearcli.io.metrics import METRICS, display
+from gearcli.io.metrics import display
 from gearcli.report.data import ReportData, number, unit_of
+from gearcli.results import shown_values
 
 
 @dataclass(frozen=True)
@@ -151,7 +152,7 @@ def contact_table(data: ReportData) -> Table:
             rows.append((f"{gear} bore (gear-body compliance)",
                          *(_cells(bore, data.units) if bore is not None
                            else ("default (docs/theory.md §4b)", ""))))
-        k = data.scalars.get("mesh_stiffness_N_mm")
+        k = data.scalars.mesh_stiffness_N_mm
         if isinstance(k, int | float):
             rows.append(("mesh stiffness, linearised at the static load",
                          *_cells(k, data.units, "N/mm")))
@@ -197,8 +198,8 @@ def drive_table(data: ReportData) -> Table:
         ("bearing damping pinion / gear", f"{qty((b.get('pinion') or {}).get('damping'), u)} / "
                                           f"{qty((b.get('gear') or {}).get('damping'), u)}"),
         ("end time", qty(r.get("end_time"), u)),
-        ("output", f"{fmt(data.scalars.get('output_rate_Hz'))} Hz "
-                   f"({data.run.summary.get('rows', '?')} rows)"),
+        ("output", f"{fmt(data.scalars.output_rate_Hz)} Hz "
+                   f"({data.run.summary.rows} rows)"),
         ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / " + (
             qty(r.get("atol"), u) if r.get("atol") is not None
             else "default (1e-5 of the static deflection, at most 1 µm)")),
@@ -243,46 +244,18 @@ def modifications_table(data: ReportData) -> Table | None:
 
 
 # --- results ----------------------------------------------------------------------------------
-#: (metrics key, label, unit, scale) in report order; keys absent from analysis.json are skipped.
-#: The metrics of the results table, in order (labels and units: gearcli/io/metrics.py).
-RESULT_KEYS = (
-    "pinion_speed_mean_deg_s", "gear_speed_mean_deg_s", "speed_ratio", "speed_ratio_theory",
-    "speed_ratio_error_percent", "gear_speed_fluctuation_percent", "force_static_N",
-    "force_mean_N", "force_rms_N", "force_max_N", "force_min_N", "dynamic_factor",
-    "dte_mean_mm", "dte_peak_to_peak_mm", "dte_rms_mm", "contact_loss_fraction",
-    "coast_impacts", "input_power_W", "friction_loss_W", "damping_loss_W", "mesh_efficiency",
-    "drive_torque_mean_Nmm", "drive_torque_ripple_Nmm", "gear_mesh_frequency_Hz",
-    "pinion_shaft_Hz", "gear_shaft_Hz", "mesh_natural_frequency_Hz", "mesh_damping_ratio",
-    "resonance_margins_percent", "output_rate_Hz", "frequency_resolution_Hz", "samples",
-)
-_NOT_SHOWN = {"window_s", "window_reason", "force_max_source"}
-
-
 def results_table(data: ReportData) -> Table:
-    """Key metrics of analysis.json with units; unknown numeric metrics follow by name."""
+    """The metrics of analysis.json shown at "report" (field metadata, gearcli/results.py) with
+    their labels and display units."""
     m = data.metrics
     w0, w1 = data.window_s
     rows = [("steady window analysed", f"{w0:.4g} – {w1:.4g}", "s")]
-    for key in RESULT_KEYS:
-        if key not in m:
-            continue
-        label, v, unit = display(key, m[key], data.units)
-        if key == "force_max_N" and m.get("force_max_source"):
-            label += f" (from the {m['force_max_source']})"
+    for key, value in shown_values(m, "report").items():
+        label, v, unit = display(key, list(value) if isinstance(value, tuple) else value,
+                                 data.units)
+        if key == "force_max_N" and m.force_max_source:
+            label += f" (from the {m.force_max_source})"
         rows.append((label, fmt(v), unit))
-    known = set(RESULT_KEYS) | _NOT_SHOWN
-    for key, v in m.items():
-        if key in known or isinstance(v, bool):
-            continue
-        if key in METRICS and isinstance(v, int | float):  # the registry's label and unit
-            rows.append(tuple(fmt(x) if i == 1 else x
-                              for i, x in enumerate(display(key, v, data.units))))
-            continue
-        if isinstance(v, int | float) or (isinstance(v, list)
-                                           and all(isinstance(x, int | float) for x in v)):
-            label = _key_label(key)
-            unit = label[label.rfind("[") + 1:-1] if label.endswith("]") else ""
-            rows.append((label.rsplit(" [", 1)[0] if unit else label, fmt(v), unit))
     note = str(data.analysis.get("window_reason") or "")
     return Table("Results of the steady window", ("quantity", "value", "unit"), rows,
                  f"window: {note}" if note else "")
@@ -318,13 +291,12 @@ def lines_table(data: ReportData) -> Table | None:
 
 def modes_table(data: ReportData) -> Table | None:
     """Modes of the linearised model as simulate stored them (the ones `gearcli modal` gives)."""
-    modes = data.scalars.get("modes") or []
+    modes = data.scalars.modes
     if not modes:
         return None
-    rows = [(str(m["mode"]),
-             "rigid body" if m.get("rigid_body") else fmt(m.get("natural_frequency_Hz")),
-             "–" if m.get("rigid_body") else fmt(m.get("damping_ratio")),
-             str(m.get("description", ""))) for m in modes]
+    rows = [(str(m.mode), "rigid body" if m.rigid_body else fmt(m.natural_frequency_Hz),
+             "–" if m.rigid_body else fmt(m.damping_ratio), str(m.description))
+            for m in modes]
     return Table("Modes of the linearised model", ("mode", "f_n [Hz]", "damping ratio ζ",
                                                    "dominant motion"), rows,
                  "the margins of the results table are measured to these; details and mode "
@@ -366,7 +338,7 @@ def provenance_table(data: ReportData) -> Table:
             ("overrides", "; ".join(str(o) for o in man.get("overrides") or []) or "none")]
     rows += [(name if name == "platform" else f"{name} version", str(v))
              for name, v in (man.get("versions") or {}).items()]
-    s = data.run.summary.get("solver") or {}
+    s = data.run.summary.solver or {}
     if s:
         rows.append(("solver", ", ".join(f"{_key_label(k)} {fmt(v)}" for k, v in s.items())))
     return Table("Provenance (manifest.json, summary.json)", ("item", "value"), rows)

@@ -36,9 +36,9 @@ def test_energy_balance_closes_with_every_body():
     load inertia, friction on: stored energy (kinetic, contact, springs) = work in - work out -
     losses. At rtol = atol = 1e-9 the residual is integration error only (measured 4.2e-9)."""
     res = run_simulation(DRIVETRAIN, ["run.end_time=0.3", "run.rtol=1e-9", "run.atol=1e-9"])
-    eb = res.summary["energy_balance"]
-    assert eb["relative_residual"] < 1e-6, eb
-    assert eb["delta_spring_mJ"] > 0.0 and eb["loss_bearing_mJ"] > 0.0
+    eb = res.summary.energy_balance
+    assert eb.relative_residual < 1e-6, eb
+    assert eb.delta_spring_mJ > 0.0 and eb.loss_bearing_mJ > 0.0
     c = res.columns()
     for loss in ("loss_bearing_mJ", "loss_damping_mJ", "loss_friction_mJ"):
         assert np.all(np.diff(c[loss]) >= -1e-9), loss
