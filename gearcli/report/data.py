@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import dataclass
@@ -124,9 +125,11 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
                       units, gear_side_damping(loaded.case))
 
 
-#: Non-numeric entries of analysis.json's metrics, by kind; every other entry is a number or null.
-_TEXT_METRICS = ("window_reason", "force_max_source")
-_LIST_METRICS = ("window_s", "resonance_margins_percent", "resonance_margins")
+#: Non-numeric entries of analysis.json's metrics, by kind (the annotations of
+#: gearcli.results.AnalysisMetrics); every other entry is a number or null.
+_TEXT_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics) if f.type == "str")
+_LIST_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics)
+                      if str(f.type).startswith("tuple"))
 
 
 def check_analysis(path: Path, doc: dict) -> None:
