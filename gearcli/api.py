@@ -278,13 +278,7 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
 
 def spectra_frame(analysis):
     """The analysis' spectra as a DataFrame indexed by frequency [Hz] (spectrum.csv)."""
-    import pandas as pd
-
-    from gearcli.pipeline.analysis_io import spectrum_columns
-
-    columns = spectrum_columns(analysis)
-    f = columns.pop("frequency_Hz")
-    return pd.DataFrame(columns, index=pd.Index(f, name="frequency_Hz"))
+    return analysis.spectra
 
 
 def modal(case, set=None,  # noqa: A002
@@ -388,7 +382,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
 
     Parameters
     ----------
-    study : str, Path or gearcli.pipeline.sweep_study.Study
+    study : str, Path or gearcli.pipeline.sweep.study.Study
         Study file [YAML], or a study loaded by ``load_study``.
     out : str or Path, optional
         Output folder (summary.csv, trends, plots; resumable: points already in its
@@ -415,8 +409,8 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
 
     import pandas as pd
 
-    from gearcli.pipeline.sweep_run import rows_as_table, run_study, summary_columns
-    from gearcli.pipeline.sweep_study import Study, load_study
+    from gearcli.pipeline.sweep.run import rows_as_table, run_study, summary_columns
+    from gearcli.pipeline.sweep.study import Study, load_study
 
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise CaseError(f"jobs {jobs!r}: expected a whole number of worker processes >= 1 "
@@ -440,7 +434,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
             df.attrs.update(kind="speed_curve", errors=list(curve.errors),
                             notes=list(curve.notes))
             return df
-        from gearcli.pipeline.sweep_trends import write_trends
+        from gearcli.pipeline.sweep.trends import write_trends
 
         outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
                             timeseries_format=timeseries_format)

@@ -199,7 +199,7 @@ class Summary(_Document):
 class PointLines(_Document):
     """The metrics of a sweep point besides its :class:`Summary`'s (summary.csv's columns after
     them): the mesh-line amplitudes at f_z of the steady window's spectra (``signal``: the
-    time-series column; gearcli/pipeline/sweep_metrics.py) and the energy residual."""
+    time-series column; gearcli/pipeline/sweep/metrics.py) and the energy residual."""
 
     gear_speed_gmf_amplitude_rad_s: float | None = _field(
         "gear_speed_gmf_amplitude_rad_s", None, "sweep trend", signal="omega2_rad_s")

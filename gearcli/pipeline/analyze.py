@@ -53,13 +53,10 @@ class Analysis:
     def spectra(self):
         """One-sided amplitude spectra as a pandas DataFrame indexed by frequency [Hz]
         (spectrum.csv's columns)."""
-        import pandas as pd
-
+        from gearcli.io.tables import columns_to_frame
         from gearcli.pipeline.analysis_io import spectrum_columns
 
-        columns = spectrum_columns(self)
-        f = columns.pop("frequency_Hz")
-        return pd.DataFrame(columns, index=pd.Index(f, name="frequency_Hz"))
+        return columns_to_frame(spectrum_columns(self), "frequency_Hz")
 
     def document(self) -> dict:
         """analysis.json as a dict (what `gearcli analyze` writes)."""

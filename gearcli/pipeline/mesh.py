@@ -56,11 +56,9 @@ class MeshAnalysis:
     def table(self):
         """Per pinion roll position ``roll_mm``: STE, unloaded TE [µm], mesh stiffness [N/mm],
         pairs in contact, each pair's position [mm] and force [N] (mesh.csv), a DataFrame."""
-        import pandas as pd
+        from gearcli.io.tables import columns_to_frame
 
-        columns = mesh_table(self)
-        x = columns.pop("roll_mm")
-        return pd.DataFrame(columns, index=pd.Index(x, name="roll_mm"))
+        return columns_to_frame(mesh_table(self), "roll_mm")
 
     def document(self) -> dict:
         """What `gearcli mesh --json` prints."""

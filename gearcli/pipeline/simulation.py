@@ -58,11 +58,9 @@ class SimulationResult:
         """timeseries.csv's columns (names carry units) as a pandas DataFrame indexed by time
         ``t_s`` [s]."""
         if self._series is None:
-            import pandas as pd
+            from gearcli.io.tables import columns_to_frame
 
-            columns = self.columns()
-            t = columns.pop("t_s")
-            self._series = pd.DataFrame(columns, index=pd.Index(t, name="t_s"))
+            self._series = columns_to_frame(self.columns(), "t_s")
         return self._series
 
     def to_pandas(self):

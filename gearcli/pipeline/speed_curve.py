@@ -130,7 +130,7 @@ def run_direction(payload: dict) -> dict:
     out). Returns {"rows": [...], "f_n_Hz": ..., "error": ""}."""
     from gearcli.errors import GearcliError
     from gearcli.pipeline.simulate import run_simulation
-    from gearcli.pipeline.sweep_run import case_from_json
+    from gearcli.pipeline.sweep.run import case_from_json
 
     stairs = Staircase(tuple(payload["f_z_Hz"]), payload["expression"],
                        tuple(map(tuple, payload["windows_s"])), payload["end_time_s"])
@@ -206,7 +206,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
     """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow)."""
     from gearcli.pipeline.geometry import run_geometry
     from gearcli.pipeline.mesh_input import iso_dynamic
-    from gearcli.pipeline.sweep_run import case_from_json, execute
+    from gearcli.pipeline.sweep.run import case_from_json, execute
 
     results = list(execute(run_direction, plan(study), jobs, scheduler))
     rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r["point"])

@@ -79,8 +79,8 @@ def test_every_place_shows_registered_metrics(place):
 
 
 def test_the_tables_and_sweeps_are_queries_of_the_metadata():
-    from gearcli.pipeline.sweep_metrics import METRICS as SWEEP
-    from gearcli.pipeline.sweep_trends import PLOT_METRICS, TREND_METRICS
+    from gearcli.pipeline.sweep.metrics import METRICS as SWEEP
+    from gearcli.pipeline.sweep.trends import PLOT_METRICS, TREND_METRICS
 
     assert SWEEP == results.sweep_metrics("sweep")
     assert TREND_METRICS == ("force_max_N", "dynamic_factor", "dte_peak_to_peak_mm",

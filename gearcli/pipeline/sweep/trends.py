@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.pipeline.sweep_study import MESH_FREQUENCY, Study
+from gearcli.pipeline.sweep.study import MESH_FREQUENCY, Study
 from gearcli.results import sweep_metrics
 
 #: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results.py).
@@ -141,7 +141,7 @@ def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Pat
     """Write trends.csv, trends.md and the plots; returns the paths written."""
     import pandas as pd
 
-    from gearcli.pipeline.sweep_run import summary_columns
+    from gearcli.pipeline.sweep.run import summary_columns
 
     out = Path(folder)
     columns = summary_columns(study)

@@ -234,7 +234,7 @@ def design_size(spec: StudyFile, params: list[Parameter]) -> int:
 
 def _check_metrics(src: Source, spec: StudyFile) -> None:
     """Kept metrics and the metrics of checks must exist (and checks must be kept)."""
-    from gearcli.pipeline.sweep_metrics import METRICS
+    from gearcli.pipeline.sweep.metrics import METRICS
 
     for k, m in enumerate(spec.metrics or ()):
         if m not in METRICS:
