@@ -15,6 +15,7 @@ from gearcli.plotting import results as plots
 from gearcli.plotting.campbell import plot_campbell_summary
 from gearcli.plotting.geometry import plot_pair
 from gearcli.plotting.orders import plot_order_map
+from gearcli.plotting.spectra import plot_spectra
 from gearcli.report.data import ReportData, number
 from gearcli.results import AnalysisMetrics
 
@@ -255,7 +256,7 @@ def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: b
         lines[key] = {label: {**ln, "amplitude": None if ln.get("amplitude") is None
                               else ln["amplitude"] * k}
                       for label, ln in (analysis.get("lines") or {}).get(key, {}).items()}
-    return plots.plot_spectra(spectrum["frequency_Hz"], panels, lines,
+    return plot_spectra(spectrum["frequency_Hz"], panels, lines,
                               float(m.gear_mesh_frequency_Hz), harmonics,
                               float(m.output_rate_Hz),
                               order_Hz=float(m.pinion_shaft_Hz) if order_axis else None,

@@ -18,6 +18,7 @@ import pytest
 
 from gearcli.errors import OutputError, ResultsError
 from gearcli.plotting import results as plots
+from gearcli.plotting.spectra import plot_spectra
 from gearcli.report import build_report
 from tests.physics.simrun import write_run
 
@@ -250,7 +251,7 @@ def test_spectra_mark_aliases_when_the_mesh_is_above_nyquist():
     amp = np.full(freq.size, 1e-3)
     lines = {"force": {"1fz": {"expected_Hz": f_z, "resolvable": False},
                        "2fz": {"expected_Hz": 2 * f_z, "resolvable": False}}}
-    fig = plots.plot_spectra(freq, {"force": ("force", "N", amp)}, lines, f_z, 2, fs)
+    fig = plot_spectra(freq, {"force": ("force", "N", amp)}, lines, f_z, 2, fs)
     ax = fig.axes[0]
     assert ax.get_xlim() == (0.0, 100.0)  # never past Nyquist
     labels = {t.get_text() for t in ax.texts}

@@ -19,7 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.pipeline.sweep.study import MESH_FREQUENCY, Study
+from gearcli.pipeline.sweep.design import MESH_FREQUENCY
+from gearcli.pipeline.sweep.study import Study
 from gearcli.results import sweep_metrics
 
 #: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results.py).
