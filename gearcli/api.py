@@ -43,7 +43,7 @@ __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "mod
            "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
            "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
 
-#: The typed documents live in gearcli/results.py, the result classes (one per command, with
+#: The typed documents live in gearcli/results/, the result classes (one per command, with
 #: the methods to_pandas, save, plot, document) in the pipeline; both imported on first use
 #: (building their dataclasses costs ~15 ms that `gearcli geometry` does not need).
 _RESULTS = ("SCHEMA_VERSION", "AnalysisMetrics", "GearStress", "Mode", "MeshSummary",

@@ -98,7 +98,7 @@ def _save_order_map(result, path: Path, units: str) -> None:
 
 
 def print_checks(doc: dict, units: str = "engineering") -> None:
-    """The analysis table (the metrics shown at "analyze", gearcli/results.py, in the display
+    """The analysis table (the metrics shown at "analyze", gearcli/results/, in the display
     ``units``) and the checks table of an analysis.json document."""
     from gearcli.io.metrics import rows as metric_rows
     from gearcli.results import AnalysisMetrics, shown_values

@@ -77,7 +77,7 @@ def simulate(
 
 
 def _print_summary(doc, out: str, units: str) -> None:
-    """The summary table: the metrics shown at "simulate" (gearcli/results.py) and the
+    """The summary table: the metrics shown at "simulate" (gearcli/results/) and the
     solver's counters."""
     from gearcli.io.metrics import rows as metric_rows
     from gearcli.results import shown_values

@@ -245,7 +245,7 @@ def modifications_table(data: ReportData) -> Table | None:
 
 # --- results ----------------------------------------------------------------------------------
 def results_table(data: ReportData) -> Table:
-    """The metrics of analysis.json shown at "report" (field metadata, gearcli/results.py) with
+    """The metrics of analysis.json shown at "report" (field metadata, gearcli/results/) with
     their labels and display units."""
     m = data.metrics
     w0, w1 = data.window_s

@@ -16,7 +16,7 @@ from gearcli.pipeline.spectrum import amplitude_spectrum, measure_line
 from gearcli.results import PointLines, shown_values, sweep_metrics
 
 #: The metrics of a sweep point, in column order: those of the summary shown at "sweep", then
-#: the mesh-line amplitudes and the energy residual (gearcli/results.py: field metadata).
+#: the mesh-line amplitudes and the energy residual (gearcli/results/: field metadata).
 METRICS = sweep_metrics("sweep")
 
 

@@ -23,7 +23,7 @@ from gearcli.pipeline.sweep.design import MESH_FREQUENCY
 from gearcli.pipeline.sweep.study import Study
 from gearcli.results import sweep_metrics
 
-#: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results.py).
+#: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results/).
 TREND_METRICS = sweep_metrics("trend")
 TREND_COLUMNS = ("parameter", "metric", "points", "parameter_min", "parameter_max",
                  "metric_at_min", "metric_at_max", "change_percent", "ratio", "spearman_rho",

@@ -1,0 +1,76 @@
+"""The documents of `gearcli stress`, `gearcli modal` and `gearcli mesh`."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from typing import Any
+
+from gearcli.results.fields import Document, metric_field
+
+
+@dataclasses.dataclass(frozen=True)
+class GearStress(Document):
+    """Peak dynamic stresses of one gear in the window against its ISO 6336 static values
+    (stress.json's ``pinion`` / ``gear`` with the ``static`` values of that gear)."""
+
+    teeth: int = metric_field("teeth", 0)
+    sigma_H_peak_MPa: float | None = metric_field("sigma_H_peak_MPa", None)
+    sigma_F_peak_MPa: float | None = metric_field("sigma_F_peak_MPa", None)
+    sigma_H_iso_MPa: float | None = metric_field("sigma_H_iso_MPa", None)
+    sigma_F0_MPa: float | None = metric_field("sigma_F0_MPa", None)
+    ratio_sigma_H_to_static: float | None = metric_field("ratio_sigma_H_to_static", None)
+    ratio_sigma_F_to_static: float | None = metric_field("ratio_sigma_F_to_static", None)
+    S_H: float | None = metric_field("S_H", None)
+    S_F: float | None = metric_field("S_F", None)
+
+    @classmethod
+    def from_document(cls, doc: Mapping[str, Any], which: str) -> GearStress:
+        g, st = doc[which], doc["static"][which]
+        safety = g.get("safety") or {}
+        return cls(teeth=g["teeth"], sigma_H_peak_MPa=g["peak_sigma_H"].get("MPa"),
+                   sigma_F_peak_MPa=g["peak_sigma_F"].get("MPa"),
+                   sigma_H_iso_MPa=st.get("sigma_H_iso_MPa"), sigma_F0_MPa=st.get("sigma_F0_MPa"),
+                   ratio_sigma_H_to_static=g.get("ratio_sigma_H_to_static"),
+                   ratio_sigma_F_to_static=g.get("ratio_sigma_F_to_static"),
+                   S_H=safety.get("S_H"), S_F=safety.get("S_F"))
+
+
+@dataclasses.dataclass(frozen=True)
+class Mode(Document):
+    """One mode of the linearised model (the modal JSON's ``modes``)."""
+
+    mode: int = metric_field("mode", 0)
+    rigid_body: bool = metric_field("rigid_body", False)
+    natural_frequency_Hz: float | None = metric_field("natural_frequency_Hz", None)
+    damping_ratio: float | None = metric_field("damping_ratio", None)
+    resonant_peak: bool = metric_field("resonant_peak", False)
+    description: str = metric_field("description", "")
+    shape: Mapping[str, float] = metric_field("shape", None)
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshSummary(Document):
+    """The scalars of a quasi-static loaded contact analysis (`gearcli mesh --json`: its
+    ``ste`` entries prefixed ``ste_``, its ``stiffness`` and ``iso6336_method_b`` entries)."""
+
+    force_N: float = metric_field("force_N")
+    ste_mean_um: float = metric_field("ste_mean_um")
+    ste_peak_to_peak_um: float = metric_field("ste_peak_to_peak_um")
+    ste_peak_to_peak_arcsec: float = metric_field("ste_peak_to_peak_arcsec")
+    unloaded_te_peak_to_peak_um: float = metric_field("unloaded_te_peak_to_peak_um")
+    mesh_mean_N_mm: float = metric_field("mesh_mean_N_mm")
+    single_pair_zone_N_mm: float | None = metric_field("single_pair_zone_N_mm", None)
+    double_pair_zone_N_mm: float | None = metric_field("double_pair_zone_N_mm", None)
+    iso6336_single_pair_c_prime_b_N_mm: float = metric_field("iso6336_single_pair_c_prime_b_N_mm")
+    iso6336_mean_c_gamma_alpha_b_N_mm: float = metric_field("iso6336_mean_c_gamma_alpha_b_N_mm")
+    resonance_speed_rpm: float = metric_field("resonance_speed_rpm")
+    resonance_ratio: float | None = metric_field("resonance_ratio", None)
+    k_v: float | None = metric_field("k_v", None)
+
+    @classmethod
+    def from_document(cls, doc: Mapping[str, Any]) -> MeshSummary:
+        ste = {k if k.startswith("unloaded") else f"ste_{k}": v for k, v in doc["ste"].items()}
+        flat = {"force_N": doc["force_N"], **ste, **doc["stiffness"],
+                **doc.get("iso6336_method_b", {})}
+        return super().from_document(flat)
