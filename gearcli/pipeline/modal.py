@@ -34,7 +34,7 @@ from gearcli.model.modal import (
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import linearised_mesh
 from gearcli.pipeline.structure import build_structure, refuse_unsupported
-from gearcli.results import Check, Mode, StoredMode
+from gearcli.results import Check, ModalDocument, Mode, StoredMode
 
 DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
@@ -71,11 +71,11 @@ class ModalAnalysis:
 
     @property
     def modes(self) -> list[Mode]:
-        return [Mode.from_document(m) for m in self.document()["modes"]]
+        return list(modal_document(self).modes)
 
     def document(self) -> dict:
-        """What `gearcli modal --json` prints."""
-        return modal_document(self)
+        """What `gearcli modal --json` prints (the JSON data of :func:`modal_document`)."""
+        return modal_document(self).to_dict()
 
     def plot(self, units: str = "engineering"):
         """The Campbell diagram and mode shapes (a ``matplotlib.figure.Figure``); the speed
@@ -197,21 +197,21 @@ def _margin_check(res: ModalAnalysis, limit: float) -> Check:
     return Check(name, near.margin_percent, lim, ok, note)
 
 
-def modal_document(res: ModalAnalysis) -> dict:
-    """JSON-ready report; names carry units."""
+def modal_document(res: ModalAnalysis) -> ModalDocument:
+    """The modal JSON (``.to_dict()``); names carry units."""
     from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 
     m, st = res.mesh, res.system.structure
-    return {
-        "schema_version": RESULTS_SCHEMA_VERSION,
-        "case": res.name,
-        "model": res.loaded.case.model,
-        "drive": res.system.drive,
-        "dofs": list(res.result.dofs),
-        "shape_convention": "each coordinate as a length: rotations as the roll distance "
-                            "r_b theta at the body's base circle (motor, pinion r_b1; gear, load "
-                            "r_b2), centre displacements in mm; largest component = 1",
-        "bodies": {
+    return ModalDocument(
+        schema_version=RESULTS_SCHEMA_VERSION,
+        case=res.name,
+        model=res.loaded.case.model,
+        drive=res.system.drive,
+        dofs=list(res.result.dofs),
+        shape_convention="each coordinate as a length: rotations as the roll distance r_b theta "
+                         "at the body's base circle (motor, pinion r_b1; gear, load r_b2), "
+                         "centre displacements in mm; largest component = 1",
+        bodies={
             "motor_inertia_t_mm2": st.motor_inertia_t_mm2 or None,
             "pinion_inertia_t_mm2": st.J1_t_mm2,
             "gear_inertia_t_mm2": st.J2_t_mm2,
@@ -219,7 +219,7 @@ def modal_document(res: ModalAnalysis) -> dict:
             "pinion_mass_t": st.m1_t if st.lateral else None,
             "gear_mass_t": st.m2_t if st.lateral else None,
         },
-        "linearisation": {
+        linearisation={
             "static_force_N": m.static_force_N,
             "static_deflection_mm": m.static_deflection_mm,
             "pair_stiffness_N_mm": m.pair_stiffness_N_mm,
@@ -231,35 +231,29 @@ def modal_document(res: ModalAnalysis) -> dict:
             "load_quadratic_damping_Nmms_rad": res.system.load_quadratic_damping_Nmms_rad,
             "friction": "off",
         },
-        "modes": [{
-            "mode": md.number,
-            "rigid_body": md.rigid,
-            "natural_frequency_Hz": md.natural_frequency_Hz,
-            "damping_ratio": md.damping_ratio,
-            "damped_frequency_Hz": md.damped_frequency_Hz,
-            "undamped_frequency_Hz": md.undamped_frequency_Hz,
-            "resonant_peak": md.has_peak,
-            "description": md.description,
-            "shape": dict(zip(res.result.dofs, md.shape, strict=True)),
-            "strain_energy_share": md.strain_energy,
-            "kinetic_energy_share": md.kinetic_energy,
-            "eigenvalues_1_s": [[r.real, r.imag] for r in md.eigenvalues],
-        } for md in res.result.modes],
-        "case_speed_deg_s": res.case_speed_deg_s,
-        "speed_range_deg_s": list(res.speed_range_deg_s),
-        "orders_per_pinion_rev": {o.name: o.per_rev for o in res.orders},
-        "crossings": [{"order": c.order, "mode": c.mode, "frequency_Hz": c.frequency_Hz,
-                       "pinion_speed_deg_s": c.pinion_speed_rev_s * 360.0,
-                       "in_range": res.speed_range_deg_s[0] <= c.pinion_speed_rev_s * 360.0
-                       <= res.speed_range_deg_s[1]} for c in res.crossings],
-        "margins_at_case_speed": [{"order": x.order, "mode": x.mode,
-                                   "excitation_Hz": x.excitation_Hz, "mode_Hz": x.mode_Hz,
-                                   "margin_percent": x.margin_percent,
-                                   "resonant_peak": x.has_peak} for x in res.margins],
-        "checks": [{"name": c.name, "value": c.value, "limit": c.limit, "passed": c.passed,
-                    "checked": c.checked, "note": c.note} for c in res.checks],
-        "passed": res.passed,
-    }
+        modes=tuple(Mode(
+            mode=md.number, rigid_body=md.rigid, natural_frequency_Hz=md.natural_frequency_Hz,
+            damping_ratio=md.damping_ratio, damped_frequency_Hz=md.damped_frequency_Hz,
+            undamped_frequency_Hz=md.undamped_frequency_Hz, resonant_peak=md.has_peak,
+            description=md.description, shape=dict(zip(res.result.dofs, md.shape, strict=True)),
+            strain_energy_share=md.strain_energy, kinetic_energy_share=md.kinetic_energy,
+            eigenvalues_1_s=tuple([r.real, r.imag] for r in md.eigenvalues))
+            for md in res.result.modes),
+        case_speed_deg_s=res.case_speed_deg_s,
+        speed_range_deg_s=list(res.speed_range_deg_s),
+        orders_per_pinion_rev={o.name: o.per_rev for o in res.orders},
+        crossings=[{"order": c.order, "mode": c.mode, "frequency_Hz": c.frequency_Hz,
+                    "pinion_speed_deg_s": c.pinion_speed_rev_s * 360.0,
+                    "in_range": res.speed_range_deg_s[0] <= c.pinion_speed_rev_s * 360.0
+                    <= res.speed_range_deg_s[1]} for c in res.crossings],
+        margins_at_case_speed=[{"order": x.order, "mode": x.mode,
+                                "excitation_Hz": x.excitation_Hz, "mode_Hz": x.mode_Hz,
+                                "margin_percent": x.margin_percent,
+                                "resonant_peak": x.has_peak} for x in res.margins],
+        checks=[{"name": c.name, "value": c.value, "limit": c.limit, "passed": c.passed,
+                 "checked": c.checked, "note": c.note} for c in res.checks],
+        passed=res.passed,
+    )
 
 
 def campbell_figure(res: ModalAnalysis, units: str = "engineering"):

@@ -13,7 +13,7 @@ documents' JSON Schemas (``gearcli schema --results``). The documents' version i
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.results.analysis import AnalysisMetrics, Check, ResonanceMargin
 from gearcli.results.fields import PLACES, Document, shown, shown_values
-from gearcli.results.models import GearStress, MeshSummary, Mode
+from gearcli.results.models import GearStress, MeshSummary, ModalDocument, Mode
 from gearcli.results.run import (
     EnergyBalance,
     PointLines,
@@ -25,6 +25,7 @@ from gearcli.results.run import (
 from gearcli.results.schema import KINDS, json_schema
 
 __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
-           "AnalysisMetrics", "ResonanceMargin", "Check", "GearStress", "Mode", "MeshSummary",
+           "AnalysisMetrics", "ResonanceMargin", "Check", "GearStress", "Mode", "ModalDocument",
+           "MeshSummary",
            "PointLines", "Document", "PLACES", "shown", "shown_values", "sweep_metrics",
            "json_schema", "KINDS"]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -44,9 +45,42 @@ class Mode(Document):
     rigid_body: bool = metric_field("rigid_body", False)
     natural_frequency_Hz: float | None = metric_field("natural_frequency_Hz", None)
     damping_ratio: float | None = metric_field("damping_ratio", None)
+    damped_frequency_Hz: float | None = metric_field("damped_frequency_Hz", None)
+    undamped_frequency_Hz: float | None = metric_field("undamped_frequency_Hz", None)
     resonant_peak: bool = metric_field("resonant_peak", False)
     description: str = metric_field("description", "")
     shape: Mapping[str, float] = metric_field("shape", None)
+    strain_energy_share: Mapping[str, float] = metric_field("strain_energy_share", None)
+    kinetic_energy_share: Mapping[str, float] = metric_field("kinetic_energy_share", None)
+    eigenvalues_1_s: tuple = metric_field("eigenvalues_1_s", ())  #: [[Re, Im], ...] [1/s]
+
+
+@dataclasses.dataclass(frozen=True)
+class ModalDocument(Document):
+    """`gearcli modal --json`: the linearised model, its :class:`Mode` s, the crossings of the
+    mesh orders with them and the resonance-margin check."""
+
+    schema_version: int = metric_field("schema_version", 0)
+    case: str = metric_field("case", "")
+    model: str = metric_field("model", "")
+    drive: str = metric_field("drive", "")
+    dofs: tuple[str, ...] = metric_field("dofs", ())
+    shape_convention: str = metric_field("shape_convention", "")
+    bodies: Mapping[str, float | None] = metric_field("bodies", {})
+    linearisation: Mapping[str, Any] = metric_field("linearisation", {})
+    modes: tuple[Mode, ...] = metric_field("modes", (), nested=Mode)
+    case_speed_deg_s: float | None = metric_field("case_speed_deg_s", None)
+    speed_range_deg_s: tuple[float, float] = metric_field("speed_range_deg_s",
+                                                          (math.nan, math.nan))
+    orders_per_pinion_rev: Mapping[str, float] = metric_field("orders_per_pinion_rev", {})
+    #: each {order, mode, frequency_Hz, pinion_speed_deg_s, in_range}
+    crossings: tuple[Mapping[str, Any], ...] = metric_field("crossings", ())
+    #: each {order, mode, excitation_Hz, mode_Hz, margin_percent, resonant_peak}
+    margins_at_case_speed: tuple[Mapping[str, Any], ...] = metric_field(
+        "margins_at_case_speed", ())
+    #: each a :class:`gearcli.results.Check` as {name, value, limit, passed, checked, note}
+    checks: tuple[Mapping[str, Any], ...] = metric_field("checks", ())
+    passed: bool = metric_field("passed", True)
 
 
 @dataclasses.dataclass(frozen=True)
