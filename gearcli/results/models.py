@@ -84,27 +84,75 @@ class ModalDocument(Document):
 
 
 @dataclasses.dataclass(frozen=True)
-class MeshSummary(Document):
-    """The scalars of a quasi-static loaded contact analysis (`gearcli mesh --json`: its
-    ``ste`` entries prefixed ``ste_``, its ``stiffness`` and ``iso6336_method_b`` entries)."""
+class MeshSte(Document):
+    """The loaded static transmission error over the analysed mesh cycles [µm]."""
 
-    force_N: float = metric_field("force_N")
-    ste_mean_um: float = metric_field("ste_mean_um")
-    ste_peak_to_peak_um: float = metric_field("ste_peak_to_peak_um")
-    ste_peak_to_peak_arcsec: float = metric_field("ste_peak_to_peak_arcsec")
+    mean_um: float = metric_field("mean_um", metric="ste_mean_um")
+    peak_to_peak_um: float = metric_field("peak_to_peak_um", metric="ste_peak_to_peak_um")
+    peak_to_peak_arcsec: float = metric_field("peak_to_peak_arcsec",
+                                              metric="ste_peak_to_peak_arcsec")
+    harmonics_um: Mapping[str, float] = metric_field("harmonics_um", {})  #: "1fz": amplitude
     unloaded_te_peak_to_peak_um: float = metric_field("unloaded_te_peak_to_peak_um")
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshStiffness(Document):
+    """The mesh stiffness of the loaded contact against ISO 6336-1 [N/mm]."""
+
     mesh_mean_N_mm: float = metric_field("mesh_mean_N_mm")
     single_pair_zone_N_mm: float | None = metric_field("single_pair_zone_N_mm", None)
     double_pair_zone_N_mm: float | None = metric_field("double_pair_zone_N_mm", None)
-    iso6336_single_pair_c_prime_b_N_mm: float = metric_field("iso6336_single_pair_c_prime_b_N_mm")
+    iso6336_single_pair_c_prime_b_N_mm: float = metric_field(
+        "iso6336_single_pair_c_prime_b_N_mm")
     iso6336_mean_c_gamma_alpha_b_N_mm: float = metric_field("iso6336_mean_c_gamma_alpha_b_N_mm")
-    resonance_speed_rpm: float = metric_field("resonance_speed_rpm")
-    resonance_ratio: float | None = metric_field("resonance_ratio", None)
-    k_v: float | None = metric_field("k_v", None)
 
-    @classmethod
-    def from_document(cls, doc: Mapping[str, Any]) -> MeshSummary:
-        ste = {k if k.startswith("unloaded") else f"ste_{k}": v for k, v in doc["ste"].items()}
-        flat = {"force_N": doc["force_N"], **ste, **doc["stiffness"],
-                **doc.get("iso6336_method_b", {})}
-        return super().from_document(flat)
+
+@dataclasses.dataclass(frozen=True)
+class IsoResonance(Document):
+    """ISO 6336-1 Method B resonance data of the pair (gearcli/pipeline/mesh_input.iso_dynamic)
+    and, with a case speed, its resonance ratio and K_v."""
+
+    reduced_mass_kg_mm: float = metric_field("reduced_mass_kg_mm")
+    low_load_factor: float = metric_field("low_load_factor")
+    c_prime_N_mm_um: float = metric_field("c_prime_N_mm_um")
+    c_gamma_alpha_N_mm_um: float = metric_field("c_gamma_alpha_N_mm_um")
+    line_load_N_mm: float = metric_field("line_load_N_mm")
+    eps_gamma: float = metric_field("eps_gamma")
+    resonance_speed_rpm: float = metric_field("resonance_speed_rpm")
+    f_pb_eff_um: float = metric_field("f_pb_eff_um")
+    f_f_eff_um: float = metric_field("f_f_eff_um")
+    tip_relief_um: float = metric_field("tip_relief_um")
+    tip_relief_source: str = metric_field("tip_relief_source", "")
+    B_p: float = metric_field("B_p")
+    B_f: float = metric_field("B_f")
+    B_k: float = metric_field("B_k")
+    pinion_speed_rpm: float | None = metric_field("pinion_speed_rpm", None, omit_none=True)
+    resonance_ratio: float | None = metric_field("resonance_ratio", None, omit_none=True)
+    k_v: float | None = metric_field("k_v", None, omit_none=True)
+    speed_range: str | None = metric_field("speed_range", None, omit_none=True)
+
+
+@dataclasses.dataclass(frozen=True)
+class HarrisMap(Document):
+    """STE peak to peak against the static force (`gearcli mesh --harris`)."""
+
+    force_N: tuple[float, ...] = metric_field("force_N", ())
+    ste_peak_to_peak_um: tuple[float, ...] = metric_field("ste_peak_to_peak_um", ())
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshSummary(Document):
+    """A quasi-static loaded contact analysis (`gearcli mesh --json`): the static normal force,
+    the STE, the mesh stiffness against ISO 6336-1 and the ISO 6336-1 Method B data."""
+
+    schema_version: int = metric_field("schema_version", 0)
+    case: str = metric_field("case", "")
+    contact_law: str = metric_field("contact_law", "")
+    force_N: float = metric_field("force_N")
+    mesh_cycles: int = metric_field("mesh_cycles", 0)
+    ste: MeshSte = metric_field("ste", MeshSte(), nested=MeshSte)
+    stiffness: MeshStiffness = metric_field("stiffness", MeshStiffness(), nested=MeshStiffness)
+    iso6336_method_b: IsoResonance = metric_field("iso6336_method_b", IsoResonance(),
+                                                  nested=IsoResonance)
+    notes: tuple[str, ...] = metric_field("notes", ())
+    harris: HarrisMap | None = metric_field("harris", None, omit_none=True, nested=HarrisMap)

@@ -8,7 +8,14 @@ import math
 
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.results.analysis import AnalysisMetrics
-from gearcli.results.models import GearStress, MeshSummary, Mode
+from gearcli.results.models import (
+    GearStress,
+    IsoResonance,
+    MeshSte,
+    MeshStiffness,
+    MeshSummary,
+    Mode,
+)
 from gearcli.results.run import Summary
 
 
@@ -91,15 +98,12 @@ def json_schema(kind: str = "summary") -> dict:
         return {**base, "title": "gearcli stress.json", "properties": props,
                 "required": ["schema_version", "case", "static", "pinion", "gear"]}
     if kind == "mesh":
-        flat = typed(MeshSummary)["properties"]
-        groups = {"ste": [k for k in flat if k.startswith(("ste_", "unloaded_"))],
-                  "stiffness": [k for k in flat if k.endswith("_N_mm")],
-                  "iso6336_method_b": ["resonance_speed_rpm", "resonance_ratio", "k_v"]}
-        props = {"schema_version": version, "case": {"type": "string"},
-                 "force_N": flat["force_N"], "notes": {"type": "array"},
-                 **{g: {"type": "object", "additionalProperties": True,
-                        "properties": {k.removeprefix("ste_") if g == "ste" else k: flat[k]
-                                       for k in keys}} for g, keys in groups.items()}}
+        props = typed(MeshSummary)["properties"]
+        for group in (MeshSte, MeshStiffness, IsoResonance):
+            name = next(f.name for f in dataclasses.fields(MeshSummary)
+                        if f.metadata.get("nested") is group)
+            props[name] = typed(group)
+        props["schema_version"] = version
         return {**base, "title": "gearcli mesh --json", "properties": props,
                 "required": ["schema_version", "case", "force_N", "ste", "stiffness"]}
     props = {"schema_version": version, "case": {"type": "string"},

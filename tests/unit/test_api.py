@@ -192,13 +192,14 @@ def test_mesh_returns_a_typed_summary_equal_to_the_cli_json():
     assert res.exit_code == 0, res.output
     doc = json.loads(res.output)
     assert isinstance(m.summary, gearcli.MeshSummary)
-    assert m.summary.ste_peak_to_peak_um == doc["ste"]["peak_to_peak_um"]
-    assert m.summary.mesh_mean_N_mm == doc["stiffness"]["mesh_mean_N_mm"]
-    assert m.summary.k_v == doc["iso6336_method_b"]["k_v"]
+    assert m.summary.to_dict() == doc  # the typed document is the JSON
+    assert m.summary.ste.peak_to_peak_um == doc["ste"]["peak_to_peak_um"]
+    assert m.summary.stiffness.mesh_mean_N_mm == doc["stiffness"]["mesh_mean_N_mm"]
+    assert m.summary.iso6336_method_b.k_v == doc["iso6336_method_b"]["k_v"]
     table = m.table
     assert table.index.name == "roll_mm" and "ste_um" in table.columns
     assert table["ste_um"].max() - table["ste_um"].min() == pytest.approx(
-        m.summary.ste_peak_to_peak_um, rel=1e-9)
+        m.summary.ste.peak_to_peak_um, rel=1e-9)
     schema = json.loads(runner.invoke(app, ["schema", "--results", "--kind", "mesh"]).output)
     for group in ("ste", "stiffness", "iso6336_method_b"):
         for key in schema["properties"][group]["properties"]:

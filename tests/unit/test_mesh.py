@@ -77,7 +77,7 @@ def test_linearisation_follows_the_tip_relief():
         loaded = gearcli.load_case("cases/iso_pair.yaml", set=overrides)
         geo = run_geometry(loaded)
         modes[name] = (linearised_mesh(loaded.case, geo), case_mesh(loaded.case, geo))
-        k_ltca = gearcli.mesh(loaded).summary.mesh_mean_N_mm
+        k_ltca = gearcli.mesh(loaded).summary.stiffness.mesh_mean_N_mm
         lin = modes[name][0]
         assert lin.mesh_stiffness_N_mm == pytest.approx(k_ltca, rel=5e-3)
         assert lin.natural_frequency_Hz == pytest.approx(
