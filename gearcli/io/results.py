@@ -17,7 +17,7 @@ import numpy as np
 
 from gearcli.errors import InvalidResultError, ResultsError
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
-from gearcli.results import StoredMode, Summary, SummaryDocument
+from gearcli.results import StoredMode, StressDocument, Summary, SummaryDocument
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -155,6 +155,23 @@ def check_summary(path: Path, summary: dict) -> None:
         raise bad("warnings", "a list")
     if not isinstance(summary.get("solver", {}), dict):
         raise bad("solver", "a mapping")
+
+
+def read_stress(path: Path) -> StressDocument:
+    """stress.json of `gearcli stress` as its typed document (the schema_version checked)."""
+    doc = read_json(path, "run gearcli stress again")
+    if not isinstance(doc, dict) or not all(isinstance(doc.get(k), dict)
+                                            for k in ("static", "pinion", "gear")):
+        raise ResultsError(f"{path}: not a stress.json of gearcli stress; run it again")
+    version = doc.get("schema_version", RESULTS_SCHEMA_VERSION)
+    if version != RESULTS_SCHEMA_VERSION:
+        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
+                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli stress)")
+    try:
+        return StressDocument.from_document(doc)
+    except (TypeError, AttributeError) as exc:
+        raise ResultsError(f"{path}: unreadable stress document ({exc}); run gearcli stress "
+                           "again") from None
 
 
 def read_parquet_columns(path: Path, key: str, rows: int) -> dict[str, np.ndarray]:

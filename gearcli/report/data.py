@@ -14,9 +14,9 @@ import numpy as np
 from gearcli.case.build import gear_side_damping, pair_spec
 from gearcli.case.load import load_case_text
 from gearcli.errors import GearcliError, ResultsError
-from gearcli.io.results import StoredRun, read_columns, read_json, read_run
+from gearcli.io.results import StoredRun, read_columns, read_json, read_run, read_stress
 from gearcli.model.geometry import PairGeometry, compute_pair_geometry
-from gearcli.results import AnalysisMetrics, Summary
+from gearcli.results import AnalysisMetrics, StressDocument, Summary
 
 
 @dataclass(frozen=True)
@@ -28,7 +28,7 @@ class ReportData:
     spectrum: dict[str, np.ndarray]
     geometry: PairGeometry | None  #: None when the stored case's geometry cannot be rebuilt
     geometry_error: str = ""
-    stress: dict | None = None  #: stress.json of gearcli stress, when it was run
+    stress: StressDocument | None = None  #: stress.json of gearcli stress, when it was run
     stress_series: dict | None = None  #: stress.csv's columns, with stress.json
     #: zoom.csv: the solver's dense output around the force maximum and at the end of the run
     #: (pipeline/simulate.dense_zoom); empty for folders written without it
@@ -115,7 +115,7 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
         geometry, error = None, f"{type(exc).__name__}: {exc}"
     stress = stress_series = None
     if (run.folder / "stress.json").is_file():
-        stress = read_json(run.folder / "stress.json", "run gearcli stress again")
+        stress = read_stress(run.folder / "stress.json")
         if (run.folder / "stress.csv").is_file():
             stress_series = read_columns(run.folder / "stress.csv", "t_s")
     zoom = {}

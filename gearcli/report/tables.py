@@ -10,6 +10,7 @@ from gearcli.display_units import DEFAULT, convert, unit_and_factor
 from gearcli.io.metrics import display
 from gearcli.report.data import ReportData, number, unit_of
 from gearcli.results import shown_values
+from gearcli.results.stress import Safety
 
 
 @dataclass(frozen=True)
@@ -351,22 +352,23 @@ def stress_table(data: ReportData) -> Table | None:
         return None
     rows, status = [], []
     for gear in ("pinion", "gear"):
-        g, ref = st[gear], st["static"][gear]
-        safety = g.get("safety") or {}
-        for kind, peak_key, ref_key, ratio_key, s_key in (
-            ("contact σ_H", "peak_sigma_H", "sigma_H_iso_MPa", "ratio_sigma_H_to_static", "S_H"),
-            ("root σ_F", "peak_sigma_F", "sigma_F0_MPa", "ratio_sigma_F_to_static", "S_F"),
+        g, ref = getattr(st, gear), getattr(st.static, gear)
+        safety = g.safety or Safety()
+        for kind, peak, static, ratio, s_factor in (
+            ("contact σ_H", g.peak_sigma_H, ref.sigma_H_iso_MPa, g.ratio_sigma_H_to_static,
+             safety.S_H),
+            ("root σ_F", g.peak_sigma_F, ref.sigma_F0_MPa, g.ratio_sigma_F_to_static,
+             safety.S_F),
         ):
-            peak = g[peak_key]
-            rows.append((gear, kind, fmt(peak["MPa"]), f"{fmt(peak['t_s'])} s, tooth "
-                         f"{peak['tooth']}, {peak['zone']}", fmt(ref[ref_key]),
-                         fmt(g[ratio_key]), fmt(safety.get(s_key))))
+            rows.append((gear, kind, fmt(peak.MPa), f"{fmt(peak.t_s)} s, tooth "
+                         f"{peak.tooth}, {peak.zone}", fmt(static), fmt(ratio), fmt(s_factor)))
             status.append("")
-    note = str(st.get("ratio_definition", ""))
-    window = st.get("window_s")
-    if window:  # gearcli stress has its own window: say which, and when it is not analyze's
+    note = st.ratio_definition
+    window = st.window_s
+    if all(math.isfinite(x) for x in window):  # gearcli stress has its own window: say which,
+        # and when it is not analyze's
         note = (f"Peaks in the window {fmt(window[0])}-{fmt(window[1])} s of gearcli stress "
-                f"({st.get('window_reason', '')})" + (
+                f"({st.window_reason})" + (
                     f", not the analysis window {fmt(data.window_s[0])}-"
                     f"{fmt(data.window_s[1])} s of the tables above"
                     if data.window_s and any(abs(a - b) > 1e-9 for a, b in

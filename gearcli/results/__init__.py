@@ -13,7 +13,7 @@ documents' JSON Schemas (``gearcli schema --results``). The documents' version i
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.results.analysis import AnalysisMetrics, Check, ResonanceMargin
 from gearcli.results.fields import PLACES, Document, shown, shown_values
-from gearcli.results.models import GearStress, MeshSummary, ModalDocument, Mode
+from gearcli.results.models import MeshSummary, ModalDocument, Mode
 from gearcli.results.run import (
     EnergyBalance,
     PointLines,
@@ -23,9 +23,9 @@ from gearcli.results.run import (
     sweep_metrics,
 )
 from gearcli.results.schema import KINDS, json_schema
+from gearcli.results.stress import GearStress, StressDocument
 
 __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
            "AnalysisMetrics", "ResonanceMargin", "Check", "GearStress", "Mode", "ModalDocument",
-           "MeshSummary",
-           "PointLines", "Document", "PLACES", "shown", "shown_values", "sweep_metrics",
-           "json_schema", "KINDS"]
+           "MeshSummary", "PointLines", "StressDocument", "Document", "PLACES", "shown",
+           "shown_values", "sweep_metrics", "json_schema", "KINDS"]

@@ -11,33 +11,6 @@ from gearcli.results.fields import Document, metric_field
 
 
 @dataclasses.dataclass(frozen=True)
-class GearStress(Document):
-    """Peak dynamic stresses of one gear in the window against its ISO 6336 static values
-    (stress.json's ``pinion`` / ``gear`` with the ``static`` values of that gear)."""
-
-    teeth: int = metric_field("teeth", 0)
-    sigma_H_peak_MPa: float | None = metric_field("sigma_H_peak_MPa", None)
-    sigma_F_peak_MPa: float | None = metric_field("sigma_F_peak_MPa", None)
-    sigma_H_iso_MPa: float | None = metric_field("sigma_H_iso_MPa", None)
-    sigma_F0_MPa: float | None = metric_field("sigma_F0_MPa", None)
-    ratio_sigma_H_to_static: float | None = metric_field("ratio_sigma_H_to_static", None)
-    ratio_sigma_F_to_static: float | None = metric_field("ratio_sigma_F_to_static", None)
-    S_H: float | None = metric_field("S_H", None)
-    S_F: float | None = metric_field("S_F", None)
-
-    @classmethod
-    def from_document(cls, doc: Mapping[str, Any], which: str) -> GearStress:
-        g, st = doc[which], doc["static"][which]
-        safety = g.get("safety") or {}
-        return cls(teeth=g["teeth"], sigma_H_peak_MPa=g["peak_sigma_H"].get("MPa"),
-                   sigma_F_peak_MPa=g["peak_sigma_F"].get("MPa"),
-                   sigma_H_iso_MPa=st.get("sigma_H_iso_MPa"), sigma_F0_MPa=st.get("sigma_F0_MPa"),
-                   ratio_sigma_H_to_static=g.get("ratio_sigma_H_to_static"),
-                   ratio_sigma_F_to_static=g.get("ratio_sigma_F_to_static"),
-                   S_H=safety.get("S_H"), S_F=safety.get("S_F"))
-
-
-@dataclasses.dataclass(frozen=True)
 class Mode(Document):
     """One mode of the linearised model (the modal JSON's ``modes``)."""
 

@@ -9,7 +9,6 @@ import math
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.results.analysis import AnalysisMetrics
 from gearcli.results.models import (
-    GearStress,
     IsoResonance,
     MeshSte,
     MeshStiffness,
@@ -17,6 +16,7 @@ from gearcli.results.models import (
     Mode,
 )
 from gearcli.results.run import Summary
+from gearcli.results.stress import GearStress
 
 
 def _finite(value) -> bool:
