@@ -430,7 +430,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
             check_target(out, force)  # before the runs, not after
             curve = run_speed_curve(spec, jobs, scheduler)
             write_speed_curve(curve, out, force)
-            df = pd.DataFrame(curve.rows, columns=list(COLUMNS))
+            df = pd.DataFrame([r.to_row() for r in curve.rows], columns=list(COLUMNS))
             df.attrs.update(kind="speed_curve", errors=list(curve.errors),
                             notes=list(curve.notes))
             return df

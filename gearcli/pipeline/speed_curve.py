@@ -21,12 +21,16 @@ gear's speed over the level and the run's energy residual.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import sys
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from gearcli.results import SpeedLevel
+from gearcli.results.run import SPEED_CURVE_COLUMNS
 
 #: Mesh cycles each speed is held, and over which its speed change is made (smooth STEP).
 DWELL_CYCLES = 150
@@ -39,10 +43,8 @@ SAMPLES_PER_PERIOD = 30
 MIN_START_S = 0.05
 
 DIRECTIONS = ("up", "down")
-COLUMNS = ("point", "direction", "mesh_frequency [Hz]", "pinion_speed [rpm]",
-           "resonance_ratio", "iso_resonance_ratio", "dynamic_factor", "force_max_N",
-           "dte_peak_to_peak_mm",
-           "contact_loss_fraction", "status", "error")
+#: summary.csv's columns (gearcli.results.SpeedLevel's fields).
+COLUMNS = SPEED_CURVE_COLUMNS
 
 
 @dataclass(frozen=True)
@@ -113,15 +115,16 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
         # each level's own static force: the resisted torque at its gear speed (§7.3)
         f_static = static_force_at(res, float(omega2[w].mean()))
         valid = status == "ok"
-        rows.append({
-            "point": first_point + i, "direction": direction, "mesh_frequency [Hz]": fz,
-            "pinion_speed [rpm]": fz / z1 * 60.0, "resonance_ratio": fz / f_n_Hz,
-            "dynamic_factor": f_max / f_static if valid and ki.mesh.static_force_N > 0
+        rows.append(SpeedLevel(
+            point=first_point + i, direction=direction, mesh_frequency_Hz=fz,
+            pinion_speed_rpm=fz / z1 * 60.0, resonance_ratio=fz / f_n_Hz,
+            iso_resonance_ratio=math.nan,  # set with the ISO data (run_speed_curve)
+            dynamic_factor=f_max / f_static if valid and ki.mesh.static_force_N > 0
             else math.nan,
-            "force_max_N": f_max if valid else math.nan,
-            "dte_peak_to_peak_mm": float(np.ptp(delta[w])) if valid else math.nan,
-            "contact_loss_fraction": float(np.mean(force[w] <= 0.0)) if valid else math.nan,
-            "status": status, "error": reason})
+            force_max_N=f_max if valid else math.nan,
+            dte_peak_to_peak_mm=float(np.ptp(delta[w])) if valid else math.nan,
+            contact_loss_fraction=float(np.mean(force[w] <= 0.0)) if valid else math.nan,
+            status=status, error=reason))
     return rows
 
 
@@ -139,11 +142,9 @@ def run_direction(payload: dict) -> dict:
     except GearcliError as exc:  # every level of this direction is a failed row, with the reason
         error = str(exc).splitlines()[0]
         teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
-        rows = [{"point": payload["first"] + i, "direction": payload["direction"],
-                 "mesh_frequency [Hz]": fz, "pinion_speed [rpm]": fz / teeth * 60.0,
-                 "resonance_ratio": math.nan, "dynamic_factor": math.nan,
-                 "force_max_N": math.nan, "dte_peak_to_peak_mm": math.nan,
-                 "contact_loss_fraction": math.nan, "status": "failed", "error": error}
+        rows = [SpeedLevel(point=payload["first"] + i, direction=payload["direction"],
+                           mesh_frequency_Hz=fz, pinion_speed_rpm=fz / teeth * 60.0,
+                           status="failed", error=error)
                 for i, fz in enumerate(stairs.f_z_Hz)]
         return {"rows": rows, "f_n_Hz": math.nan, "error": error}
     f_n = res.summary.mesh_natural_frequency_Hz
@@ -192,7 +193,7 @@ class SpeedCurve:
     """A finished speed curve: one row per speed and direction, and the case's mesh mode."""
 
     name: str
-    rows: list[dict]
+    rows: list[SpeedLevel]
     f_n_Hz: float
     errors: list[str]  #: a direction whose simulation failed: its one-line error
     study_file: str = ""
@@ -209,7 +210,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
     from gearcli.pipeline.sweep.run import case_from_json, execute
 
     results = list(execute(run_direction, plan(study), jobs, scheduler))
-    rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r["point"])
+    rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r.point)
     base = case_from_json(study.base_case_json, study.name)
     geo = run_geometry(base)
     f_n = next((res["f_n_Hz"] for res in results if not res["error"]), math.nan)
@@ -218,10 +219,11 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
 
         f_n = linearised_mesh(base.case, geo).natural_frequency_Hz
     iso = iso_dynamic(base.case, geo)
-    for r in rows:
-        r["iso_resonance_ratio"] = r["pinion_speed [rpm]"] / iso["resonance_speed_rpm"]
-        if not math.isfinite(r["resonance_ratio"]):  # a failed row: still placed on the axis
-            r["resonance_ratio"] = r["mesh_frequency [Hz]"] / f_n
+    rows = [dataclasses.replace(
+        r, iso_resonance_ratio=r.pinion_speed_rpm / iso["resonance_speed_rpm"],
+        # a failed row: still placed on the axis
+        resonance_ratio=r.resonance_ratio if math.isfinite(r.resonance_ratio)
+        else r.mesh_frequency_Hz / f_n) for r in rows]
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
                       _notes(base.case))
@@ -252,8 +254,8 @@ def iso_curve(curve: SpeedCurve, points: int = 400):
     from gearcli.pipeline.mesh_input import KV_KEYS
 
     iso = curve.iso
-    f_z = np.linspace(min(r["mesh_frequency [Hz]"] for r in curve.rows),
-                      max(r["mesh_frequency [Hz]"] for r in curve.rows), points)
+    f_z = np.linspace(min(r.mesh_frequency_Hz for r in curve.rows),
+                      max(r.mesh_frequency_Hz for r in curve.rows), points)
     n_iso = f_z / curve.pinion_teeth * 60.0 / iso["resonance_speed_rpm"]
     kv = dynamic_factor(n_iso, **{k: iso[k] for k in KV_KEYS})
     return f_z / curve.f_n_Hz, kv.k_v, n_iso
@@ -274,8 +276,8 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         writer = csv.DictWriter(buf, fieldnames=list(COLUMNS), lineterminator="\n")
         writer.writeheader()
         for r in curve.rows:
-            writer.writerow({c: ("" if isinstance(r[c], float) and math.isnan(r[c]) else r[c])
-                             for c in COLUMNS})
+            writer.writerow({c: "" if isinstance(v, float) and math.isnan(v) else v
+                             for c, v in r.to_row().items()})
         (tmp / "summary.csv").write_text(buf.getvalue())
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,

@@ -17,6 +17,7 @@ from gearcli.results.models import MeshSummary, ModalDocument, Mode
 from gearcli.results.run import (
     EnergyBalance,
     PointLines,
+    SpeedLevel,
     StoredMode,
     Summary,
     SummaryDocument,
@@ -27,5 +28,5 @@ from gearcli.results.stress import GearStress, StressDocument
 
 __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
            "AnalysisMetrics", "ResonanceMargin", "Check", "GearStress", "Mode", "ModalDocument",
-           "MeshSummary", "PointLines", "StressDocument", "Document", "PLACES", "shown",
-           "shown_values", "sweep_metrics", "json_schema", "KINDS"]
+           "MeshSummary", "PointLines", "SpeedLevel", "StressDocument", "Document", "PLACES",
+           "shown", "shown_values", "sweep_metrics", "json_schema", "KINDS"]

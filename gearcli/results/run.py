@@ -124,3 +124,32 @@ class SummaryDocument(Document):
     slots: int = metric_field("slots", 0)
     warnings: tuple[str, ...] = metric_field("warnings", ())
     scalars: Summary = metric_field("scalars", Summary(), nested=Summary)
+
+
+@dataclasses.dataclass(frozen=True)
+class SpeedLevel(Document):
+    """One speed of a speed curve (`design: speed_curve`; gearcli/pipeline/speed_curve.py):
+    a row of its summary.csv, whose column is the field's ``column`` (or its name)."""
+
+    point: int = metric_field("point", 0)
+    direction: str = metric_field("direction", "")
+    mesh_frequency_Hz: float = metric_field("mesh_frequency_Hz", column="mesh_frequency [Hz]")
+    pinion_speed_rpm: float = metric_field("pinion_speed_rpm", column="pinion_speed [rpm]")
+    resonance_ratio: float = metric_field("resonance_ratio")  #: f_z / f_n of the case's mesh mode
+    iso_resonance_ratio: float = metric_field("iso_resonance_ratio")  #: n1 / n_E1 (ISO 6336-1)
+    dynamic_factor: float = metric_field("dynamic_factor")
+    force_max_N: float = metric_field("force_max_N")
+    dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm")
+    contact_loss_fraction: float = metric_field("contact_loss_fraction")
+    status: str = metric_field("status", "ok")  #: "ok", "invalid" or "failed"
+    error: str = metric_field("error", "")
+
+    def to_row(self) -> dict[str, Any]:
+        """The summary.csv row: {column: value}."""
+        return {f.metadata.get("column", f.name): getattr(self, f.name)
+                for f in dataclasses.fields(self)}
+
+
+#: The columns of a speed curve's summary.csv.
+SPEED_CURVE_COLUMNS = tuple(f.metadata.get("column", f.name)
+                            for f in dataclasses.fields(SpeedLevel))

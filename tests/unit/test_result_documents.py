@@ -19,9 +19,8 @@ PKG = Path(results.__file__).resolve().parents[1]
 REGISTRY = {"io/metrics.py"}
 #: Not result metrics: the kernel's extremum records (core/layout.py, its own registry).
 NOT_RESULTS = {"core"}
-#: Literal lists of metric names that remain (issue 27, not yet done): the speed curve's CSV
-#: columns, a row type of its own. A new list anywhere else fails.
-REMAINING = {("pipeline/speed_curve.py", "<module>")}
+#: Literal lists of metric names that remain: none (a list found anywhere fails).
+REMAINING: set[tuple[str, str]] = set()
 
 
 def _metric_names() -> set[str]:
