@@ -13,6 +13,7 @@ import numpy as np
 
 from gearcli.case.build import gear_side_damping, pair_spec
 from gearcli.case.load import load_case_text
+from gearcli.case.schema import Case
 from gearcli.errors import GearcliError, ResultsError
 from gearcli.io.results import StoredRun, read_columns, read_json, read_run, read_stress
 from gearcli.model.geometry import PairGeometry, compute_pair_geometry
@@ -38,13 +39,17 @@ class ReportData:
     #: the gear side's speed-dependent resisting torque coefficients (c_v + c_2, c_q) of the
     #: stored case (case/build.gear_side_damping), for the static force line
     gear_side_damping: tuple[float, float] = (0.0, 0.0)
+    #: the stored case, typed and in internal units (gearcli.case.schema.Case)
+    case: Case | None = None
 
     @property
     def folder(self) -> Path:
         return self.run.folder
 
     @property
-    def case(self) -> dict:
+    def case_data(self) -> dict:
+        """The stored case as written (values as "number unit" texts): for the tables that
+        print its settings as given."""
         return self.run.manifest["resolved_case"]
 
     @cached_property
@@ -77,10 +82,11 @@ class ReportData:
         return float(w[0]), float(w[1])
 
     def has_errors_or_relief(self) -> bool:
-        c = self.case
-        groups = [c.get("modifications") or {}, c.get("errors") or {}]
-        return any(v is not None for g in groups for pair in g.values() if isinstance(pair, dict)
-                   for v in pair.values())
+        m, e = self.case.modifications, self.case.errors
+        return any(x is not None for x in (m.tip_relief.pinion, m.tip_relief.gear,
+                                           m.root_relief.pinion, m.root_relief.gear,
+                                           e.runout.pinion, e.runout.gear,
+                                           e.pitch_deviation.pinion, e.pitch_deviation.gear))
 
 
 def load_report_data(folder: str | Path, units: str = "engineering") -> ReportData:
@@ -122,7 +128,7 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
     if (run.folder / "zoom.csv").is_file():
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
     return ReportData(run, analysis, spectrum, geometry, error, stress, stress_series, zoom,
-                      units, gear_side_damping(loaded.case))
+                      units, gear_side_damping(loaded.case), loaded.case)
 
 
 #: Non-numeric entries of analysis.json's metrics, by kind (the annotations of

@@ -118,6 +118,6 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
                 [NumberedFigure(k, f) for k, f in enumerate(figures, start=1)]),
         Section("Provenance", "provenance", tables(tb.provenance_table(data))),
     ]
-    name = str(data.case.get("name") or data.run.summary.case or data.folder.name)
-    return Document(f"gearcli report: {name}", str(data.case.get("description") or "").strip(),
+    name = str(data.case.name or data.run.summary.case or data.folder.name)
+    return Document(f"gearcli report: {name}", data.case.description.strip(),
                     sections)

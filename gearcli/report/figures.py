@@ -16,7 +16,7 @@ from gearcli.plotting.campbell import plot_campbell_summary
 from gearcli.plotting.geometry import plot_pair
 from gearcli.plotting.orders import plot_order_map
 from gearcli.plotting.spectra import plot_spectra
-from gearcli.report.data import ReportData, number
+from gearcli.report.data import ReportData
 from gearcli.results import AnalysisMetrics
 
 #: Resolution of the PNG files (the HTML embeds them) [dots per inch].
@@ -62,7 +62,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
         # f_z is lower (a run that never settles) it does not cover them, and the samples do
         if _zoom_of(zc, end_zoom, None, column="delta_mm") is not None:
             mesh_zoom, dense = end_zoom, zc
-    teeth = (int(data.case["gears"]["pinion"]["teeth"]), int(data.case["gears"]["gear"]["teeth"]))
+    teeth = (data.case.gears.pinion.teeth, data.case.gears.gear.teeth)
     s, m = data.scalars, data.metrics
     analysed = math.isfinite(m.force_max_N)  # an analysis.json before these metrics: the run's
     f_max = m.force_max_N if analysed else s.force_max_N
@@ -115,7 +115,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                      "circled and the case speed marked.",
                      lambda: plot_campbell_summary(
                          modes, teeth[0], abs(data.scalars.pinion_speed_mean_deg_s)
-                         / 6.0, int(data.case.get("checks", {}).get("harmonics", 5)),
+                         / 6.0, data.case.checks.harmonics,
                          units=data.units)))
     omega1 = c["omega1_rad_s"]
     # a run-up (the speed below 99 % of its final value for at least a tenth of the run, not
@@ -235,7 +235,7 @@ def _cycle_start(t, pairs, window, period: float) -> float:
 
 
 def _spectra(data: ReportData):
-    harmonics = int((data.case.get("checks") or {}).get("harmonics") or 5)
+    harmonics = data.case.checks.harmonics
     return spectra_figure(data.spectrum, data.analysis, harmonics, units=data.units)
 
 
@@ -264,35 +264,34 @@ def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: b
 
 
 def _modifications(data: ReportData, period: float):
-    case = data.case
+    e, m = data.case.errors, data.case.modifications
     errors = _errors_panel(data, period) if any(
-        v is not None for pair in (case.get("errors") or {}).values() for v in pair.values()
-    ) else None
+        x is not None for x in (e.runout.pinion, e.runout.gear, e.pitch_deviation.pinion,
+                                e.pitch_deviation.gear)) else None
     relief = _relief_panel(data) if any(
-        v is not None for pair in (case.get("modifications") or {}).values()
-        for v in pair.values()
-    ) else None
+        x is not None for x in (m.tip_relief.pinion, m.tip_relief.gear, m.root_relief.pinion,
+                                m.root_relief.gear)) else None
     if errors is None and relief is None:
         raise ValueError("no errors and no relief in the case")
     return plots.plot_modifications(errors, relief)
 
 
 def _errors_panel(data: ReportData, period: float) -> dict:
-    errs, m = data.case["errors"], data.metrics
+    errs, m = data.case.errors, data.metrics
     shaft = {"pinion": float(m.pinion_shaft_Hz or 0.0), "gear": float(m.gear_shaft_Hz or 0.0)}
     parts, rev_s, ecc = [], 0.0, 0.0
     for gear in ("pinion", "gear"):
-        run_out = (errs.get("runout") or {}).get(gear)
-        pitch = (errs.get("pitch_deviation") or {}).get(gear)
+        run_out = getattr(errs.runout, gear)
+        pitch = getattr(errs.pitch_deviation, gear)
         if run_out is None and pitch is None:
             continue
         if shaft[gear] > 0:
             rev_s = max(rev_s, 1.0 / shaft[gear])
         if run_out is not None:
-            ecc += number(run_out["eccentricity"])
-            parts.append(f"{gear} runout e = {number(run_out['eccentricity']) * 1e3:.1f} µm")
+            ecc += run_out.eccentricity  # [mm]
+            parts.append(f"{gear} runout e = {run_out.eccentricity * 1e3:.1f} µm")
         if pitch is not None:
-            grade = pitch.get("iso1328_grade")
+            grade = pitch.iso1328_grade
             parts.append(f"{gear} pitch deviations"
                          + (f" (ISO 1328 grade {grade})" if grade else ""))
     t, d = data.run.columns["t_s"], data.run.columns["delta_mm"]
@@ -309,36 +308,36 @@ def _errors_panel(data: ReportData, period: float) -> dict:
     }
 
 
-def _relief(spec: dict | None) -> Relief | None:
+def _relief(spec) -> Relief | None:
+    """The model's relief of a case's (gearcli.case.schema.Relief, internal units) or None."""
     if spec is None:
         return None
-    length, start = spec.get("length"), spec.get("start_diameter")
-    return Relief(number(spec["amount"]), None if length is None else number(length),
-                  None if start is None else number(start), spec.get("shape") or "linear")
+    return Relief(spec.amount, spec.length, spec.start_diameter, spec.shape)
 
 
 def _relief_panel(data: ReportData) -> dict | None:
     geo = data.geometry
     if geo is None:
         return None
-    mods_in = data.case["modifications"]
-    tip, root = mods_in.get("tip_relief") or {}, mods_in.get("root_relief") or {}
-    mods = Modifications(_relief(tip.get("pinion")), _relief(tip.get("gear")),
-                         _relief(root.get("pinion")), _relief(root.get("gear")))
+    mods_in = data.case.modifications
+    tip, root = mods_in.tip_relief, mods_in.root_relief
+    mods = Modifications(_relief(tip.pinion), _relief(tip.gear), _relief(root.pinion),
+                         _relief(root.gear))
     x = np.linspace(-0.5, geo.g_alpha_mm + 0.5, 801)
     (g1, _), (g2, _) = modification_gaps(geo, mods, x)
     curves, parts = {}, []
     for gear, values in (("pinion", g1), ("gear", g2)):
-        kinds = [k for k, src in (("tip", tip), ("root", root)) if src.get(gear) is not None]
+        kinds = [k for k, src in (("tip", tip), ("root", root))
+                 if getattr(src, gear) is not None]
         if kinds:
             curves[f"{gear} {' + '.join(kinds)} relief"] = values
         for kind, src in (("tip", tip), ("root", root)):
-            r = src.get(gear)
+            r = getattr(src, gear)
             if r is not None:
-                extent = (f"over {number(r['length']):g} mm" if r.get("length") is not None
-                          else f"from d = {number(r['start_diameter']):g} mm")
-                parts.append(f"{gear} {kind} relief C = {number(r['amount']) * 1e3:g} µm "
-                             f"{extent} ({r.get('shape') or 'linear'})")
+                extent = (f"over {r.length:g} mm" if r.length is not None
+                          else f"from d = {r.start_diameter:g} mm")
+                parts.append(f"{gear} {kind} relief C = {r.amount * 1e3:g} µm "
+                             f"{extent} ({r.shape})")
     points = {k: v - geo.A_mm for k, v in geo.line_of_action_points().items()
               if k in ("A", "B", "C", "D", "E")}
     mean = data.metrics.dte_mean_mm if math.isfinite(data.metrics.dte_mean_mm) else None

@@ -74,7 +74,7 @@ def _deg(value) -> str:
 # --- the case ---------------------------------------------------------------------------------
 def gears_table(data: ReportData) -> Table:
     """Table 1-style: teeth, module, pressure angle, face width, diameters, material."""
-    case, geo, u = data.case, data.geometry, data.units
+    case, geo, u = data.case_data, data.geometry, data.units
     g = case["gears"]
     p, w = g["pinion"], g["gear"]
     mat = case.get("material") or {}
@@ -142,14 +142,14 @@ def geometry_table(data: ReportData) -> Table | None:
 
 def contact_table(data: ReportData) -> Table:
     """Table 3-style: contact law and friction parameters."""
-    c = data.case.get("contact") or {}
-    f = data.case.get("friction") or {}
+    c = data.case_data.get("contact") or {}
+    f = data.case_data.get("friction") or {}
     rows = [("contact law", str(c.get("law", "")), ""),
             ("engagement model", str(c.get("engagement", "")), "")]
     if c.get("law") == "tooth":  # docs/theory.md §4b, §4c: no IMPACT parameters
         rows.append(("mesh damping ratio ζ", fmt(c.get("damping_ratio")), "–"))
         for gear in ("pinion", "gear"):
-            bore = ((data.case.get("gears") or {}).get(gear) or {}).get("bore_diameter")
+            bore = ((data.case_data.get("gears") or {}).get(gear) or {}).get("bore_diameter")
             rows.append((f"{gear} bore (gear-body compliance)",
                          *(_cells(bore, data.units) if bore is not None
                            else ("default (docs/theory.md §4b)", ""))))
@@ -186,7 +186,7 @@ def _function(spec: dict | None) -> str:
 
 def drive_table(data: ReportData) -> Table:
     """Drive and load functions, bearing losses and run settings."""
-    case = data.case
+    case = data.case_data
     d, ld = case.get("drive") or {}, case.get("load") or {}
     b, r = case.get("bearings") or {}, case.get("run") or {}
     kind, u = d.get("type", ""), data.units
@@ -235,7 +235,7 @@ def modifications_table(data: ReportData) -> Table | None:
     """Profile reliefs and manufacturing errors that are set (None when there are none)."""
     rows = []
     for group in ("modifications", "errors"):
-        for kind, pair in (data.case.get(group) or {}).items():
+        for kind, pair in (data.case_data.get(group) or {}).items():
             for gear, spec in (pair or {}).items():
                 if spec is not None:
                     text = ", ".join(f"{k} = {_setting(v, data.units)}"
