@@ -65,6 +65,9 @@ def analyze(
     analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
     result = analysis
     doc = write_analysis(result)
+    from gearcli.results import AnalysisDocument
+
+    typed = AnalysisDocument.from_document(doc)  # as the report reads it back
     if orders is not None:
         _save_order_map(result, orders, display_units())
     if spectra is not None:
@@ -73,12 +76,12 @@ def analyze(
 
         harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
                         .get("harmonics", 5))
-        save_figure(spectra_figure(spectrum_columns(result), doc, harmonics, order_axis, db,
+        save_figure(spectra_figure(spectrum_columns(result), typed, harmonics, order_axis, db,
                                    display_units()), spectra, 110)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
-        print_checks(doc, display_units())
+        print_checks(typed, display_units())
     if not result.passed:
         failed = [c.name for c in result.checks if not c.passed]
         raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
@@ -97,16 +100,16 @@ def _save_order_map(result, path: Path, units: str) -> None:
     save_figure(fig, path, 110)
 
 
-def print_checks(doc: dict, units: str = "engineering") -> None:
+def print_checks(doc, units: str = "engineering") -> None:
     """The analysis table (the metrics shown at "analyze", gearcli/results/, in the display
-    ``units``) and the checks table of an analysis.json document."""
+    ``units``) and the checks table of an analysis (gearcli.results.AnalysisDocument)."""
     from gearcli.io.metrics import rows as metric_rows
-    from gearcli.results import AnalysisMetrics, shown_values
+    from gearcli.results import shown_values
 
-    m = AnalysisMetrics.from_document(doc["metrics"])
+    m = doc.metrics
     shown = shown_values(m, "analyze")
     rows = metric_rows(shown, shown, units)
     w0, w1 = m.window_s
-    print_quantity_table(f"{doc['case']}: window {w0:.3f}-{w1:.3f} s ({m.window_reason})",
+    print_quantity_table(f"{doc.case}: window {w0:.3f}-{w1:.3f} s ({m.window_reason})",
                          rows)
-    print_checks_table(doc["checks"])
+    print_checks_table(doc.checks)

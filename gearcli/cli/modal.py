@@ -61,7 +61,7 @@ def modal(
     if as_json:
         typer.echo(json.dumps(typed.to_dict(), indent=2))
     elif not quiet:
-        _print(typed, units)
+        _print(typed, res.checks, units)
         if plot is not None:
             typer.echo(f"wrote {plot}")
     if not res.passed:
@@ -69,7 +69,7 @@ def modal(
         raise CheckFailed(f"{case}: check(s) failed: {', '.join(failed)}")
 
 
-def _print(doc, units: str) -> None:
+def _print(doc, checks, units: str) -> None:
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
@@ -112,4 +112,4 @@ def _print(doc, units: str) -> None:
             c.add_row(x["order"], str(x["mode"]), format_value(x["frequency_Hz"]),
                       format_value(convert(x["pinion_speed_deg_s"], "deg/s", units)[0]))
     console.print(c)
-    print_checks_table(doc.checks)
+    print_checks_table(checks)

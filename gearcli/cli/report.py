@@ -87,7 +87,9 @@ def run(
             name = build_report(tmp, fmt, None, units).name
     path = out / name
     if not quiet:
-        print_checks(doc, units)
+        from gearcli.results import AnalysisDocument
+
+        print_checks(AnalysisDocument.from_document(doc), units)
         for w in result.warnings:
             typer.echo(f"warning: {w}", err=True)
     typer.echo(f"report written to {path}")

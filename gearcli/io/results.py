@@ -17,7 +17,14 @@ import numpy as np
 
 from gearcli.errors import InvalidResultError, ResultsError
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
-from gearcli.results import StoredMode, StressDocument, Summary, SummaryDocument
+from gearcli.results import (
+    AnalysisDocument,
+    AnalysisMetrics,
+    StoredMode,
+    StressDocument,
+    Summary,
+    SummaryDocument,
+)
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -155,6 +162,73 @@ def check_summary(path: Path, summary: dict) -> None:
         raise bad("warnings", "a list")
     if not isinstance(summary.get("solver", {}), dict):
         raise bad("solver", "a mapping")
+
+
+#: Non-numeric entries of analysis.json's metrics, by kind (the annotations of
+#: gearcli.results.AnalysisMetrics); every other entry is a number or null.
+_TEXT_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics) if f.type == "str")
+_LIST_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics)
+                      if str(f.type).startswith("tuple"))
+
+
+def check_analysis(path: Path, doc: dict) -> None:
+    """Refuse an analysis.json whose entries the report cannot read (hand-edited, foreign):
+    the first wrong entry, and the remedy (run gearcli analyze again)."""
+    def bad(key: str, kind: str) -> ResultsError:
+        return ResultsError(f"{path}: {key} is not {kind}; run gearcli analyze again (was the "
+                            "file edited?)")
+
+    def number(v) -> bool:
+        return v is None or (isinstance(v, int | float) and not isinstance(v, bool))
+
+    window = doc.get("window_s")
+    if window is not None and not (isinstance(window, list) and len(window) == 2
+                                   and all(number(v) and v is not None for v in window)):
+        raise bad("window_s", "two numbers")
+    metrics = doc["metrics"]
+    if not isinstance(metrics, dict):
+        raise bad("metrics", "a mapping")
+    for key, value in metrics.items():
+        if key in _TEXT_METRICS:
+            ok = value is None or isinstance(value, str)
+        elif key in _LIST_METRICS:
+            ok = value is None or isinstance(value, list)
+        else:
+            ok = number(value)
+        if not ok:
+            raise bad(f"metrics.{key}", "text" if key in _TEXT_METRICS else
+                      "a list" if key in _LIST_METRICS else "a number or null")
+    if not isinstance(doc["checks"], list):
+        raise bad("checks", "a list")
+    for i, check in enumerate(doc["checks"]):
+        if not (isinstance(check, dict) and isinstance(check.get("name"), str)
+                and isinstance(check.get("passed"), bool)):
+            raise bad(f"checks.{i}", "a check (name, value, limit, passed, note)")
+    lines = doc.get("lines", {})
+    if not isinstance(lines, dict) or not all(
+            isinstance(v, dict) and all(isinstance(ln, dict) for ln in v.values())
+            for v in lines.values()):
+        raise bad("lines", "a mapping of signals to lines")
+    if not isinstance(doc.get("warnings", []), list):
+        raise bad("warnings", "a list")
+
+
+def read_analysis(path: Path) -> AnalysisDocument:
+    """analysis.json of `gearcli analyze` as its typed document; a file the report cannot
+    read (hand-edited, foreign, another schema_version) is a one-line ResultsError."""
+    doc = read_json(path, "run gearcli analyze again")
+    if not isinstance(doc, dict) or "checks" not in doc or "metrics" not in doc:
+        raise ResultsError(f"{path}: not an analysis of gearcli analyze; run it again")
+    version = doc.get("schema_version", RESULTS_SCHEMA_VERSION)  # absent: before versions
+    if version != RESULTS_SCHEMA_VERSION:
+        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
+                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli analyze)")
+    check_analysis(path, doc)
+    try:
+        return AnalysisDocument.from_document(doc)
+    except (TypeError, AttributeError) as exc:
+        raise ResultsError(f"{path}: unreadable analysis ({exc}); run gearcli analyze "
+                           "again") from None
 
 
 def read_stress(path: Path) -> StressDocument:

@@ -11,6 +11,7 @@ from gearcli.io.files import write_atomic
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 from gearcli.io.tables import columns_to_csv
 from gearcli.pipeline.spectrum import SIGNALS
+from gearcli.results import AnalysisDocument, SpectrumLine
 
 
 def _clean(value):
@@ -31,18 +32,14 @@ ANALYSIS_FILES = ("analysis.json", "spectrum.csv", "harmonics.csv")
 
 
 def analysis_document(res) -> dict:
-    return _clean({
-        "schema_version": RESULTS_SCHEMA_VERSION,
-        "case": res.run.summary.case,
-        "passed": res.passed,
-        "window_s": [res.window.t0_s, res.window.t1_s],
-        "window_reason": res.window.reason,
-        "metrics": res.metrics.to_dict(),
-        "checks": [c.to_dict() for c in res.checks],
-        "warnings": res.warnings,
-        "lines": {sig: {label: ln.__dict__ for label, ln in lines}
-                  for sig, lines in res.lines.items()},
-    })
+    """analysis.json's data: the typed :class:`~gearcli.results.AnalysisDocument` of an
+    :class:`~gearcli.pipeline.analyze.Analysis` as JSON (NaN and infinities as null)."""
+    return _clean(AnalysisDocument(
+        schema_version=RESULTS_SCHEMA_VERSION, case=res.run.summary.case, passed=res.passed,
+        window_s=(res.window.t0_s, res.window.t1_s), window_reason=res.window.reason,
+        metrics=res.metrics, checks=tuple(res.checks), warnings=tuple(res.warnings),
+        lines={sig: {label: SpectrumLine(**ln.__dict__) for label, ln in lines}
+               for sig, lines in res.lines.items()}).to_dict())
 
 
 def spectrum_columns(res) -> dict[str, np.ndarray]:

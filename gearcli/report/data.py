@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
 from dataclasses import dataclass
-from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -15,9 +13,9 @@ from gearcli.case.build import gear_side_damping, pair_spec
 from gearcli.case.load import load_case_text
 from gearcli.case.schema import Case
 from gearcli.errors import GearcliError, ResultsError
-from gearcli.io.results import StoredRun, read_columns, read_json, read_run, read_stress
+from gearcli.io.results import StoredRun, read_analysis, read_columns, read_run, read_stress
 from gearcli.model.geometry import PairGeometry, compute_pair_geometry
-from gearcli.results import AnalysisMetrics, StressDocument, Summary
+from gearcli.results import AnalysisDocument, AnalysisMetrics, StressDocument, Summary
 
 
 @dataclass(frozen=True)
@@ -25,7 +23,7 @@ class ReportData:
     """A results folder as the report sees it (internal units: mm, N, s, rad)."""
 
     run: StoredRun
-    analysis: dict
+    analysis: AnalysisDocument
     spectrum: dict[str, np.ndarray]
     geometry: PairGeometry | None  #: None when the stored case's geometry cannot be rebuilt
     geometry_error: str = ""
@@ -52,10 +50,10 @@ class ReportData:
         print its settings as given."""
         return self.run.manifest["resolved_case"]
 
-    @cached_property
+    @property
     def metrics(self) -> AnalysisMetrics:
-        """analysis.json's metrics (checked by :func:`check_analysis`), typed."""
-        return AnalysisMetrics.from_document(self.analysis["metrics"])
+        """analysis.json's metrics."""
+        return self.analysis.metrics
 
     @property
     def scalars(self) -> Summary:
@@ -65,7 +63,7 @@ class ReportData:
     def warnings(self) -> list[str]:
         """Warnings of simulate and analyze, each once, in order."""
         out: list[str] = []
-        both = list(self.run.summary.warnings) + list(self.analysis.get("warnings", []))
+        both = list(self.run.summary.warnings) + list(self.analysis.warnings)
         for w in both:
             if w not in out:
                 out.append(str(w))
@@ -78,7 +76,8 @@ class ReportData:
 
     @property
     def window_s(self) -> tuple[float, float]:
-        w = self.analysis.get("window_s") or self.scalars.window_s
+        w = self.analysis.window_s if all(map(math.isfinite, self.analysis.window_s)) \
+            else self.scalars.window_s
         return float(w[0]), float(w[1])
 
     def has_errors_or_relief(self) -> bool:
@@ -102,10 +101,7 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
     if not path.is_file():
         raise ResultsError(f"{run.folder}: no analysis.json; run gearcli analyze {run.folder} "
                            "first")
-    analysis = read_json(path, "run gearcli analyze again")
-    if not isinstance(analysis, dict) or "checks" not in analysis or "metrics" not in analysis:
-        raise ResultsError(f"{path}: not an analysis of gearcli analyze; run it again")
-    check_analysis(path, analysis)
+    analysis = read_analysis(path)
     if not (run.folder / "spectrum.csv").is_file():
         raise ResultsError(f"{run.folder}: no spectrum.csv; run gearcli analyze first")
     spectrum = read_columns(run.folder / "spectrum.csv", "frequency_Hz")
@@ -129,55 +125,6 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
     return ReportData(run, analysis, spectrum, geometry, error, stress, stress_series, zoom,
                       units, gear_side_damping(loaded.case), loaded.case)
-
-
-#: Non-numeric entries of analysis.json's metrics, by kind (the annotations of
-#: gearcli.results.AnalysisMetrics); every other entry is a number or null.
-_TEXT_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics) if f.type == "str")
-_LIST_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics)
-                      if str(f.type).startswith("tuple"))
-
-
-def check_analysis(path: Path, doc: dict) -> None:
-    """Refuse an analysis.json whose entries the report cannot read (hand-edited, foreign):
-    the first wrong entry, and the remedy (run gearcli analyze again)."""
-    def bad(key: str, kind: str) -> ResultsError:
-        return ResultsError(f"{path}: {key} is not {kind}; run gearcli analyze again (was the "
-                            "file edited?)")
-
-    def number(v) -> bool:
-        return v is None or (isinstance(v, int | float) and not isinstance(v, bool))
-
-    window = doc.get("window_s")
-    if window is not None and not (isinstance(window, list) and len(window) == 2
-                                   and all(number(v) and v is not None for v in window)):
-        raise bad("window_s", "two numbers")
-    metrics = doc["metrics"]
-    if not isinstance(metrics, dict):
-        raise bad("metrics", "a mapping")
-    for key, value in metrics.items():
-        if key in _TEXT_METRICS:
-            ok = value is None or isinstance(value, str)
-        elif key in _LIST_METRICS:
-            ok = value is None or isinstance(value, list)
-        else:
-            ok = number(value)
-        if not ok:
-            raise bad(f"metrics.{key}", "text" if key in _TEXT_METRICS else
-                      "a list" if key in _LIST_METRICS else "a number or null")
-    if not isinstance(doc["checks"], list):
-        raise bad("checks", "a list")
-    for i, check in enumerate(doc["checks"]):
-        if not (isinstance(check, dict) and isinstance(check.get("name"), str)
-                and isinstance(check.get("passed"), bool)):
-            raise bad(f"checks.{i}", "a check (name, value, limit, passed, note)")
-    lines = doc.get("lines", {})
-    if not isinstance(lines, dict) or not all(
-            isinstance(v, dict) and all(isinstance(ln, dict) for ln in v.values())
-            for v in lines.values()):
-        raise bad("lines", "a mapping of signals to lines")
-    if not isinstance(doc.get("warnings", []), list):
-        raise bad("warnings", "a list")
 
 
 # --- the stored case for display: values are "number unit" strings in internal units -------

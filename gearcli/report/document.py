@@ -77,9 +77,9 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
     def tables(*items: tb.Table | None) -> list[NumberedTable]:
         return [NumberedTable(next(counter), t) for t in items if t is not None]
 
-    checks = data.analysis.get("checks", [])
-    failed = [c.get("name", "?") for c in checks if not c.get("passed")]
-    skipped = [c.get("name", "?") for c in checks if c.get("checked", True) is False]
+    checks = data.analysis.checks
+    failed = [c.name for c in checks if not c.passed]
+    skipped = [c.name for c in checks if c.checked is False]
     done = len(checks) - len(skipped)
     not_checked = (f" Not checked: {', '.join(map(str, skipped))} (see the notes)."
                    if skipped else "")

@@ -17,7 +17,6 @@ from gearcli.plotting.geometry import plot_pair
 from gearcli.plotting.orders import plot_order_map
 from gearcli.plotting.spectra import plot_spectra
 from gearcli.report.data import ReportData
-from gearcli.results import AnalysisMetrics
 
 #: Resolution of the PNG files (the HTML embeds them) [dots per inch].
 PNG_DPI = 110
@@ -239,23 +238,24 @@ def _spectra(data: ReportData):
     return spectra_figure(data.spectrum, data.analysis, harmonics, units=data.units)
 
 
-def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: bool = False,
+def spectra_figure(spectrum: dict, analysis, harmonics: int, order_axis: bool = False,
                    db: bool = False, units: str = "engineering"):
-    """The spectra figure from spectrum.csv's columns and analysis.json (dict): on a
+    """The spectra figure from spectrum.csv's columns and analysis.json (its typed
+    gearcli.results.AnalysisDocument): on a
     frequency or (``order_axis``) pinion-order axis, log amplitudes or dB (``db``), amplitudes
     in the display ``units`` (gear speed in rpm or rad/s, DTE in µm or m)."""
     from gearcli.display_units import unit_and_factor
 
-    m = AnalysisMetrics.from_document(analysis["metrics"])
+    m = analysis.metrics
     panels, lines = {}, {}
     for key, (title, col, unit) in SPECTRA.items():
         if col not in spectrum:
             continue
         shown, k = unit_and_factor(unit, units, fine=key == "dte")
         panels[key] = (title, shown, spectrum[col] * k)
-        lines[key] = {label: {**ln, "amplitude": None if ln.get("amplitude") is None
-                              else ln["amplitude"] * k}
-                      for label, ln in (analysis.get("lines") or {}).get(key, {}).items()}
+        lines[key] = {label: {**ln.to_dict(), "amplitude": None if ln.amplitude is None
+                              else ln.amplitude * k}
+                      for label, ln in analysis.lines.get(key, {}).items()}
     return plot_spectra(spectrum["frequency_Hz"], panels, lines,
                               float(m.gear_mesh_frequency_Hz), harmonics,
                               float(m.output_rate_Hz),

@@ -257,14 +257,14 @@ def results_table(data: ReportData) -> Table:
         if key == "force_max_N" and m.force_max_source:
             label += f" (from the {m.force_max_source})"
         rows.append((label, fmt(v), unit))
-    note = str(data.analysis.get("window_reason") or "")
+    note = data.analysis.window_reason
     return Table("Results of the steady window", ("quantity", "value", "unit"), rows,
                  f"window: {note}" if note else "")
 
 
 def lines_table(data: ReportData) -> Table | None:
     """Amplitude of the mesh harmonics k·f_z in each spectrum (sidebands: harmonics.csv)."""
-    lines = data.analysis.get("lines") or {}
+    lines = data.analysis.lines
     # (signal, stored unit, a deflection?) -> the display unit and factor of its amplitudes
     signals = [(s, *unit_and_factor(u, data.units, fine)) for s, u, fine in
                (("gear_speed", "rad/s", False), ("dte", "mm", True), ("force", "N", False))
@@ -276,12 +276,12 @@ def lines_table(data: ReportData) -> Table | None:
     for label, ln in first.items():
         if "+" in label or "-" in label:
             continue
-        cells = [label.replace("fz", " f_z"), fmt(ln.get("expected_Hz"))]
+        cells = [label.replace("fz", " f_z"), fmt(ln.expected_Hz)]
         for sig, _, factor in signals:
-            other = lines[sig].get(label) or {}
-            amp = other.get("amplitude")
+            other = lines[sig].get(label)
+            amp = None if other is None else other.amplitude
             cells.append(fmt(None if amp is None else amp * factor)
-                         if other.get("resolvable") else "not resolvable")
+                         if other is not None and other.resolvable else "not resolvable")
         rows.append(tuple(cells))
     names = {"gear_speed": "gear speed", "dte": "DTE", "force": "force"}
     headers = ("line", "frequency [Hz]") + tuple(
@@ -307,12 +307,11 @@ def modes_table(data: ReportData) -> Table | None:
 def checks_table(data: ReportData) -> Table:
     """Every check of analysis.json, marked pass or fail."""
     rows, status = [], []
-    for c in data.analysis.get("checks", []):
-        ok = bool(c.get("passed"))
-        checked = c.get("checked", True) is not False
+    for c in data.analysis.checks:
+        ok = bool(c.passed)
+        checked = c.checked is not False
         result = "not checked" if not checked else "pass" if ok else "FAIL"
-        rows.append((str(c.get("name", "")), fmt(c.get("value")), str(c.get("limit", "")),
-                     result, str(c.get("note") or "")))
+        rows.append((str(c.name), fmt(c.value), str(c.limit), result, str(c.note or "")))
         status.append("fail" if not ok else "pass" if checked else "")
     return Table("Checks", ("check", "value", "limit", "result", "note"), rows, status=status)
 

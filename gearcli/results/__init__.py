@@ -11,7 +11,13 @@ documents' JSON Schemas (``gearcli schema --results``). The documents' version i
 """
 
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
-from gearcli.results.analysis import AnalysisMetrics, Check, ResonanceMargin
+from gearcli.results.analysis import (
+    AnalysisDocument,
+    AnalysisMetrics,
+    Check,
+    ResonanceMargin,
+    SpectrumLine,
+)
 from gearcli.results.fields import PLACES, Document, shown, shown_values
 from gearcli.results.models import MeshSummary, ModalDocument, Mode
 from gearcli.results.run import (
@@ -27,6 +33,7 @@ from gearcli.results.schema import KINDS, json_schema
 from gearcli.results.stress import GearStress, StressDocument
 
 __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
-           "AnalysisMetrics", "ResonanceMargin", "Check", "GearStress", "Mode", "ModalDocument",
-           "MeshSummary", "PointLines", "SpeedLevel", "StressDocument", "Document", "PLACES",
-           "shown", "shown_values", "sweep_metrics", "json_schema", "KINDS"]
+           "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin", "Check",
+           "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
+           "SpeedLevel", "Document", "PLACES", "shown", "shown_values", "sweep_metrics",
+           "json_schema", "KINDS"]

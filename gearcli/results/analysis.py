@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Mapping
 
 from gearcli.results.fields import Document, metric_field
 
@@ -85,3 +86,31 @@ class Check(Document):
     #: False when the check could not apply (the note says why); it then passes, and the
     #: tables print "not checked" instead of "pass"
     checked: bool = True
+
+
+@dataclasses.dataclass(frozen=True)
+class SpectrumLine(Document):
+    """An expected line of a spectrum, measured (gearcli/pipeline/spectrum.measure_line)."""
+
+    expected_Hz: float = metric_field("expected_Hz")
+    measured_Hz: float | None = metric_field("measured_Hz", None)
+    amplitude: float | None = metric_field("amplitude", None)
+    bin_error: float | None = metric_field("bin_error", None)  #: (measured - expected) / bin
+    resolvable: bool = metric_field("resolvable", False)
+
+
+@dataclasses.dataclass(frozen=True)
+class AnalysisDocument(Document):
+    """analysis.json (`gearcli analyze`): the metrics, the checks, the warnings and the
+    measured lines of each spectrum ({signal: {line label: SpectrumLine}})."""
+
+    schema_version: int = metric_field("schema_version", 0)
+    case: str | None = metric_field("case", None)
+    passed: bool = metric_field("passed", True)
+    window_s: tuple[float, float] = metric_field("window_s", (math.nan, math.nan))
+    window_reason: str = metric_field("window_reason", "")
+    metrics: AnalysisMetrics = metric_field("metrics", AnalysisMetrics(), nested=AnalysisMetrics)
+    checks: tuple[Check, ...] = metric_field("checks", (), nested=Check)
+    warnings: tuple[str, ...] = metric_field("warnings", ())
+    lines: Mapping[str, Mapping[str, SpectrumLine]] = metric_field(
+        "lines", {}, nested=SpectrumLine, mapping_depth=2)

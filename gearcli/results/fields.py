@@ -71,13 +71,20 @@ class Document:
                 continue
             value, nested = doc[f.name], f.metadata.get("nested")
             if nested is not None and value is not None:
-                many = isinstance(value, list | tuple)
-                value = (tuple(nested.from_document(v) for v in value) if many
-                         else nested.from_document(value))
+                value = _read_nested(nested, value, f.metadata.get("mapping_depth", 0))
             elif isinstance(value, list):
                 value = tuple(value)
             values[f.name] = value
         return cls(**values)
+
+
+def _read_nested(cls, value, mapping_depth: int):
+    """A nested document, a list of them, or (``mapping_depth`` levels of) mappings of them."""
+    if mapping_depth:
+        return {k: _read_nested(cls, v, mapping_depth - 1) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return tuple(cls.from_document(v) for v in value)
+    return cls.from_document(value)
 
 
 def shown(cls, place: str) -> tuple[str, ...]:
