@@ -150,10 +150,10 @@ def compare(base: str) -> int:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
-    sub.add_parser("dump").add_argument("path")
-    c = sub.add_parser("check")
-    c.add_argument("before")
-    c.add_argument("after")
+    for name, positional in (("dump", ("path",)), ("check", ("before", "after"))):
+        command = sub.add_parser(name)
+        for arg in positional:
+            command.add_argument(arg)
     sub.add_parser("compare").add_argument("--base", default="HEAD")
     args = ap.parse_args()
     if args.cmd == "dump":
