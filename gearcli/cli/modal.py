@@ -108,8 +108,8 @@ def _print(doc, checks, units: str) -> None:
     for col in ("order", "mode", "f [Hz]", f"pinion speed [{unit}]"):
         c.add_column(escape(col))  # rich would read "[rpm]" as markup and drop it
     for x in doc.crossings:
-        if x["in_range"]:
-            c.add_row(x["order"], str(x["mode"]), format_value(x["frequency_Hz"]),
-                      format_value(convert(x["pinion_speed_deg_s"], "deg/s", units)[0]))
+        if x.in_range:
+            c.add_row(x.order, str(x.mode), format_value(x.frequency_Hz),
+                      format_value(convert(x.pinion_speed_deg_s, "deg/s", units)[0]))
     console.print(c)
     print_checks_table(checks)

@@ -35,6 +35,8 @@ from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import linearised_mesh
 from gearcli.pipeline.structure import build_structure, refuse_unsupported
 from gearcli.results import Check, ModalDocument, Mode, StoredMode
+from gearcli.results.models import Crossing as CrossingDoc
+from gearcli.results.models import OrderMargin
 
 DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
@@ -242,14 +244,13 @@ def modal_document(res: ModalAnalysis) -> ModalDocument:
         case_speed_deg_s=res.case_speed_deg_s,
         speed_range_deg_s=list(res.speed_range_deg_s),
         orders_per_pinion_rev={o.name: o.per_rev for o in res.orders},
-        crossings=[{"order": c.order, "mode": c.mode, "frequency_Hz": c.frequency_Hz,
-                    "pinion_speed_deg_s": c.pinion_speed_rev_s * 360.0,
-                    "in_range": res.speed_range_deg_s[0] <= c.pinion_speed_rev_s * 360.0
-                    <= res.speed_range_deg_s[1]} for c in res.crossings],
-        margins_at_case_speed=[{"order": x.order, "mode": x.mode,
-                                "excitation_Hz": x.excitation_Hz, "mode_Hz": x.mode_Hz,
-                                "margin_percent": x.margin_percent,
-                                "resonant_peak": x.has_peak} for x in res.margins],
+        crossings=tuple(CrossingDoc(c.order, c.mode, c.frequency_Hz,
+                                    c.pinion_speed_rev_s * 360.0,
+                                    res.speed_range_deg_s[0] <= c.pinion_speed_rev_s * 360.0
+                                    <= res.speed_range_deg_s[1]) for c in res.crossings),
+        margins_at_case_speed=tuple(OrderMargin(x.order, x.mode, x.excitation_Hz, x.mode_Hz,
+                                                x.margin_percent, x.has_peak)
+                                    for x in res.margins),
         checks=[{"name": c.name, "value": c.value, "limit": c.limit, "passed": c.passed,
                  "checked": c.checked, "note": c.note} for c in res.checks],
         passed=res.passed,

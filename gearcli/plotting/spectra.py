@@ -42,14 +42,15 @@ def _folds(f_z: float, fs: float, x_max: float, first: int) -> np.ndarray:
 
 
 def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
-                 lines: dict[str, dict[str, dict]], f_z_Hz: float, harmonics: int,
+                 lines: dict[str, dict], f_z_Hz: float, harmonics: int,
                  sample_rate_Hz: float, *, order_Hz: float | None = None,
                  db: bool = False) -> Figure:
     """Amplitude spectra (log scale), one panel per signal, with the mesh harmonics k·f_z and
     their shaft-frequency sidebands marked.
 
     ``spectra`` maps a signal key to (title, unit, amplitudes); ``lines`` maps the same key to
-    analysis.json's lines ({label: {expected_Hz, measured_Hz, amplitude, resolvable}}).
+    analysis.json's lines ({label: gearcli.results.SpectrumLine}, amplitudes in the panel's
+    unit).
     Harmonics above the Nyquist frequency are drawn where they fold to (aliases).
     ``order_Hz``: draw against the order (frequency / ``order_Hz``, e.g. the pinion shaft
     frequency: the mesh harmonics at k·z1) instead of the frequency; ``db``: amplitudes in dB
@@ -83,7 +84,7 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
             bottom = max(float(positive.min()) if positive.size else top * 1e-8, top * 1e-7)
             ax.set_ylim(bottom, top * 30.0)
         for label, ln in lines.get(key, {}).items():
-            f = ln.get("expected_Hz")
+            f = ln.expected_Hz
             if f is None:
                 continue
             side = "+" in label or "-" in label
@@ -108,8 +109,8 @@ def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
             if i == 0:
                 ax.text(sx * f, 1.01, label.replace("fz", " f_z"), color=HARMONIC, fontsize=8,
                         ha="center", va="bottom", transform=ax.get_xaxis_transform())
-            if ln.get("resolvable") and ln.get("amplitude"):
-                ax.plot(sx * ln["measured_Hz"], level(ln["amplitude"], top), "o", mfc="none",
+            if ln.resolvable and ln.amplitude:
+                ax.plot(sx * ln.measured_Hz, level(ln.amplitude, top), "o", mfc="none",
                         color=HARMONIC, ms=6)
                 drawn.add("meas")
         folds = _folds(f_z_Hz, sample_rate_Hz, x_max, harmonics + 1)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import io
 import math
 from dataclasses import dataclass
@@ -253,8 +254,8 @@ def spectra_figure(spectrum: dict, analysis, harmonics: int, order_axis: bool = 
             continue
         shown, k = unit_and_factor(unit, units, fine=key == "dte")
         panels[key] = (title, shown, spectrum[col] * k)
-        lines[key] = {label: {**ln.to_dict(), "amplitude": None if ln.amplitude is None
-                              else ln.amplitude * k}
+        lines[key] = {label: dataclasses.replace(ln, amplitude=None if ln.amplitude is None
+                                                 else ln.amplitude * k)
                       for label, ln in analysis.lines.get(key, {}).items()}
     return plot_spectra(spectrum["frequency_Hz"], panels, lines,
                               float(m.gear_mesh_frequency_Hz), harmonics,

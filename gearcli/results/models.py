@@ -29,6 +29,29 @@ class Mode(Document):
 
 
 @dataclasses.dataclass(frozen=True)
+class Crossing(Document):
+    """Where a mesh order meets a mode on the Campbell diagram."""
+
+    order: str = metric_field("order", "")
+    mode: int = metric_field("mode", 0)
+    frequency_Hz: float = metric_field("frequency_Hz")
+    pinion_speed_deg_s: float = metric_field("pinion_speed_deg_s")
+    in_range: bool = metric_field("in_range", False)  #: inside the diagram's speed range
+
+
+@dataclasses.dataclass(frozen=True)
+class OrderMargin(Document):
+    """A mesh order at the case speed against a mode."""
+
+    order: str = metric_field("order", "")
+    mode: int = metric_field("mode", 0)
+    excitation_Hz: float = metric_field("excitation_Hz")
+    mode_Hz: float = metric_field("mode_Hz")
+    margin_percent: float = metric_field("margin_percent")
+    resonant_peak: bool = metric_field("resonant_peak", False)
+
+
+@dataclasses.dataclass(frozen=True)
 class ModalDocument(Document):
     """`gearcli modal --json`: the linearised model, its :class:`Mode` s, the crossings of the
     mesh orders with them and the resonance-margin check."""
@@ -46,11 +69,9 @@ class ModalDocument(Document):
     speed_range_deg_s: tuple[float, float] = metric_field("speed_range_deg_s",
                                                           (math.nan, math.nan))
     orders_per_pinion_rev: Mapping[str, float] = metric_field("orders_per_pinion_rev", {})
-    #: each {order, mode, frequency_Hz, pinion_speed_deg_s, in_range}
-    crossings: tuple[Mapping[str, Any], ...] = metric_field("crossings", ())
-    #: each {order, mode, excitation_Hz, mode_Hz, margin_percent, resonant_peak}
-    margins_at_case_speed: tuple[Mapping[str, Any], ...] = metric_field(
-        "margins_at_case_speed", ())
+    crossings: tuple[Crossing, ...] = metric_field("crossings", (), nested=Crossing)
+    margins_at_case_speed: tuple[OrderMargin, ...] = metric_field(
+        "margins_at_case_speed", (), nested=OrderMargin)
     #: each a :class:`gearcli.results.Check` as {name, value, limit, passed, checked, note}
     checks: tuple[Mapping[str, Any], ...] = metric_field("checks", ())
     passed: bool = metric_field("passed", True)
