@@ -7,6 +7,7 @@ mesh stiffness beside ISO 6336-1, and the Harris map on request.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -119,20 +120,20 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))
 
 
-def _iso_resonance(res: MeshAnalysis) -> dict:
+def _iso_resonance(res: MeshAnalysis) -> IsoResonance:
     """ISO 6336-1 Method B resonance speed n_E1 and the case's resonance ratio N = n1/n_E1
     with its K_v (the case's deviations: mesh_input.iso_deviations; gearcli/model/iso_kv.py)."""
     from gearcli.model.iso_kv import dynamic_factor
-    from gearcli.pipeline.mesh_input import KV_KEYS, iso_dynamic
+    from gearcli.pipeline.mesh_input import iso_dynamic, kv_arguments
 
     iso = iso_dynamic(res.source.case, res.geometry)
     speed = res.geometry.pinion_speed_rad_s
     if speed:
         n1 = abs(speed) * 30.0 / math.pi
-        ratio = n1 / iso["resonance_speed_rpm"]
-        kv = dynamic_factor(ratio, **{k: iso[k] for k in KV_KEYS})
-        iso.update(pinion_speed_rpm=n1, resonance_ratio=ratio, k_v=float(kv.k_v),
-                   speed_range=str(kv.range_name))
+        ratio = n1 / iso.resonance_speed_rpm
+        kv = dynamic_factor(ratio, **kv_arguments(iso))
+        iso = dataclasses.replace(iso, pinion_speed_rpm=n1, resonance_ratio=ratio,
+                                  k_v=float(kv.k_v), speed_range=str(kv.range_name))
     return iso
 
 
@@ -163,7 +164,7 @@ def mesh_document(res: MeshAnalysis) -> MeshSummary:
             double_pair_zone_N_mm=json_number(lm.zone_stiffness_N_mm(2)),
             iso6336_single_pair_c_prime_b_N_mm=res.iso.pair_stiffness_N_mm,
             iso6336_mean_c_gamma_alpha_b_N_mm=res.iso.mesh_stiffness_N_mm),
-        iso6336_method_b=IsoResonance(**_iso_resonance(res)),
+        iso6336_method_b=_iso_resonance(res),
         notes=tuple(res.notes), harris=harris)
 
 

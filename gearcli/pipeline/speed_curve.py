@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from gearcli.results import SpeedLevel
+from gearcli.results.models import IsoResonance
 from gearcli.results.run import SPEED_CURVE_COLUMNS
 
 #: Mesh cycles each speed is held, and over which its speed change is made (smooth STEP).
@@ -198,7 +199,8 @@ class SpeedCurve:
     errors: list[str]  #: a direction whose simulation failed: its one-line error
     study_file: str = ""
     base_case_json: str = "{}"
-    iso: dict | None = None  #: ISO 6336-1 Method B data of the base case (mesh_input.iso_dynamic)
+    #: ISO 6336-1 Method B data of the base case (mesh_input.iso_dynamic)
+    iso: IsoResonance | None = None
     pinion_teeth: int = 0
     notes: list[str] = field(default_factory=list)  #: what limits the reading of the curve
 
@@ -220,7 +222,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
         f_n = linearised_mesh(base.case, geo).natural_frequency_Hz
     iso = iso_dynamic(base.case, geo)
     rows = [dataclasses.replace(
-        r, iso_resonance_ratio=r.pinion_speed_rpm / iso["resonance_speed_rpm"],
+        r, iso_resonance_ratio=r.pinion_speed_rpm / iso.resonance_speed_rpm,
         # a failed row: still placed on the axis
         resonance_ratio=r.resonance_ratio if math.isfinite(r.resonance_ratio)
         else r.mesh_frequency_Hz / f_n) for r in rows]
@@ -251,13 +253,13 @@ def iso_curve(curve: SpeedCurve, points: int = 400):
     """(N = f_z/f_n [-], K_v [-], ISO ranges) of ISO 6336-1 Method B over the curve's speeds,
     on the figure's axis (the ISO resonance ratio n1/n_E1 mapped through f_z)."""
     from gearcli.model.iso_kv import dynamic_factor
-    from gearcli.pipeline.mesh_input import KV_KEYS
+    from gearcli.pipeline.mesh_input import kv_arguments
 
     iso = curve.iso
     f_z = np.linspace(min(r.mesh_frequency_Hz for r in curve.rows),
                       max(r.mesh_frequency_Hz for r in curve.rows), points)
-    n_iso = f_z / curve.pinion_teeth * 60.0 / iso["resonance_speed_rpm"]
-    kv = dynamic_factor(n_iso, **{k: iso[k] for k in KV_KEYS})
+    n_iso = f_z / curve.pinion_teeth * 60.0 / iso.resonance_speed_rpm
+    kv = dynamic_factor(n_iso, **kv_arguments(iso))
     return f_z / curve.f_n_Hz, kv.k_v, n_iso
 
 
@@ -282,7 +284,8 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
-               "iso6336_method_b": curve.iso, "errors": curve.errors, "notes": curve.notes}
+               "iso6336_method_b": curve.iso.to_dict() if curve.iso else None,
+               "errors": curve.errors, "notes": curve.notes}
         (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,
@@ -290,6 +293,6 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
         fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name,
                                iso=iso_curve(curve) if curve.iso else None,
-                               iso_factors=tuple((curve.iso or {}).get(k, d) for k, d in
-                                                 (("B_p", 0.0), ("B_f", 0.0), ("B_k", 1.0))))
+                               iso_factors=(curve.iso.B_p, curve.iso.B_f, curve.iso.B_k)
+                               if curve.iso else (0.0, 0.0, 1.0))
         fig.savefig(tmp / "speed_curve.png", dpi=110)
