@@ -125,19 +125,3 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
     return ReportData(run, analysis, spectrum, geometry, error, stress, stress_series, zoom,
                       units, gear_side_damping(loaded.case), loaded.case)
-
-
-# --- the stored case for display: values are "number unit" strings in internal units -------
-def number(value) -> float:
-    """The number of a stored value: 10.0, "10.0 mm" -> 10.0; None -> nan."""
-    if value is None:
-        return math.nan
-    if isinstance(value, int | float):
-        return float(value)
-    return float(str(value).split()[0])
-
-
-def unit_of(value) -> str:
-    """The unit of a stored value: "10.0 mm" -> "mm", 10.0 -> ""."""
-    parts = str(value).split(maxsplit=1)
-    return parts[1] if isinstance(value, str) and len(parts) == 2 else ""

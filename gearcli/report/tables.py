@@ -8,9 +8,10 @@ from dataclasses import dataclass, field
 
 from gearcli.display_units import DEFAULT, convert, unit_and_factor
 from gearcli.io.metrics import display
-from gearcli.report.data import ReportData, number, unit_of
+from gearcli.report.data import ReportData
 from gearcli.results import shown_values
 from gearcli.results.stress import Safety
+from gearcli.units import split_internal
 
 
 @dataclass(frozen=True)
@@ -49,7 +50,7 @@ def fmt(value, digits: int = 4) -> str:
 def _cells(value, system: str, unit: str | None = None) -> tuple[str, str]:
     """(value, unit) cells in the display units ``system`` (gearcli/display_units.py) of a
     stored "number unit" string (internal units), or of the number ``value`` in ``unit``."""
-    x, u = (value, unit) if unit is not None else (number(value), unit_of(value))
+    x, u = (value, unit) if unit is not None else split_internal(value)
     shown, shown_unit = convert(x, u, system)
     return fmt(shown), shown_unit
 
@@ -59,16 +60,24 @@ def qty(value, system: str = DEFAULT, unit: str | None = None) -> str:
     return "–" if value is None else " ".join(_cells(value, system, unit)).strip()
 
 
+def _unit(text: str) -> str:
+    """The unit of a stored "number unit" text; "" for a word ("derived", "linear")."""
+    try:
+        return split_internal(text)[1]
+    except ValueError:
+        return ""
+
+
 def _is_number(value) -> bool:
     """Whether a stored case value is a number (or "number unit"), not a word like "derived"."""
     try:
-        return math.isfinite(number(value))
+        return math.isfinite(split_internal(value)[0])
     except (TypeError, ValueError):
         return False
 
 
 def _deg(value) -> str:
-    return "–" if value is None else f"{math.degrees(number(value)):.4g} deg"
+    return "–" if value is None else f"{math.degrees(split_internal(value)[0]):.4g} deg"
 
 
 # --- the case ---------------------------------------------------------------------------------
@@ -117,7 +126,7 @@ def _inertia(gear: dict, u: str) -> str:
         text = "solid disc, " + ("pitch diameter" if d is None else qty(d, u))
     else:
         text = f"given J = {qty(i.get('value'), u)}"
-    extra = number(i.get("extra")) if i.get("extra") is not None else 0.0
+    extra = split_internal(i.get("extra"))[0] if i.get("extra") is not None else 0.0
     return text + (f" + {qty(i.get('extra'), u)}" if extra else "")
 
 
@@ -158,10 +167,10 @@ def contact_table(data: ReportData) -> Table:
             rows.append(("mesh stiffness, linearised at the static load",
                          *_cells(k, data.units, "N/mm")))
     else:
-        e = number(c.get("exponent", 1.0))
+        e = split_internal(c.get("exponent", 1.0))[0]
         stiffness = c.get("stiffness")
         rows += [
-            ("stiffness K", fmt(number(stiffness)) if _is_number(stiffness)
+            ("stiffness K", fmt(split_internal(stiffness)[0]) if _is_number(stiffness)
              else str(stiffness), f"N/mm^{e:g}"),
             ("force exponent e", fmt(e), "–"),
             ("maximum damping c_max", *_cells(c.get("max_damping"), data.units)),
@@ -224,9 +233,9 @@ def _setting(value, u: str) -> str:
     units ``u``, numbers with 4 significant digits (never Python's repr)."""
     if isinstance(value, dict):
         return "; ".join(f"{k.replace('_', ' ')} {_setting(v, u)}" for k, v in value.items())
-    if isinstance(value, str) and unit_of(value) == "rad":  # angles as the case takes them
+    if isinstance(value, str) and _unit(value) == "rad":  # angles as the case takes them
         return _deg(value)
-    if isinstance(value, str) and unit_of(value):
+    if isinstance(value, str) and _unit(value):
         return qty(value, u)
     return fmt(value)
 
