@@ -49,7 +49,7 @@ def dump(path: str) -> None:
             f"{name}/counters": np.array(sorted(k.counters.items()), dtype=object).astype(str),
             f"{name}/params": ki.params, f"{name}/tables": ki.tables.tables,
             f"{name}/t_out": ki.t_out, f"{name}/csv": _text(columns_to_csv(res.columns())),
-            f"{name}/summary": _text(json.dumps(res.summary, sort_keys=True)),
+            f"{name}/summary": _text(json.dumps(res.summary.to_dict(), sort_keys=True)),
         })
         if not overrides:
             geo = geometry_dict(run_geometry(ROOT / case))

@@ -178,8 +178,8 @@ def reference(args, solved: dict) -> None:
         f"{ref.nfev} RHS evals")
     row("  ratio scipy / compiled", f"{t_ref / med:.0f}x", ">= 100x", t_ref / med >= 100)
     w = ref.t >= res.window.t0_s
-    f_k, f_r = res.summary["force_mean_N"], float(ref.force[w].mean())
-    n_k, n_r = res.summary["gear_speed_mean_deg_s"], math.degrees(float(ref.omega2[w].mean()))
+    f_k, f_r = res.summary.force_mean_N, float(ref.force[w].mean())
+    n_k, n_r = res.summary.gear_speed_mean_deg_s, math.degrees(float(ref.omega2[w].mean()))
     row("  mean force: compiled vs scipy", f"{f_k:.4f} vs {f_r:.4f} N ({(f_r - f_k) / f_k:+.1e})")
     row("  mean gear speed: compiled vs scipy",
         f"{n_k:.5f} vs {n_r:.5f} deg/s ({(n_r - n_k) / n_k:+.1e})")

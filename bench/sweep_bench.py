@@ -12,8 +12,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from gearcli.pipeline.sweep_run import SUMMARY, TIMING_COLUMNS, run_study
-from gearcli.pipeline.sweep_study import load_study
+from gearcli.pipeline.sweep.run import SUMMARY, TIMING_COLUMNS, run_study
+from gearcli.pipeline.sweep.study import load_study
 
 STUDY = Path(__file__).with_name("sweep_speed200.yaml")
 

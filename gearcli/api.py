@@ -25,6 +25,11 @@ from typing import TYPE_CHECKING, Any
 from gearcli.errors import CaseError
 
 if TYPE_CHECKING:
+    from gearcli.pipeline.analyze import Analysis
+    from gearcli.pipeline.mesh import MeshAnalysis as Mesh
+    from gearcli.pipeline.modal import ModalAnalysis as Modal
+    from gearcli.pipeline.simulation import SimulationResult as Simulation
+    from gearcli.pipeline.stress import StressResult as Stress
     from gearcli.results import (
         SCHEMA_VERSION,
         AnalysisMetrics,
@@ -38,10 +43,14 @@ __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "mod
            "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
            "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
 
-#: The typed documents live in gearcli/results.py, imported on first use (building their
-#: dataclasses costs ~15 ms that `gearcli geometry` does not need).
+#: The typed documents live in gearcli/results/, the result classes (one per command, with
+#: the methods to_pandas, save, plot, document) in the pipeline; both imported on first use
+#: (building their dataclasses costs ~15 ms that `gearcli geometry` does not need).
 _RESULTS = ("SCHEMA_VERSION", "AnalysisMetrics", "GearStress", "Mode", "MeshSummary",
             "Summary")
+_CLASSES = {"Simulation": ("simulation", "SimulationResult"), "Analysis": ("analyze", "Analysis"),
+            "Stress": ("stress", "StressResult"), "Modal": ("modal", "ModalAnalysis"),
+            "Mesh": ("mesh", "MeshAnalysis")}
 
 
 def __getattr__(name: str):
@@ -49,6 +58,11 @@ def __getattr__(name: str):
         from gearcli import results
 
         return getattr(results, name)
+    if name in _CLASSES:
+        import importlib
+
+        module, cls = _CLASSES[name]
+        return getattr(importlib.import_module(f"gearcli.pipeline.{module}"), cls)
     raise AttributeError(f"module 'gearcli.api' has no attribute {name!r}")
 
 
@@ -178,93 +192,8 @@ def geometry(case, set: Mapping[str, Any] | None = None):  # noqa: A002
     return run_geometry(load_case(case, set))
 
 
-class Simulation:
-    """A finished run (`gearcli simulate`): the time series, the typed summary, the modes.
-
-    Attributes
-    ----------
-    series : pandas.DataFrame
-        timeseries.csv's columns (names carry units) indexed by time ``t_s`` [s].
-    summary : Summary
-    modes : list of dict
-        The linearised model's modes (``gearcli modal``), as in summary.json.
-    warnings : list of str
-    status, invalid_reason : str
-        ``"ok"``, or ``"invalid"`` with the reason when the run left the model's range
-        (docs/theory.md §10.2): its numbers are then not results.
-    result : gearcli.pipeline.simulate.SimulationResult
-        Everything else (kernel arrays, counters, geometry, the resolved case).
-    """
-
-    def __init__(self, result) -> None:
-        self.result = result
-        from gearcli.results import Summary
-
-        self.summary = Summary.from_scalars(result.summary, result.status, result.invalid_reason)
-        self.modes = list(result.summary.get("modes", []))
-        self.warnings = list(result.warnings)
-        self.status = result.status
-        self.invalid_reason = result.invalid_reason
-        self.overrides: list[str] = []  #: the ``--set`` texts it was run with (manifest)
-        self._series = None
-
-    @property
-    def name(self) -> str:
-        return self.result.name
-
-    @property
-    def series(self):
-        if self._series is None:
-            import pandas as pd
-
-            columns = self.result.columns()
-            t = columns.pop("t_s")
-            self._series = pd.DataFrame(columns, index=pd.Index(t, name="t_s"))
-        return self._series
-
-    def to_pandas(self):
-        """The time series as a DataFrame (same as :attr:`series`)."""
-        return self.series
-
-    def save(self, folder: str | Path, force: bool = False, format: str = "csv") -> Path:  # noqa: A002
-        """Write the results folder `gearcli simulate -o` writes (atomically; an existing
-        folder only with ``force``). ``format``: "csv" or "parquet" for the time series. The
-        dense zoom table (zoom.csv, the report's zooms) only when the simulation was made with
-        ``zoom=True``."""
-        from gearcli.pipeline.outputs import write_simulation
-
-        return write_simulation(self.result, folder, force, self.overrides, format)
-
-    def plot(self, what: str = "force", units: str = "engineering"):
-        """A figure of the run: ``"force"`` (mesh force with the static force and the true
-        maximum), ``"dte"`` (dynamic transmission error) or ``"speeds"`` (in the display
-        ``units``: "engineering" rpm or "si" rad/s); returns a ``matplotlib.figure.Figure``."""
-        from gearcli.plotting import results as plots
-
-        c = self.result.columns()
-        t, window = c["t_s"], tuple(self.summary.window_s)
-        f_z = self.summary.gear_mesh_frequency_Hz
-        if what == "force":
-            return plots.plot_force(t, c["force_total_N"], self.summary.force_static_N,
-                                    self.summary.force_max_N, self.summary.force_max_t_s, window,
-                                    None, f_z)
-        if what == "dte":
-            return plots.plot_dte(t, c["delta_mm"], window, None, f_z, units=units)
-        if what == "speeds":
-            g = self.result.geometry.geometry
-            return plots.plot_speeds(t, c["omega1_rad_s"], c["omega2_rad_s"],
-                                     (g.pinion.teeth, g.gear.teeth), window, None, f_z,
-                                     units)
-        raise ValueError(f"plot {what!r}: expected 'force', 'dte' or 'speeds'")
-
-    def __repr__(self) -> str:
-        df = self.summary.dynamic_factor
-        return (f"<Simulation {self.name}: {self.status}, {len(self.result.kernel.series)} rows, "
-                f"dynamic factor {df if df is None else round(df, 4)}>")
-
-
 def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
-             status=None) -> Simulation:
+             status=None):
     """Integrate the tooth-contact model of a case (`gearcli simulate`).
 
     Parameters
@@ -281,7 +210,9 @@ def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
 
     Returns
     -------
-    Simulation
+    gearcli.pipeline.simulation.SimulationResult
+        ``.series`` (a DataFrame), ``.summary`` (:class:`~gearcli.results.Summary`),
+        ``.warnings``, ``.status``, ``.save(folder)``, ``.plot(what)``.
 
     Raises
     ------
@@ -297,15 +228,16 @@ def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
     _callable_or_none(progress, "progress")
     if _callable_or_none(status, "status"):
         status("loading the case")
-    sim = Simulation(run_simulation(load_case(case, set), progress=progress, zoom=zoom,
-                                    status=status))
+    sim = run_simulation(load_case(case, set), progress=progress, zoom=zoom, status=status)
     sim.overrides = _overrides(set)
     return sim
 
 
 def _folder_of(run, stack) -> Path:
     """A results folder for a Simulation (written to a temporary folder) or a path."""
-    if isinstance(run, Simulation):
+    from gearcli.pipeline.simulation import SimulationResult
+
+    if isinstance(run, SimulationResult):
         tmp = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="gearcli-")))
         return run.save(tmp / "run")
     if not isinstance(run, str | os.PathLike):
@@ -314,53 +246,7 @@ def _folder_of(run, stack) -> Path:
     return Path(run)
 
 
-class Analysis:
-    """Metrics, spectra and checks of a run's window (`gearcli analyze`).
-
-    Attributes
-    ----------
-    metrics : AnalysisMetrics
-        Typed metrics (internal units, the unit in each name).
-    checks : list of gearcli.pipeline.analyze.Check
-        ``name``, ``value``, ``limit``, ``passed``, ``checked`` (False: not checked, with the
-        reason in ``note``).
-    passed : bool
-    spectra : pandas.DataFrame
-        One-sided amplitude spectra indexed by frequency [Hz] (spectrum.csv's columns).
-    warnings : list of str
-    result : gearcli.pipeline.analyze.Analysis
-        The untyped analysis (dict metrics, spectra arrays, mesh lines).
-    """
-
-    def __init__(self, result) -> None:
-        self.result = result
-        from gearcli.results import AnalysisMetrics
-
-        self.metrics = AnalysisMetrics.from_metrics(result.metrics)
-        self.checks = list(result.checks)
-        self.passed = result.passed
-        self.warnings = list(result.warnings)
-        self._spectra = None
-
-    @property
-    def spectra(self):
-        if self._spectra is None:
-            self._spectra = spectra_frame(self.result)
-        return self._spectra
-
-    def document(self) -> dict:
-        """analysis.json as a dict (what `gearcli analyze` writes)."""
-        from gearcli.pipeline.analysis_io import analysis_document
-
-        return analysis_document(self.result)
-
-    def __repr__(self) -> str:
-        failed = [c.name for c in self.checks if not c.passed]
-        return (f"<Analysis {self.result.run.summary.get('case', self.result.run.folder.name)}: "
-                f"{'passed' if self.passed else 'failed: ' + ', '.join(failed)}>")
-
-
-def analyze(run, window: tuple[float, float] | None = None, strict: bool = False) -> Analysis:
+def analyze(run, window: tuple[float, float] | None = None, strict: bool = False):
     """Metrics, spectra and checks of a run (`gearcli analyze`).
 
     Parameters
@@ -375,7 +261,9 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
 
     Returns
     -------
-    Analysis
+    gearcli.pipeline.analyze.Analysis
+        ``.metrics`` (:class:`~gearcli.results.AnalysisMetrics`), ``.checks``, ``.passed``,
+        ``.spectra`` (a DataFrame indexed by frequency [Hz]), ``.warnings``, ``.document()``.
     """
     import contextlib
 
@@ -385,61 +273,16 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
     if window is not None:
         window = _quantities(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
-        return Analysis(run_analysis(_folder_of(run, stack), window, strict))
+        return run_analysis(_folder_of(run, stack), window, strict)
 
 
 def spectra_frame(analysis):
     """The analysis' spectra as a DataFrame indexed by frequency [Hz] (spectrum.csv)."""
-    import pandas as pd
-
-    from gearcli.pipeline.analysis_io import spectrum_columns
-
-    columns = spectrum_columns(getattr(analysis, "result", analysis))
-    f = columns.pop("frequency_Hz")
-    return pd.DataFrame(columns, index=pd.Index(f, name="frequency_Hz"))
-
-
-class Modal:
-    """Modes of the linearised model, crossings and the resonance-margin check (`gearcli
-    modal`).
-
-    Attributes
-    ----------
-    modes : list of Mode
-    checks : list, passed : bool
-    result : gearcli.pipeline.modal.ModalAnalysis
-    """
-
-    def __init__(self, result) -> None:
-        from gearcli.pipeline.modal import modal_document
-
-        self.result = result
-        self._doc = modal_document(result)
-        from gearcli.results import Mode
-
-        self.modes = [Mode.from_document(m) for m in self._doc["modes"]]
-        self.checks = list(result.checks)
-        self.passed = result.passed
-
-    def document(self) -> dict:
-        """What `gearcli modal --json` prints."""
-        return self._doc
-
-    def plot(self, units: str = "engineering"):
-        """The Campbell diagram and mode shapes (a ``matplotlib.figure.Figure``); the speed
-        axis in the display ``units`` ("engineering": rpm, "si": rad/s)."""
-        from gearcli.pipeline.modal import campbell_figure
-
-        return campbell_figure(self.result, units)
-
-    def __repr__(self) -> str:
-        f = [round(m.natural_frequency_Hz, 1) for m in self.modes if not m.rigid_body
-             and m.natural_frequency_Hz]
-        return f"<Modal {self.result.name}: modes at {f} Hz>"
+    return analysis.spectra
 
 
 def modal(case, set=None,  # noqa: A002
-          speed_range_deg_s: tuple[float, float] | None = None) -> Modal:
+          speed_range_deg_s: tuple[float, float] | None = None):
     """Natural frequencies, damping ratios and mode shapes of the linearised model
     (`gearcli modal`).
 
@@ -450,6 +293,12 @@ def modal(case, set=None,  # noqa: A002
     speed_range_deg_s : (float, float), optional
         Pinion speed range of the Campbell diagram [deg/s], or texts with units ("6000 rpm");
         default 0 .. 1.5 x case speed.
+
+    Returns
+    -------
+    gearcli.pipeline.modal.ModalAnalysis
+        ``.modes`` (:class:`~gearcli.results.Mode`), ``.checks``, ``.passed``, ``.plot()``,
+        ``.document()``.
     """
     import math
 
@@ -459,60 +308,11 @@ def modal(case, set=None,  # noqa: A002
     if speed_range_deg_s is not None:
         speed_range_deg_s = tuple(math.degrees(v) for v in _quantities(
             speed_range_deg_s, units.ANGULAR_VELOCITY, "speed_range_deg_s", 2))
-    return Modal(run_modal(load_case(case, set), speed_range_deg_s=speed_range_deg_s))
-
-
-class Mesh:
-    """Quasi-static loaded tooth contact of a pair (`gearcli mesh`).
-
-    Attributes
-    ----------
-    summary : MeshSummary
-        STE [µm], mesh stiffness [N/mm] against ISO 6336-1 c′b and c_γα b, n_E1 and K_v.
-    table : pandas.DataFrame
-        Per pinion roll position ``roll_mm``: STE, unloaded TE [µm], mesh stiffness [N/mm],
-        pairs in contact, each pair's position [mm] and force [N] (mesh.csv).
-    notes : list of str
-        What the analysis leaves out.
-    result : gearcli.pipeline.mesh.MeshAnalysis
-    """
-
-    def __init__(self, result) -> None:
-        from gearcli.pipeline.mesh import mesh_document
-        from gearcli.results import MeshSummary
-
-        self.result = result
-        self._doc = mesh_document(result)
-        self.summary = MeshSummary.from_document(self._doc)
-        self.notes = list(self._doc["notes"])
-
-    @property
-    def table(self):
-        import pandas as pd
-
-        from gearcli.pipeline.mesh import mesh_table
-
-        columns = mesh_table(self.result)
-        x = columns.pop("roll_mm")
-        return pd.DataFrame(columns, index=pd.Index(x, name="roll_mm"))
-
-    def document(self) -> dict:
-        """What `gearcli mesh --json` prints."""
-        return self._doc
-
-    def save_plot(self, path: str | Path, units: str = "engineering") -> None:
-        """The figure of `gearcli mesh --plot` [.png, .svg, .pdf], in the display ``units``."""
-        from gearcli.pipeline.mesh import save_mesh_plot
-
-        save_mesh_plot(self.result, path, units)
-
-    def __repr__(self) -> str:
-        return (f"<Mesh {self.result.name}: STE {self.summary.ste_peak_to_peak_um:.3g} µm peak "
-                f"to peak, mean stiffness {self.summary.mesh_mean_N_mm:.4g} N/mm>")
+    return run_modal(load_case(case, set), speed_range_deg_s=speed_range_deg_s)
 
 
 def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # noqa: A002
-         **options) -> Mesh:
+         **options):
     """Quasi-static loaded tooth contact: static transmission error, load sharing, mesh
     stiffness against ISO 6336-1 (`gearcli mesh`).
 
@@ -530,7 +330,9 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
 
     Returns
     -------
-    Mesh
+    gearcli.pipeline.mesh.MeshAnalysis
+        ``.summary`` (:class:`~gearcli.results.MeshSummary`), ``.table`` (a DataFrame),
+        ``.notes``, ``.document()``.
     """
     from gearcli import units
     from gearcli.pipeline.mesh import run_mesh
@@ -539,41 +341,7 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
         (load_N,) = _quantities(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
     if not isinstance(harris, bool):
         raise CaseError(f"harris={harris!r:.60}: expected True or False")
-    return Mesh(run_mesh(load_case(case, set), load_N=load_N, harris=harris, **options))
-
-
-class Stress:
-    """Contact and root stresses along a run (`gearcli stress`).
-
-    Attributes
-    ----------
-    pinion, gear : GearStress
-        Peak dynamic stresses against the ISO 6336 static values [MPa], safety factors.
-    result : gearcli.pipeline.stress.StressResult
-        The histories (``t_s``, ``sigma_H``, ...) per slot.
-    """
-
-    def __init__(self, result) -> None:
-        from gearcli.pipeline.stress import stress_document
-
-        self.result = result
-        self._doc = stress_document(result)
-        from gearcli.results import GearStress
-
-        self.pinion = GearStress.from_document(self._doc, "pinion")
-        self.gear = GearStress.from_document(self._doc, "gear")
-        self.warnings = list(result.warnings)
-
-    def document(self) -> dict:
-        """stress.json as a dict."""
-        return self._doc
-
-    def __repr__(self) -> str:
-        def mpa(value):
-            return "–" if value is None else f"{value:.4g} MPa"
-
-        return (f"<Stress {self.result.name}: σ_H peak {mpa(self.pinion.sigma_H_peak_MPa)}, "
-                f"σ_F peak pinion {mpa(self.pinion.sigma_F_peak_MPa)}>")
+    return run_mesh(load_case(case, set), load_N=load_N, harris=harris, **options)
 
 
 def stress(run, window: tuple[float, float] | None = None, require_limits: bool = False):
@@ -591,7 +359,9 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
 
     Returns
     -------
-    Stress
+    gearcli.pipeline.stress.StressResult
+        ``.pinion``, ``.gear`` (:class:`~gearcli.results.GearStress`), ``.warnings``,
+        ``.document()``, the histories (``t_s``, ``sigma_H``, ...) per slot.
     """
     import contextlib
 
@@ -601,8 +371,7 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
     if window is not None:
         window = _quantities(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
-        return Stress(compute_stress(_folder_of(run, stack), window,
-                                     require_limits=require_limits))
+        return compute_stress(_folder_of(run, stack), window, require_limits=require_limits)
 
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,
@@ -613,7 +382,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
 
     Parameters
     ----------
-    study : str, Path or gearcli.pipeline.sweep_study.Study
+    study : str, Path or gearcli.pipeline.sweep.study.Study
         Study file [YAML], or a study loaded by ``load_study``.
     out : str or Path, optional
         Output folder (summary.csv, trends, plots; resumable: points already in its
@@ -640,8 +409,8 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
 
     import pandas as pd
 
-    from gearcli.pipeline.sweep_run import rows_as_table, run_study, summary_columns
-    from gearcli.pipeline.sweep_study import Study, load_study
+    from gearcli.pipeline.sweep.run import rows_as_table, run_study, summary_columns
+    from gearcli.pipeline.sweep.study import Study, load_study
 
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise CaseError(f"jobs {jobs!r}: expected a whole number of worker processes >= 1 "
@@ -661,11 +430,11 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
             check_target(out, force)  # before the runs, not after
             curve = run_speed_curve(spec, jobs, scheduler)
             write_speed_curve(curve, out, force)
-            df = pd.DataFrame(curve.rows, columns=list(COLUMNS))
+            df = pd.DataFrame([r.to_row() for r in curve.rows], columns=list(COLUMNS))
             df.attrs.update(kind="speed_curve", errors=list(curve.errors),
                             notes=list(curve.notes))
             return df
-        from gearcli.pipeline.sweep_trends import write_trends
+        from gearcli.pipeline.sweep.trends import write_trends
 
         outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
                             timeseries_format=timeseries_format)

@@ -265,6 +265,17 @@ def format_internal(value: float, dim: Dim) -> str:
     return f"{value!r} {dim.internal}"
 
 
+def split_internal(value) -> tuple[float, str]:
+    """The inverse of :func:`format_internal` for a stored case value: (number, unit) of
+    "10.0 mm" -> (10.0, "mm"), of a number -> (it, ""), of None -> (nan, "")."""
+    if value is None:
+        return math.nan, ""
+    if isinstance(value, int | float):
+        return float(value), ""
+    number, _, unit = str(value).partition(" ")
+    return float(number), unit.strip()
+
+
 def parse_quantities(texts, dim: Dim) -> tuple[float, ...]:
     """Values given as numbers or texts (``2``, ``"2"``, ``"2 s"``), each in the internal unit
     of ``dim``, by the case file's rules (bare numbers in ``dim.default``; a unit needs a

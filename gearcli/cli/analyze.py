@@ -63,8 +63,11 @@ def analyze(
     check_figure_path("--orders", orders, force)
     check_figure_path("--spectra", spectra, force)
     analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
-    result = analysis.result
+    result = analysis
     doc = write_analysis(result)
+    from gearcli.results import AnalysisDocument
+
+    typed = AnalysisDocument.from_document(doc)  # as the report reads it back
     if orders is not None:
         _save_order_map(result, orders, display_units())
     if spectra is not None:
@@ -73,12 +76,12 @@ def analyze(
 
         harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
                         .get("harmonics", 5))
-        save_figure(spectra_figure(spectrum_columns(result), doc, harmonics, order_axis, db,
+        save_figure(spectra_figure(spectrum_columns(result), typed, harmonics, order_axis, db,
                                    display_units()), spectra, 110)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
-        print_checks(doc, display_units())
+        print_checks(typed, display_units())
     if not result.passed:
         failed = [c.name for c in result.checks if not c.passed]
         raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
@@ -88,31 +91,25 @@ def _save_order_map(result, path: Path, units: str) -> None:
     from gearcli.io.files import save_figure
     from gearcli.plotting.orders import plot_order_map
 
-    c, s = result.run.columns, result.run.summary["scalars"]
+    c, s = result.run.columns, result.run.summary.scalars
     teeth = int(result.run.manifest["resolved_case"]["gears"]["pinion"]["teeth"])
-    modes = [m["natural_frequency_Hz"] for m in s.get("modes", [])
-             if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
+    modes = [m.natural_frequency_Hz for m in s.modes
+             if not m.rigid_body and m.natural_frequency_Hz]
     fig = plot_order_map(c["t_s"], c["force_total_N"], c["omega1_rad_s"], teeth, modes,
                          label="mesh force", unit="N", units=units)
     save_figure(fig, path, 110)
 
 
-#: The analysis table's metrics, in order (labels and units: gearcli/io/metrics.py).
-ANALYZE_KEYS = ("gear_speed_mean_deg_s", "speed_ratio_error_percent",
-                "gear_speed_fluctuation_percent", "force_mean_N", "force_rms_N", "force_max_N",
-                "force_static_N", "dynamic_factor", "dte_peak_to_peak_mm", "dte_rms_mm",
-                "contact_loss_fraction", "coast_impacts", "friction_loss_W", "damping_loss_W",
-                "mesh_efficiency", "gear_mesh_frequency_Hz", "mesh_natural_frequency_Hz",
-                "mesh_damping_ratio")
-
-
-def print_checks(doc: dict, units: str = "engineering") -> None:
-    """The analysis table (metrics in the display ``units``) and the checks table."""
+def print_checks(doc, units: str = "engineering") -> None:
+    """The analysis table (the metrics shown at "analyze", gearcli/results/, in the display
+    ``units``) and the checks table of an analysis (gearcli.results.AnalysisDocument)."""
     from gearcli.io.metrics import rows as metric_rows
+    from gearcli.results import shown_values
 
-    m = doc["metrics"]
-    rows = metric_rows(m, ANALYZE_KEYS, units)
-    w0, w1 = m["window_s"]
-    print_quantity_table(f"{doc['case']}: window {w0:.3f}-{w1:.3f} s ({m['window_reason']})",
+    m = doc.metrics
+    shown = shown_values(m, "analyze")
+    rows = metric_rows(shown, shown, units)
+    w0, w1 = m.window_s
+    print_quantity_table(f"{doc.case}: window {w0:.3f}-{w1:.3f} s ({m.window_reason})",
                          rows)
-    print_checks_table(doc["checks"])
+    print_checks_table(doc.checks)

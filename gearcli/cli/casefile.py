@@ -37,7 +37,7 @@ def schema(
     if study:
         import json
 
-        from gearcli.pipeline.sweep_study import StudyFile
+        from gearcli.pipeline.sweep.study import StudyFile
 
         typer.echo(json.dumps(StudyFile.model_json_schema(), indent=2))
         return

@@ -253,8 +253,9 @@ def print_quantity_table(title: str, rows) -> None:
     Console().print(t)
 
 
-def print_checks_table(checks: list[dict]) -> None:
-    """The Checks table (name, value, limit, pass/FAIL, note) of analyze and modal."""
+def print_checks_table(checks) -> None:
+    """The Checks table (name, value, limit, pass/FAIL, note) of analyze and modal
+    (gearcli.results.Check)."""
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
@@ -263,8 +264,8 @@ def print_checks_table(checks: list[dict]) -> None:
     for col in ("check", "value", "limit", "result", "note"):
         c.add_column(col)
     for ck in checks:
-        verdict = ("[yellow]not checked[/yellow]" if not ck.get("checked", True)
-                   else "[green]pass[/green]" if ck["passed"] else "[red]FAIL[/red]")
-        c.add_row(escape(ck["name"]), escape(format_value(ck["value"])), escape(ck["limit"]),
-                  verdict, escape(ck["note"]))
+        verdict = ("[yellow]not checked[/yellow]" if not ck.checked
+                   else "[green]pass[/green]" if ck.passed else "[red]FAIL[/red]")
+        c.add_row(escape(ck.name), escape(format_value(ck.value)), escape(ck.limit), verdict,
+                  escape(ck.note))
     Console().print(c)

@@ -52,7 +52,8 @@ def mesh(
     if out is not None:
         check_target(out, force)  # before the work, not after
     analysis = api.mesh(case, set_, load_N=load, harris=harris)
-    res, doc, units = analysis.result, analysis.document(), display_units()
+    res, typed, units = analysis, analysis.summary, display_units()
+    doc = typed.to_dict()
     if out is not None:
         write_mesh(res, out, force, set_, units, doc)
     if plot is not None:
@@ -62,7 +63,7 @@ def mesh(
         return
     if quiet:
         return
-    _print(doc, units)
+    _print(typed, units)
     for path in (out, plot):
         if path is not None:
             typer.echo(f"wrote {path}")
@@ -83,53 +84,53 @@ def _table(title: str, rows: list[tuple[str, float, str]], units: str):
     return t
 
 
-def _print(doc: dict, units: str) -> None:
+def _print(doc, units: str) -> None:
     from rich.console import Console
 
     console = Console()
-    console.print(f"[bold]{doc['case']}[/bold]: loaded contact at "
-                  f"{format_value(doc['force_N'])} N, {doc['contact_law']}")
-    ste, st = doc["ste"], doc["stiffness"]
+    console.print(f"[bold]{doc.case}[/bold]: loaded contact at "
+                  f"{format_value(doc.force_N)} N, {doc.contact_law}")
+    ste, st = doc.ste, doc.stiffness
     console.print(_table("Static transmission error", [
-        ("mean", ste["mean_um"], "µm"),
-        ("peak-to-peak", ste["peak_to_peak_um"], "µm"),
-        ("peak-to-peak at the pinion", ste["peak_to_peak_arcsec"], "arcsec"),
-        *((f"{k} amplitude", v, "µm") for k, v in ste["harmonics_um"].items()),
-        ("unloaded TE peak-to-peak", ste["unloaded_te_peak_to_peak_um"], "µm"),
+        ("mean", ste.mean_um, "µm"),
+        ("peak-to-peak", ste.peak_to_peak_um, "µm"),
+        ("peak-to-peak at the pinion", ste.peak_to_peak_arcsec, "arcsec"),
+        *((f"{k} amplitude", v, "µm") for k, v in ste.harmonics_um.items()),
+        ("unloaded TE peak-to-peak", ste.unloaded_te_peak_to_peak_um, "µm"),
     ], units))
     console.print(_table("Mesh stiffness", [
-        ("mean over the cycle", st["mesh_mean_N_mm"], "N/mm"),
-        ("single-pair zone (mean)", st["single_pair_zone_N_mm"], "N/mm"),
-        ("double-pair zone (mean)", st["double_pair_zone_N_mm"], "N/mm"),
+        ("mean over the cycle", st.mesh_mean_N_mm, "N/mm"),
+        ("single-pair zone (mean)", st.single_pair_zone_N_mm, "N/mm"),
+        ("double-pair zone (mean)", st.double_pair_zone_N_mm, "N/mm"),
         ("ISO 6336-1 c′b (single pair; no low-load factor)",
-         st["iso6336_single_pair_c_prime_b_N_mm"], "N/mm"),
+         st.iso6336_single_pair_c_prime_b_N_mm, "N/mm"),
         ("ISO 6336-1 c_γα b (mean; no low-load factor)",
-         st["iso6336_mean_c_gamma_alpha_b_N_mm"], "N/mm"),
+         st.iso6336_mean_c_gamma_alpha_b_N_mm, "N/mm"),
     ], units))
-    kv = doc.get("iso6336_method_b") or {}
-    if kv:
-        rows = [("low-load factor L_f (rating only)", kv["low_load_factor"], "–"),
-                ("c′ with L_f", kv["c_prime_N_mm_um"], "N/(mm·µm)"),
-                ("c_γα with L_f", kv["c_gamma_alpha_N_mm_um"], "N/(mm·µm)"),
-                ("reduced mass m_red", kv["reduced_mass_kg_mm"], "kg/mm"),
-                ("resonance speed n_E1 (both gears free)", kv["resonance_speed_rpm"], "rpm"),
-                ("B_p / B_f / B_k", f"{kv['B_p']:.4g} / {kv['B_f']:.4g} / {kv['B_k']:.4g}", "–")]
-        if "k_v" in kv:
-            rows += [("resonance ratio N = n1/n_E1", kv["resonance_ratio"], "–"),
-                     (f"K_v ({kv['speed_range']})", kv["k_v"], "–")]
+    kv = doc.iso6336_method_b
+    if kv is not None:
+        rows = [("low-load factor L_f (rating only)", kv.low_load_factor, "–"),
+                ("c′ with L_f", kv.c_prime_N_mm_um, "N/(mm·µm)"),
+                ("c_γα with L_f", kv.c_gamma_alpha_N_mm_um, "N/(mm·µm)"),
+                ("reduced mass m_red", kv.reduced_mass_kg_mm, "kg/mm"),
+                ("resonance speed n_E1 (both gears free)", kv.resonance_speed_rpm, "rpm"),
+                ("B_p / B_f / B_k", f"{kv.B_p:.4g} / {kv.B_f:.4g} / {kv.B_k:.4g}", "–")]
+        if kv.k_v is not None:
+            rows += [("resonance ratio N = n1/n_E1", kv.resonance_ratio, "–"),
+                     (f"K_v ({kv.speed_range})", kv.k_v, "–")]
         console.print(_table("ISO 6336-1 Method B dynamic factor (K_A = 1)", rows, units))
-    if "harris" in doc:
+    if doc.harris is not None:
         from rich.markup import escape
         from rich.table import Table
 
         from gearcli.display_units import convert
 
-        ptp, unit = convert(doc["harris"]["ste_peak_to_peak_um"], "µm", units)
+        ptp, unit = convert(list(doc.harris.ste_peak_to_peak_um), "µm", units)
         h = Table(title="Harris map", title_justify="left")
         h.add_column(escape("force [N]"))
         h.add_column(escape(f"STE peak-to-peak [{unit}]"))  # rich reads "[m]" as markup
-        for f, p in zip(doc["harris"]["force_N"], ptp, strict=True):
+        for f, p in zip(doc.harris.force_N, ptp, strict=True):
             h.add_row(format_value(f), format_value(p))
         console.print(h)
-    for note in doc["notes"]:
+    for note in doc.notes:
         console.print(f"note: {note}")

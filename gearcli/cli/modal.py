@@ -53,13 +53,15 @@ def modal(
     speeds = option_quantities(speed_range, "ANGULAR_VELOCITY", "--speed-range")
     modal_result = api.modal(case, set_, None if speeds is None else
                              (math.degrees(speeds[0]), math.degrees(speeds[1])))
-    res, doc = modal_result.result, modal_result.document()
+    from gearcli.pipeline.modal import modal_document
+
+    res, typed = modal_result, modal_document(modal_result)
     if plot is not None:
         save_campbell_plot(res, plot, units)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        typer.echo(json.dumps(typed.to_dict(), indent=2))
     elif not quiet:
-        _print(doc, units)
+        _print(typed, res.checks, units)
         if plot is not None:
             typer.echo(f"wrote {plot}")
     if not res.passed:
@@ -67,7 +69,7 @@ def modal(
         raise CheckFailed(f"{case}: check(s) failed: {', '.join(failed)}")
 
 
-def _print(doc: dict, units: str) -> None:
+def _print(doc, checks, units: str) -> None:
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
@@ -75,7 +77,7 @@ def _print(doc: dict, units: str) -> None:
     from gearcli.display_units import convert
 
     console = Console()
-    lin = doc["linearisation"]
+    lin = doc.linearisation
 
     def q(value, unit, zone=""):
         if value is None:  # the loaded mesh has no such zone (e.g. eps_alpha > ~1.7 loaded)
@@ -84,7 +86,7 @@ def _print(doc: dict, units: str) -> None:
         return f"{x:.4g} {u}"
 
     console.print(
-        f"[bold]{doc['case']}[/bold]: {doc['model']} model, drive '{doc['drive']}', "
+        f"[bold]{doc.case}[/bold]: {doc.model} model, drive '{doc.drive}', "
         f"linearised at F = {lin['static_force_N']:.1f} N: k_mesh = "
         f"{q(lin['mesh_stiffness_N_mm'], 'N/mm')} (single pair "
         f"{q(lin['single_pair_stiffness_N_mm'], 'N/mm', 'single-pair')}, double pair "
@@ -93,23 +95,23 @@ def _print(doc: dict, units: str) -> None:
     t = Table(title="Modes", title_justify="left")
     for col in ("mode", "f [Hz]", "zeta", "description",
                 "shape as lengths, rotations as r_b θ (largest = 1): "
-                + ", ".join(d.rsplit("_", 1)[0] for d in doc["dofs"])):
+                + ", ".join(d.rsplit("_", 1)[0] for d in doc.dofs)):
         t.add_column(escape(col))
-    for m in doc["modes"]:
-        f = "rigid body" if m["rigid_body"] else format_value(m["natural_frequency_Hz"])
-        zeta = m["damping_ratio"]
+    for m in doc.modes:
+        f = "rigid body" if m.rigid_body else format_value(m.natural_frequency_Hz)
+        zeta = m.damping_ratio
         z = format_value(zeta) if zeta is None or zeta <= 1.0 else \
             f"{format_value(zeta)} (overdamped)"
-        shape = ", ".join(f"{v:+.3f}" for v in m["shape"].values())
-        t.add_row(str(m["mode"]), f, z, m["description"], shape)
+        shape = ", ".join(f"{v:+.3f}" for v in m.shape.values())
+        t.add_row(str(m.mode), f, z, m.description, shape)
     console.print(t)
-    (lo, hi), unit = convert(doc["speed_range_deg_s"], "deg/s", units)
+    (lo, hi), unit = convert(list(doc.speed_range_deg_s), "deg/s", units)
     c = Table(title=f"Crossings (pinion speed, {lo:.4g}-{hi:.4g} {unit})", title_justify="left")
     for col in ("order", "mode", "f [Hz]", f"pinion speed [{unit}]"):
         c.add_column(escape(col))  # rich would read "[rpm]" as markup and drop it
-    for x in doc["crossings"]:
-        if x["in_range"]:
-            c.add_row(x["order"], str(x["mode"]), format_value(x["frequency_Hz"]),
-                      format_value(convert(x["pinion_speed_deg_s"], "deg/s", units)[0]))
+    for x in doc.crossings:
+        if x.in_range:
+            c.add_row(x.order, str(x.mode), format_value(x.frequency_Hz),
+                      format_value(convert(x.pinion_speed_deg_s, "deg/s", units)[0]))
     console.print(c)
-    print_checks_table(doc["checks"])
+    print_checks_table(checks)

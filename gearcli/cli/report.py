@@ -72,7 +72,7 @@ def run(
     units = display_units()
     with status_reporter(enabled=not quiet) as status:
         result = api.simulate(case, set_, status=status, zoom=True,
-                              progress=status.progress if status else None).result
+                              progress=status.progress if status else None)
         if result.status != "ok":  # keep the run for diagnosis; nothing to analyse
             with atomic_dir(out, force) as tmp:
                 write_simulation_files(result, tmp, set_)
@@ -83,11 +83,13 @@ def run(
         with atomic_dir(out, force) as tmp:
             write_simulation_files(result, tmp, set_)
             analysis = api.analyze(tmp)
-            doc = write_analysis(analysis.result)
+            doc = write_analysis(analysis)
             name = build_report(tmp, fmt, None, units).name
     path = out / name
     if not quiet:
-        print_checks(doc, units)
+        from gearcli.results import AnalysisDocument
+
+        print_checks(AnalysisDocument.from_document(doc), units)
         for w in result.warnings:
             typer.echo(f"warning: {w}", err=True)
     typer.echo(f"report written to {path}")

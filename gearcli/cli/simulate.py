@@ -57,14 +57,14 @@ def simulate(
     with status_reporter(enabled=not quiet and not to_stdout and not as_json) as status:
         sim = api.simulate(case, set_, status=status, zoom=True,
                            progress=status.progress if status else None)
-    result = sim.result
+    result = sim
     if to_stdout:
         typer.echo(timeseries_csv(result), nl=False)
     else:
         sim.save(out, force, fmt)
     doc = summary_document(result)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        typer.echo(json.dumps(doc.to_dict(), indent=2))
     elif not quiet and not to_stdout:
         _print_summary(doc, out, display_units())
     for w in result.warnings:
@@ -77,24 +77,18 @@ def simulate(
         raise InvalidResultError(f"{case}: {result.invalid_reason}{where}")
 
 
-#: The summary table's metrics, in order (labels and units: gearcli/io/metrics.py).
-SUMMARY_KEYS = ("pinion_speed_mean_deg_s", "gear_speed_mean_deg_s", "speed_ratio_mean",
-                "speed_ratio_theory", "force_mean_N", "force_max_N", "force_min_N",
-                "force_static_N", "dynamic_factor", "dte_mean_mm", "dte_peak_to_peak_mm",
-                "static_deflection_mm", "mesh_stiffness_N_mm", "mesh_natural_frequency_Hz",
-                "mesh_damping_ratio", "gear_mesh_frequency_Hz", "contact_loss_fraction",
-                "energy_relative_residual")
-
-
-def _print_summary(doc: dict, out: str, units: str) -> None:
-    s, sv = doc["scalars"], doc["solver"]
-    w0, w1 = s["window_s"]
+def _print_summary(doc, out: str, units: str) -> None:
+    """The summary table: the metrics shown at "simulate" (gearcli/results/) and the
+    solver's counters."""
     from gearcli.io.metrics import rows as metric_rows
+    from gearcli.results import shown_values
 
-    shown = {**s, "energy_relative_residual": s["energy_balance"]["relative_residual"]}
-    if doc["status"] != "ok":
+    s, sv = doc.scalars, doc.solver
+    w0, w1 = s.window_s
+    shown = shown_values(s, "simulate")
+    if doc.status != "ok":
         shown["dynamic_factor"] = "not valid (see the error below)"
-    rows = metric_rows(shown, SUMMARY_KEYS, units) + [
+    rows = metric_rows(shown, shown, units) + [
         ("solver steps / RHS evaluations",
          f"{sv['accepted_steps']} (+{sv['rejected_steps']} rejected) / "
          f"{sv['rhs_evaluations']}", ""),
@@ -102,5 +96,5 @@ def _print_summary(doc: dict, out: str, units: str) -> None:
                                if sv.get("wall_time_includes_compilation") else ""),
          sv["wall_time_s"], "s"),
     ]
-    print_quantity_table(f"{doc['case']}: steady window {w0:.3f}-{w1:.3f} s", rows)
+    print_quantity_table(f"{doc.case}: steady window {w0:.3f}-{w1:.3f} s", rows)
     typer.echo(f"results written to {out}/")

@@ -40,71 +40,74 @@ def stress(
 
     from gearcli import api
     from gearcli.io.files import check_no_earlier
-    from gearcli.pipeline.stress import save_stress_plot, write_stress
+    from gearcli.pipeline.stress import save_stress_plot, stress_document, write_stress
 
     check_figure_path("--plot", plot, force)
     check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
     rating = api.stress(folder, option_quantities(window, "TIME", "--window"),
                         require_limits=safety)
-    result = rating.result
-    doc = write_stress(result, rating.document())
+    result, typed = rating, stress_document(rating)
+    doc = write_stress(result, typed.to_dict())
     if plot is not None:
         save_stress_plot(result, plot)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:
-        print_tables(doc)
+        print_tables(typed)
 
 
 def _f(value, fmt: str = ".4g") -> str:
     return "—" if value is None else f"{value:{fmt}}"
 
 
-def print_tables(doc: dict) -> None:
+def _tooth(tooth) -> str:
+    return "—" if tooth is None else str(tooth)
+
+
+def print_tables(doc) -> None:
     """One table per gear: ISO static values, dynamic peaks, ratios, safety factors."""
     from rich.console import Console
     from rich.table import Table
 
     console = Console()
-    st = doc["static"]
-    w = doc["window_s"]
-    console.print(f"{doc['case']}: static load F_n = {st['force_normal_N']:.6g} N "
-                  f"(F_t = {st['force_tangential_N']:.6g} N), σ_H0 (pitch point, Z_H Z_E) = "
-                  f"{st['sigma_H0_MPa']:.4g} MPa; window {w[0]:.4g}-{w[1]:.4g} s "
-                  f"({doc['window_reason']})")
+    st = doc.static
+    w = doc.window_s
+    console.print(f"{doc.case}: static load F_n = {st.force_normal_N:.6g} N "
+                  f"(F_t = {st.force_tangential_N:.6g} N), σ_H0 (pitch point, Z_H Z_E) = "
+                  f"{st.sigma_H0_MPa:.4g} MPa; window {w[0]:.4g}-{w[1]:.4g} s "
+                  f"({doc.window_reason})")
     for which, point, z_name in (("pinion", "B", "Z_B"), ("gear", "D", "Z_D")):
-        g, s = doc[which], st[which]
-        t = Table(title=f"{which} (z = {g['teeth']})", title_justify="left")
+        g, s = getattr(doc, which), getattr(st, which)
+        t = Table(title=f"{which} (z = {g.teeth})", title_justify="left")
         for col, just in (("quantity", "left"), ("value", "right"), ("unit", "left")):
             t.add_column(col, justify=just)
-        ph, pf = g["peak_sigma_H"], g["peak_sigma_F"]
-        per_h = [v for v in g["sigma_H_max_per_tooth_MPa"] if v is not None]
-        per_f = [v for v in g["sigma_F_max_per_tooth_MPa"] if v is not None]
+        ph, pf = g.peak_sigma_H, g.peak_sigma_F
+        per_h = [v for v in g.sigma_H_max_per_tooth_MPa if v is not None]
+        per_f = [v for v in g.sigma_F_max_per_tooth_MPa if v is not None]
         rows = [
             (f"ISO static σ_H ({z_name} σ_H0, single contact at {point})",
-             _f(s["sigma_H_iso_MPa"]), "MPa"),
-            ("ISO Y_F / Y_S (Method B, outer single contact)",
-             f"{s['Y_F']:.4f} / {s['Y_S']:.4f}", ""),
-            ("ISO static σ_F0 = F_t/(b m) Y_F Y_S", _f(s["sigma_F0_MPa"]), "MPa"),
-            ("peak dynamic σ_H", _f(ph["MPa"]), "MPa"),
-            ("  at", f"t = {_f(ph.get('t_s'), '.5g')} s, tooth {ph.get('tooth', '—')}, "
-             f"{ph.get('zone', '')}", ""),
-            ("peak dynamic σ_F", _f(pf["MPa"]), "MPa"),
-            ("  at", f"t = {_f(pf.get('t_s'), '.5g')} s, tooth {pf.get('tooth', '—')}, "
-             f"{pf.get('zone', '')}", ""),
+             _f(s.sigma_H_iso_MPa), "MPa"),
+            ("ISO Y_F / Y_S (Method B, outer single contact)", f"{s.Y_F:.4f} / {s.Y_S:.4f}", ""),
+            ("ISO static σ_F0 = F_t/(b m) Y_F Y_S", _f(s.sigma_F0_MPa), "MPa"),
+            ("peak dynamic σ_H", _f(ph.MPa), "MPa"),
+            ("  at", f"t = {_f(ph.t_s, '.5g')} s, tooth {_tooth(ph.tooth)}, {ph.zone or ''}",
+             ""),
+            ("peak dynamic σ_F", _f(pf.MPa), "MPa"),
+            ("  at", f"t = {_f(pf.t_s, '.5g')} s, tooth {_tooth(pf.tooth)}, {pf.zone or ''}",
+             ""),
             ("σ_H max per tooth (min … max over teeth)",
              f"{min(per_h):.4g} … {max(per_h):.4g}" if per_h else "—", "MPa"),
             ("σ_F max per tooth (min … max over teeth)",
              f"{min(per_f):.4g} … {max(per_f):.4g}" if per_f else "—", "MPa"),
-            ("dynamic / static σ_H", _f(g["ratio_sigma_H_to_static"]), ""),
-            ("dynamic / static σ_F", _f(g["ratio_sigma_F_to_static"]), ""),
+            ("dynamic / static σ_H", _f(g.ratio_sigma_H_to_static), ""),
+            ("dynamic / static σ_F", _f(g.ratio_sigma_F_to_static), ""),
         ]
-        sf = g["safety"]
+        sf = g.safety
         if sf is not None:
-            rows += [("safety S_H = σ_Hlim / σ_H,max", _f(sf["S_H"], ".3f"), ""),
-                     ("safety S_F = σ_Flim Y_ST / σ_F,max", _f(sf["S_F"], ".3f"), "")]
+            rows += [("safety S_H = σ_Hlim / σ_H,max", _f(sf.S_H, ".3f"), ""),
+                     ("safety S_F = σ_Flim Y_ST / σ_F,max", _f(sf.S_F, ".3f"), "")]
         for row in rows:
             t.add_row(*row)
         console.print(t)
-    for text in doc["warnings"]:
+    for text in doc.warnings:
         console.print(f"[yellow]warning:[/yellow] {text}")

@@ -64,7 +64,7 @@ def sweep(
     """
     from gearcli import api
     from gearcli.errors import OutputError
-    from gearcli.pipeline.sweep_study import load_study
+    from gearcli.pipeline.sweep.study import load_study
 
     if fmt not in ("csv", "parquet"):
         raise OutputError(f"--format {fmt}: expected csv or parquet")

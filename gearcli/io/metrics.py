@@ -1,5 +1,5 @@
 """Labels and stored units of the result metrics, defined once (issue 17): the CLI tables, the
-report tables and the Python API's typed results (gearcli/results.py) read them from here, so a
+report tables and the Python API's typed results (gearcli/results/) read them from here, so a
 metric is added or renamed in one place. Keys are the names of summary.json's ``scalars`` and
 analysis.json's ``metrics`` (internal units, the unit in the name); the display unit follows the
 display-unit setting (gearcli/display_units.py: rpm or rad/s, µm or m, ...)."""
@@ -53,6 +53,8 @@ METRICS: dict[str, Metric] = {
     "mesh_natural_frequency_Hz": Metric("mesh mode natural frequency f_n", "Hz"),
     "mesh_damping_ratio": Metric("mesh mode damping ratio ζ", "–"),
     "mesh_stiffness_N_mm": Metric("mesh stiffness (linearised)", "N/mm"),
+    "single_pair_stiffness_N_mm": Metric("mesh stiffness, single pair (linearised)", "N/mm"),
+    "double_pair_stiffness_N_mm": Metric("mesh stiffness, two pairs (linearised)", "N/mm"),
     "static_deflection_mm": Metric("static deflection", "mm", True),
     "resonance_margins_percent": Metric("distance of k·f_z from the nearest mode (k = 1, 2, ..)",
                                         "%"),

@@ -1,7 +1,14 @@
-"""Read a gearcli results folder back (for analyze and report), refusing bad folders."""
+"""Read a gearcli results folder back (for analyze and report), refusing bad folders.
+
+The one place where a stored summary.json is read by its keys: :func:`check_summary` refuses a
+document without the entries later steps read (the fields marked ``required`` in
+gearcli/results.py, with the schema_version check), then it becomes a typed
+:class:`gearcli.results.SummaryDocument`.
+"""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -10,6 +17,14 @@ import numpy as np
 
 from gearcli.errors import InvalidResultError, ResultsError
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+from gearcli.results import (
+    AnalysisDocument,
+    AnalysisMetrics,
+    StoredMode,
+    StressDocument,
+    Summary,
+    SummaryDocument,
+)
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -20,7 +35,7 @@ TIMESERIES = ("timeseries.csv", "timeseries.parquet")
 class StoredRun:
     folder: Path
     manifest: dict
-    summary: dict
+    summary: SummaryDocument
     columns: dict[str, np.ndarray]
 
     def column(self, name: str) -> np.ndarray:
@@ -65,7 +80,7 @@ def read_run(folder: str | Path) -> StoredRun:
         raise ResultsError(f"{series}: no {', '.join(missing)} column"
                            f"{'s' if len(missing) > 1 else ''}; expected a table written by "
                            "gearcli simulate (was it edited?)")
-    return StoredRun(p, manifest, summary, columns)
+    return StoredRun(p, manifest, SummaryDocument.from_document(summary), columns)
 
 
 #: Columns of timeseries.csv that analyze, stress and report read.
@@ -73,16 +88,26 @@ REQUIRED_COLUMNS = ("t_s", "omega1_rad_s", "omega2_rad_s", "delta_mm", "force_to
                     "force_coast_N", "pairs_in_contact", "friction_power_mW",
                     "drive_torque_Nmm", "load_torque_Nmm")
 _NUMBER, _OPTIONAL, _TEXT, _PAIR = "a number", "a number or null", "text", "two numbers"
+
+
+def _kind(annotation: str) -> str:
+    """What a field's annotation (gearcli/results.py) asks of its stored value."""
+    if annotation.startswith("tuple[float, float]"):
+        return _PAIR
+    if annotation == "str":
+        return _TEXT
+    return _OPTIONAL if "None" in annotation else _NUMBER
+
+
+def _required(cls) -> dict[str, str]:
+    return {f.name: _kind(str(f.type)) for f in dataclasses.fields(cls)
+            if f.metadata.get("required") and f.type != "bool"}
+
+
 #: Entries of summary.json's "scalars" that analyze, stress and report read, by kind.
-REQUIRED_SCALARS = {
-    "window_s": _PAIR, "window_reason": _TEXT, "output_rate_Hz": _NUMBER,
-    "gear_mesh_frequency_Hz": _OPTIONAL, "pinion_speed_mean_deg_s": _NUMBER,
-    "gear_speed_mean_deg_s": _NUMBER, "force_max_N": _NUMBER, "force_max_t_s": _NUMBER,
-    "force_static_N": _NUMBER, "mesh_natural_frequency_Hz": _NUMBER,
-    "mesh_damping_ratio": _NUMBER,
-}
-#: Keys of each entry of scalars.modes (optional list).
-MODE_KEYS = {"mode": _NUMBER, "natural_frequency_Hz": _OPTIONAL, "damping_ratio": _OPTIONAL}
+REQUIRED_SCALARS = _required(Summary)
+#: Keys of each entry of scalars.modes (optional list; ``rigid_body`` is checked apart).
+MODE_KEYS = _required(StoredMode)
 
 
 def _is(value, kind: str) -> bool:
@@ -137,6 +162,90 @@ def check_summary(path: Path, summary: dict) -> None:
         raise bad("warnings", "a list")
     if not isinstance(summary.get("solver", {}), dict):
         raise bad("solver", "a mapping")
+
+
+#: Non-numeric entries of analysis.json's metrics, by kind (the annotations of
+#: gearcli.results.AnalysisMetrics); every other entry is a number or null.
+_TEXT_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics) if f.type == "str")
+_LIST_METRICS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics)
+                      if str(f.type).startswith("tuple"))
+
+
+def check_analysis(path: Path, doc: dict) -> None:
+    """Refuse an analysis.json whose entries the report cannot read (hand-edited, foreign):
+    the first wrong entry, and the remedy (run gearcli analyze again)."""
+    def bad(key: str, kind: str) -> ResultsError:
+        return ResultsError(f"{path}: {key} is not {kind}; run gearcli analyze again (was the "
+                            "file edited?)")
+
+    def number(v) -> bool:
+        return v is None or (isinstance(v, int | float) and not isinstance(v, bool))
+
+    window = doc.get("window_s")
+    if window is not None and not (isinstance(window, list) and len(window) == 2
+                                   and all(number(v) and v is not None for v in window)):
+        raise bad("window_s", "two numbers")
+    metrics = doc["metrics"]
+    if not isinstance(metrics, dict):
+        raise bad("metrics", "a mapping")
+    for key, value in metrics.items():
+        if key in _TEXT_METRICS:
+            ok = value is None or isinstance(value, str)
+        elif key in _LIST_METRICS:
+            ok = value is None or isinstance(value, list)
+        else:
+            ok = number(value)
+        if not ok:
+            raise bad(f"metrics.{key}", "text" if key in _TEXT_METRICS else
+                      "a list" if key in _LIST_METRICS else "a number or null")
+    if not isinstance(doc["checks"], list):
+        raise bad("checks", "a list")
+    for i, check in enumerate(doc["checks"]):
+        if not (isinstance(check, dict) and isinstance(check.get("name"), str)
+                and isinstance(check.get("passed"), bool)):
+            raise bad(f"checks.{i}", "a check (name, value, limit, passed, note)")
+    lines = doc.get("lines", {})
+    if not isinstance(lines, dict) or not all(
+            isinstance(v, dict) and all(isinstance(ln, dict) for ln in v.values())
+            for v in lines.values()):
+        raise bad("lines", "a mapping of signals to lines")
+    if not isinstance(doc.get("warnings", []), list):
+        raise bad("warnings", "a list")
+
+
+def read_analysis(path: Path) -> AnalysisDocument:
+    """analysis.json of `gearcli analyze` as its typed document; a file the report cannot
+    read (hand-edited, foreign, another schema_version) is a one-line ResultsError."""
+    doc = read_json(path, "run gearcli analyze again")
+    if not isinstance(doc, dict) or "checks" not in doc or "metrics" not in doc:
+        raise ResultsError(f"{path}: not an analysis of gearcli analyze; run it again")
+    version = doc.get("schema_version", RESULTS_SCHEMA_VERSION)  # absent: before versions
+    if version != RESULTS_SCHEMA_VERSION:
+        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
+                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli analyze)")
+    check_analysis(path, doc)
+    try:
+        return AnalysisDocument.from_document(doc)
+    except (TypeError, AttributeError) as exc:
+        raise ResultsError(f"{path}: unreadable analysis ({exc}); run gearcli analyze "
+                           "again") from None
+
+
+def read_stress(path: Path) -> StressDocument:
+    """stress.json of `gearcli stress` as its typed document (the schema_version checked)."""
+    doc = read_json(path, "run gearcli stress again")
+    if not isinstance(doc, dict) or not all(isinstance(doc.get(k), dict)
+                                            for k in ("static", "pinion", "gear")):
+        raise ResultsError(f"{path}: not a stress.json of gearcli stress; run it again")
+    version = doc.get("schema_version", RESULTS_SCHEMA_VERSION)
+    if version != RESULTS_SCHEMA_VERSION:
+        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
+                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli stress)")
+    try:
+        return StressDocument.from_document(doc)
+    except (TypeError, AttributeError) as exc:
+        raise ResultsError(f"{path}: unreadable stress document ({exc}); run gearcli stress "
+                           "again") from None
 
 
 def read_parquet_columns(path: Path, key: str, rows: int) -> dict[str, np.ndarray]:

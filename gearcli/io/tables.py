@@ -18,6 +18,16 @@ def columns_to_csv(columns: dict[str, np.ndarray]) -> str:
     return buf.getvalue()
 
 
+def columns_to_frame(columns: dict[str, np.ndarray], index: str):
+    """Named columns as a pandas DataFrame indexed by the column ``index`` (the API's tables:
+    a run's time series by ``t_s``, spectra by ``frequency_Hz``, a mesh table by ``roll_mm``)."""
+    import pandas as pd
+
+    rest = dict(columns)
+    key = rest.pop(index)
+    return pd.DataFrame(rest, index=pd.Index(key, name=index))
+
+
 def columns_to_parquet(columns: dict[str, np.ndarray], path: str | Path) -> None:
     """Equal-length float64 columns as one Parquet table at ``path`` (pyarrow, imported here:
     only this format needs it). Full float64 precision; zstd-compressed columns."""

@@ -10,7 +10,8 @@ import numpy as np
 from gearcli.io.files import write_atomic
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 from gearcli.io.tables import columns_to_csv
-from gearcli.pipeline.analyze import SIGNALS, Analysis
+from gearcli.pipeline.spectrum import SIGNALS
+from gearcli.results import AnalysisDocument, SpectrumLine
 
 
 def _clean(value):
@@ -30,30 +31,26 @@ def _clean(value):
 ANALYSIS_FILES = ("analysis.json", "spectrum.csv", "harmonics.csv")
 
 
-def analysis_document(res: Analysis) -> dict:
-    return _clean({
-        "schema_version": RESULTS_SCHEMA_VERSION,
-        "case": res.run.summary.get("case"),
-        "passed": res.passed,
-        "window_s": [res.window.t0_s, res.window.t1_s],
-        "window_reason": res.window.reason,
-        "metrics": res.metrics,
-        "checks": [c.__dict__ for c in res.checks],
-        "warnings": res.warnings,
-        "lines": {sig: {label: ln.__dict__ for label, ln in lines}
-                  for sig, lines in res.lines.items()},
-    })
+def analysis_document(res) -> dict:
+    """analysis.json's data: the typed :class:`~gearcli.results.AnalysisDocument` of an
+    :class:`~gearcli.pipeline.analyze.Analysis` as JSON (NaN and infinities as null)."""
+    return _clean(AnalysisDocument(
+        schema_version=RESULTS_SCHEMA_VERSION, case=res.run.summary.case, passed=res.passed,
+        window_s=(res.window.t0_s, res.window.t1_s), window_reason=res.window.reason,
+        metrics=res.metrics, checks=tuple(res.checks), warnings=tuple(res.warnings),
+        lines={sig: {label: SpectrumLine(**ln.__dict__) for label, ln in lines}
+               for sig, lines in res.lines.items()}).to_dict())
 
 
-def spectrum_columns(res: Analysis) -> dict[str, np.ndarray]:
-    freq = res.spectra["force"][0]
+def spectrum_columns(res) -> dict[str, np.ndarray]:
+    freq = res.amplitude_spectra["force"][0]
     cols = {"frequency_Hz": freq}
     for name, _, unit in SIGNALS:
-        cols[f"{name}_amplitude_{unit.replace('/', '_')}"] = res.spectra[name][1]
+        cols[f"{name}_amplitude_{unit.replace('/', '_')}"] = res.amplitude_spectra[name][1]
     return cols
 
 
-def harmonics_csv(res: Analysis) -> str:
+def harmonics_csv(res) -> str:
     """harmonics.csv: every expected line of every signal; ``amplitude`` is in the signal's
     own unit, named in ``amplitude_unit`` (rad/s, mm or N: analyze.SIGNALS)."""
     units = {name: unit for name, _, unit in SIGNALS}
@@ -66,7 +63,7 @@ def harmonics_csv(res: Analysis) -> str:
     return "\n".join(rows) + "\n"
 
 
-def write_analysis(res: Analysis) -> dict:
+def write_analysis(res) -> dict:
     doc = analysis_document(res)
     folder = res.run.folder
     write_atomic(folder / "analysis.json", json.dumps(doc, indent=2) + "\n")

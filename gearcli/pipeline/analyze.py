@@ -6,10 +6,12 @@ aliasing). Deterministic: the same folder gives the same analysis.json byte for 
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -19,6 +21,7 @@ from gearcli.io.results import StoredRun, read_run, window_mask
 from gearcli.model.modal import has_resonant_peak
 from gearcli.pipeline.geometry import run_geometry
 from gearcli.pipeline.spectrum import (
+    SIGNALS,
     Line,
     alias_frequency,
     amplitude_spectrum,
@@ -26,32 +29,18 @@ from gearcli.pipeline.spectrum import (
     mesh_lines,
 )
 from gearcli.pipeline.window import MIN_MESH_CYCLES, Window
+from gearcli.results import AnalysisMetrics, Check, ResonanceMargin, StoredMode, Summary
 
 #: A line counts as present when it stands this far above the spectrum's median floor.
 LINE_PROMINENCE = 10.0
-#: Spectra analysed: (name in the files, column, unit).
-SIGNALS = (("gear_speed", "omega2_rad_s", "rad/s"), ("dte", "delta_mm", "mm"),
-           ("force", "force_total_N", "N"))
-
-
-@dataclass
-class Check:
-    name: str
-    value: float | str | None
-    limit: str
-    passed: bool
-    note: str = ""
-    #: False when the check could not apply (the note says why); it then passes, and the
-    #: tables print "not checked" instead of "pass"
-    checked: bool = True
 
 
 @dataclass
 class Analysis:
     run: StoredRun
     window: Window
-    metrics: dict
-    spectra: dict[str, tuple[np.ndarray, np.ndarray]]
+    metrics: AnalysisMetrics
+    amplitude_spectra: dict[str, tuple[np.ndarray, np.ndarray]]  #: name -> (f [Hz], amplitude)
     lines: dict[str, list[tuple[str, Line]]]
     checks: list[Check] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
@@ -59,6 +48,26 @@ class Analysis:
     @property
     def passed(self) -> bool:
         return all(c.passed for c in self.checks)
+
+    @property
+    def spectra(self):
+        """One-sided amplitude spectra as a pandas DataFrame indexed by frequency [Hz]
+        (spectrum.csv's columns)."""
+        from gearcli.io.tables import columns_to_frame
+        from gearcli.pipeline.analysis_io import spectrum_columns
+
+        return columns_to_frame(spectrum_columns(self), "frequency_Hz")
+
+    def document(self) -> dict:
+        """analysis.json as a dict (what `gearcli analyze` writes)."""
+        from gearcli.pipeline.analysis_io import analysis_document
+
+        return analysis_document(self)
+
+    def __repr__(self) -> str:
+        failed = [c.name for c in self.checks if not c.passed]
+        return (f"<Analysis {self.run.summary.case or self.run.folder.name}: "
+                f"{'passed' if self.passed else 'failed: ' + ', '.join(failed)}>")
 
 
 def analyze(folder: str | Path, window: tuple[float, float] | None = None,
@@ -69,49 +78,54 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
                             str(Path(folder) / "manifest.json"))
     case = loaded.case
     geo = run_geometry(loaded).geometry
-    s = run.summary["scalars"]
+    s = run.summary.scalars
     t = run.column("t_s")
-    rate = s["output_rate_Hz"]
-    f_z = s["gear_mesh_frequency_Hz"]
+    rate = s.output_rate_Hz
+    f_z = s.gear_mesh_frequency_Hz
     win = _window(t, s, window, f_z, geo)
     sel = window_mask(t, win.t0_s, win.t1_s)
     metrics = _metrics(run, sel, win, geo, s)
-    n1 = metrics["pinion_speed_mean_deg_s"] / 360.0
-    n2 = metrics["gear_speed_mean_deg_s"] / 360.0
+    n1 = metrics.pinion_speed_mean_deg_s / 360.0
+    n2 = metrics.gear_speed_mean_deg_s / 360.0
     f_z_measured = geo.pinion.teeth * n1
     if not f_z_measured * (win.t1_s - win.t0_s) >= 1.0:  # also 0 and NaN
         raise ResultsError(
             f"the pinion turns less than one tooth pitch in the analysis window {win.t0_s:g} "
-            f"... {win.t1_s:g} s (mean speed {metrics['pinion_speed_mean_deg_s']:.3g} deg/s): "
+            f"... {win.t1_s:g} s (mean speed {metrics.pinion_speed_mean_deg_s:.3g} deg/s): "
             "there is no mesh frequency to analyse (a run at rest, such as a ring-down, is "
             "read from its time series and summary.json; use gearcli simulate for it)")
     spectra = {name: amplitude_spectrum(run.column(col)[sel], rate) for name, col, _ in SIGNALS}
     expected = mesh_lines(f_z_measured, {"n1": n1, "n2": n2}, case.checks.harmonics)
     lines = {name: [(label, measure_line(f, a, fe)) for label, fe in expected]
              for name, (f, a) in spectra.items()}
-    result = Analysis(run, win, metrics, spectra, lines)
-    result.metrics.update(gear_mesh_frequency_Hz=f_z_measured, pinion_shaft_Hz=n1,
-                          gear_shaft_Hz=n2, output_rate_Hz=rate,
-                          frequency_resolution_Hz=spectra["force"][0][1])
+    metrics = dataclasses.replace(metrics, gear_mesh_frequency_Hz=f_z_measured,
+                                  pinion_shaft_Hz=n1, gear_shaft_Hz=n2, output_rate_Hz=rate,
+                                  frequency_resolution_Hz=float(spectra["force"][0][1]))
     n1_window = np.abs(run.column("omega1_rad_s")[sel]) / (2.0 * np.pi)  # [rev/s]
     band = (geo.pinion.teeth * float(n1_window.min()), geo.pinion.teeth * float(n1_window.max()))
-    result.checks = _checks(result, case, s, band)
-    result.warnings = list(run.summary.get("warnings", []))
+    resonance = resonance_check(s.modes, (metrics.mesh_natural_frequency_Hz,
+                                          metrics.mesh_damping_ratio),
+                                metrics.gear_mesh_frequency_Hz, case.checks, band)
+    metrics = dataclasses.replace(metrics, resonance_margins_percent=resonance.margins_percent,
+                                  resonance_margins=resonance.margins)
+    result = Analysis(run, win, metrics, spectra, lines)
+    result.checks = _checks(result, case, s, resonance.check)
+    result.warnings = list(run.summary.warnings)
     if strict:
         result.checks.append(Check("no_warnings", len(result.warnings), "0 (--strict)",
                                    not result.warnings, "; ".join(result.warnings)))
     return result
 
 
-def _window(t, s, given, f_z, geo) -> Window:
+def _window(t, s: Summary, given, f_z, geo) -> Window:
     t_end = float(t[-1])
     if given is None:
-        t0, t1 = map(float, s["window_s"])  # two numbers, T0 < T1 (io.results.check_summary)
+        t0, t1 = map(float, s.window_s)  # two numbers, T0 < T1 (io.results.check_summary)
         if not (t[0] - 1e-9 <= t0 and t1 <= t_end + 1e-9):
-            raise ResultsError(f"summary.json: window_s = {s.get('window_s')!r} is not a "
+            raise ResultsError(f"summary.json: window_s = {list(s.window_s)!r} is not a "
                                f"window of the run ({t[0]:g} ... {t_end:g} s; edited?); "
                                "expected T0 < T1 inside the run, or give --window T0 T1")
-        return Window(t0, t1, s["window_reason"])
+        return Window(t0, t1, s.window_reason)
     t0, t1 = map(float, given)
     if not (t[0] <= t0 < t1 <= t_end + 1e-9):
         raise ResultsError(f"--window {t0:g} {t1:g}: outside the run or empty; expected "
@@ -133,14 +147,14 @@ def _true_extremum(stored: float, t_at: float, win: Window, sampled: float, larg
     return sampled, "samples"
 
 
-def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
+def _metrics(run: StoredRun, sel, win: Window, geo, s: Summary) -> AnalysisMetrics:
     c = run.column
     force = c("force_total_N")[sel]
     delta = c("delta_mm")[sel]
     w1, w2 = c("omega1_rad_s")[sel], c("omega2_rad_s")[sel]
-    fmax, fmax_src = _true_extremum(s["force_max_N"], s["force_max_t_s"], win, force.max(), True)
+    fmax, fmax_src = _true_extremum(s.force_max_N, s.force_max_t_s, win, force.max(), True)
     fmin = float(force.min())
-    static = s["force_static_N"]
+    static = s.force_static_N
     ratio = float(w1.mean() / w2.mean())
     coast = c("force_coast_N")[sel] > 0.0
     # mean powers over the window from the solver's energy integrals (exact, unlike sample
@@ -156,42 +170,42 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
     p_damp_W = mean_power_W("loss_damping_mJ")
     p_in_W = mean_power_W("work_in_mJ")
     torque = c("drive_torque_Nmm")[sel]
-    return {
-        "window_s": [win.t0_s, win.t1_s],
-        "window_reason": win.reason,
-        "samples": int(sel.sum()),
-        "pinion_speed_mean_deg_s": math.degrees(float(w1.mean())),
-        "gear_speed_mean_deg_s": math.degrees(float(w2.mean())),
-        "speed_ratio": ratio,
-        "speed_ratio_theory": geo.ratio,
-        "speed_ratio_error_percent": 100.0 * (ratio - geo.ratio) / geo.ratio,
-        "gear_speed_fluctuation_percent": 100.0 * float(np.ptp(w2) / w2.mean()),
-        "force_mean_N": float(force.mean()),
-        "force_rms_N": float(np.sqrt(np.mean(force**2))),
-        "force_max_N": float(fmax),
-        "force_max_t_s": float(s["force_max_t_s"]) if fmax_src == "solver steps"
+    return AnalysisMetrics(
+        window_s=(win.t0_s, win.t1_s),
+        window_reason=win.reason,
+        samples=int(sel.sum()),
+        pinion_speed_mean_deg_s=math.degrees(float(w1.mean())),
+        gear_speed_mean_deg_s=math.degrees(float(w2.mean())),
+        speed_ratio=ratio,
+        speed_ratio_theory=geo.ratio,
+        speed_ratio_error_percent=100.0 * (ratio - geo.ratio) / geo.ratio,
+        gear_speed_fluctuation_percent=100.0 * float(np.ptp(w2) / w2.mean()),
+        force_mean_N=float(force.mean()),
+        force_rms_N=float(np.sqrt(np.mean(force**2))),
+        force_max_N=float(fmax),
+        force_max_t_s=float(s.force_max_t_s) if fmax_src == "solver steps"
         else float(c("t_s")[sel][int(np.argmax(force))]),
-        "force_max_source": fmax_src,
-        "force_min_N": fmin,
-        "force_static_N": static,
-        "dynamic_factor": float(fmax / static) if static > 0 else None,
-        "dte_mean_mm": float(delta.mean()),
-        "dte_peak_to_peak_mm": float(np.ptp(delta)),
-        "dte_rms_mm": float(np.std(delta)),
-        "contact_loss_fraction": float(np.mean(force <= 0.0)),
-        "coast_impacts": int(np.count_nonzero(coast[1:] & ~coast[:-1]) + int(coast[0])),
-        "friction_loss_W": p_fric_W,
-        "damping_loss_W": p_damp_W,
-        "input_power_W": p_in_W,
+        force_max_source=fmax_src,
+        force_min_N=fmin,
+        force_static_N=static,
+        dynamic_factor=float(fmax / static) if static > 0 else None,
+        dte_mean_mm=float(delta.mean()),
+        dte_peak_to_peak_mm=float(np.ptp(delta)),
+        dte_rms_mm=float(np.std(delta)),
+        contact_loss_fraction=float(np.mean(force <= 0.0)),
+        coast_impacts=int(np.count_nonzero(coast[1:] & ~coast[:-1]) + int(coast[0])),
+        friction_loss_W=p_fric_W,
+        damping_loss_W=p_damp_W,
+        input_power_W=p_in_W,
         # the mesh's dissipation (friction and contact/mesh damping) against the input; without
         # a load there is no useful output to rate (docs/theory.md §7)
-        "mesh_efficiency": 1.0 - (p_fric_W + p_damp_W) / p_in_W
+        mesh_efficiency=1.0 - (p_fric_W + p_damp_W) / p_in_W
         if p_in_W > 0 and mean_power_W("work_load_mJ") > 0 else None,
-        "drive_torque_mean_Nmm": float(torque.mean()),
-        "drive_torque_ripple_Nmm": float(np.ptp(torque)),
-        "mesh_natural_frequency_Hz": s["mesh_natural_frequency_Hz"],
-        "mesh_damping_ratio": s["mesh_damping_ratio"],
-    }
+        drive_torque_mean_Nmm=float(torque.mean()),
+        drive_torque_ripple_Nmm=float(np.ptp(torque)),
+        mesh_natural_frequency_Hz=s.mesh_natural_frequency_Hz,
+        mesh_damping_ratio=s.mesh_damping_ratio,
+    )
 
 
 #: Above this spread of the mesh frequency over the window, (max - min)/mean, the window is not
@@ -199,8 +213,17 @@ def _metrics(run: StoredRun, sel, win: Window, geo, s) -> dict:
 SWEPT_BAND = 0.05
 
 
-def resonance_check(m: dict, s: dict, f_z: float, ck,
-                    f_z_band: tuple[float, float] | None = None) -> Check:
+class Resonance(NamedTuple):
+    """The resonance-margin check with the margins it sets in the metrics."""
+
+    check: Check
+    margins_percent: tuple[float, ...]  #: per harmonic k = 1..N, to the nearest mode [%]
+    margins: tuple[ResonanceMargin, ...] | None  #: every harmonic against every mode; None
+    #: without a stored modal result
+
+
+def resonance_check(modes: tuple[StoredMode, ...], mesh_mode: tuple[float, float], f_z: float,
+                    ck, f_z_band: tuple[float, float] | None = None) -> Resonance:
     """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (docs/theory.md §7; issue 5).
 
     ``f_z_band`` = (lowest, highest) mesh frequency in the window [Hz]: when it spreads by more
@@ -208,21 +231,22 @@ def resonance_check(m: dict, s: dict, f_z: float, ck,
     k f_lo .. k f_hi and its margin to a mode is 0 where the band contains the mode, else the
     distance of the nearer band end (a resonance crossed in the window fails the check).
 
-    summary["modes"] (gearcli.pipeline.modal.modes_summary: every mode of the linearised model,
-    the same as `gearcli modal`) when the run has it, else the mesh mode of older results
-    folders. Modes without a resonant peak (ζ >= 1/√2, gearcli.model.modal) are not checked.
-    Sets m["resonance_margins_percent"] (per harmonic, to the nearest mode) and, with modes,
-    m["resonance_margins"] (every harmonic against every mode, nearest first).
+    ``modes``: summary.json's modes (gearcli.pipeline.modal.modes_summary: every mode of the
+    linearised model, the same as `gearcli modal`) when the run has them, else ``mesh_mode``
+    = (f_n [Hz], ζ) of older results folders. Modes without a resonant peak (ζ >= 1/√2,
+    gearcli.model.modal) are not checked. Returns the check, the margin of each harmonic to
+    the nearest mode and, with modes, every harmonic against every mode, nearest first.
     """
-    if s.get("modes"):  # an empty list (no modal result stored) counts as absent
-        modes = [(md["mode"], md["natural_frequency_Hz"], md["damping_ratio"])
-                 for md in s["modes"] if not md["rigid_body"] and md["natural_frequency_Hz"]]
+    stored = bool(modes)  # an empty list (no modal result stored) counts as absent
+    if stored:
+        modes = [(md.mode, md.natural_frequency_Hz, md.damping_ratio)
+                 for md in modes if not md.rigid_body and md.natural_frequency_Hz]
     else:
-        modes = [(None, m["mesh_natural_frequency_Hz"], m["mesh_damping_ratio"])]
+        modes = [(None, *mesh_mode)]
     limit = f">= {ck.resonance_margin_percent:g} %"
     if not modes:
-        m["resonance_margins_percent"] = []
-        return Check("resonance_margin_percent", None, limit, True, "no elastic mode")
+        return Resonance(Check("resonance_margin_percent", None, limit, True, "no elastic mode"),
+                         (), None)
     lo, hi = f_z_band if f_z_band is not None else (f_z, f_z)
     swept = f_z > 0.0 and (hi - lo) / f_z > SWEPT_BAND
 
@@ -233,51 +257,50 @@ def resonance_check(m: dict, s: dict, f_z: float, ck,
             return 0.0
         return min(abs(k * lo - f_n), abs(k * hi - f_n)) / f_n * 100.0
 
-    rows = sorted(({"harmonic": k, "mode": num, "excitation_Hz": k * f_z, "mode_Hz": f_n,
-                    "margin_percent": margin(k, f_n),
-                    "resonant_peak": has_resonant_peak(zeta)}
-                   for num, f_n, zeta in modes for k in range(1, ck.harmonics + 1)),
-                  key=lambda r: r["margin_percent"])
-    m["resonance_margins_percent"] = [min(r["margin_percent"] for r in rows
-                                          if r["harmonic"] == k)
-                                      for k in range(1, ck.harmonics + 1)]
-    if s.get("modes"):
-        m["resonance_margins"] = rows
+    rows = tuple(sorted((ResonanceMargin(k, num, k * f_z, f_n, margin(k, f_n),
+                                         has_resonant_peak(zeta))
+                         for num, f_n, zeta in modes for k in range(1, ck.harmonics + 1)),
+                        key=lambda r: r.margin_percent))
+    per_harmonic = tuple(min(r.margin_percent for r in rows if r.harmonic == k)
+                         for k in range(1, ck.harmonics + 1))
     near = rows[0]
-    name = "mesh mode" if near["mode"] is None else f"mode {near['mode']}"
-    note = (f"nearest: {near['harmonic']} x f_z = {near['excitation_Hz']:.1f} Hz vs {name} "
-            f"{near['mode_Hz']:.1f} Hz")
+    name = "mesh mode" if near.mode is None else f"mode {near.mode}"
+    note = (f"nearest: {near.harmonic} x f_z = {near.excitation_Hz:.1f} Hz vs {name} "
+            f"{near.mode_Hz:.1f} Hz")
     if swept:
         note = (f"the window is not steady: f_z sweeps {lo:.1f}-{hi:.1f} Hz, so each k x f_z "
                 f"sweeps a band and a mode inside it is crossed (margin 0); " + note)
     # A mode with zeta >= 1/sqrt(2) has no resonant peak (one rule: gearcli.model.modal).
     no_peak = [(num, zeta) for num, _, zeta in modes if not has_resonant_peak(zeta)]
-    if no_peak and near["mode"] is None:
+    if no_peak and near.mode is None:
         note += f"; the mode has no resonant peak (damping ratio {no_peak[0][1]:.2f} >= 0.707)"
     elif no_peak:
         note += (f"; mode(s) {', '.join(str(n) for n, _ in no_peak)} have no resonant peak "
                  "(damping ratio >= 0.707) and are not checked")
-    peaked = [r for r in rows if r["resonant_peak"]]
+    peaked = [r for r in rows if r.resonant_peak]
+    margins = rows if stored else None
     if not peaked:
-        return Check("resonance_margin_percent", None, limit, True,
-                     "not checked: no mode has a resonant peak (every damping ratio >= 0.707: "
-                     "overdamped); " + note, checked=False)
-    ok = peaked[0]["margin_percent"] >= ck.resonance_margin_percent
-    if not ok and near["mode"] is not None:
+        return Resonance(Check("resonance_margin_percent", None, limit, True,
+                               "not checked: no mode has a resonant peak (every damping ratio "
+                               ">= 0.707: overdamped); " + note, checked=False),
+                         per_harmonic, margins)
+    ok = peaked[0].margin_percent >= ck.resonance_margin_percent
+    if not ok and near.mode is not None:
         p = peaked[0]
-        note += (f"; violated by {p['harmonic']} x f_z vs mode {p['mode']} "
-                 f"({p['margin_percent']:.1f} %)")
-    return Check("resonance_margin_percent", peaked[0]["margin_percent"], limit, ok, note)
+        note += (f"; violated by {p.harmonic} x f_z vs mode {p.mode} "
+                 f"({p.margin_percent:.1f} %)")
+    return Resonance(Check("resonance_margin_percent", peaked[0].margin_percent, limit, ok,
+                           note), per_harmonic, margins)
 
 
-def _checks(res: Analysis, case, s, f_z_band: tuple[float, float]) -> list[Check]:
+def _checks(res: Analysis, case, s: Summary, resonance: Check) -> list[Check]:
     m, ck = res.metrics, case.checks
-    f_z, rate = m["gear_mesh_frequency_Hz"], m["output_rate_Hz"]
+    f_z, rate = m.gear_mesh_frequency_Hz, m.output_rate_Hz
     out = [
         Check("solver_status", "ok", "ok", True),
-        Check("speed_ratio_error_percent", m["speed_ratio_error_percent"],
+        Check("speed_ratio_error_percent", m.speed_ratio_error_percent,
               f"|e| <= {ck.speed_ratio_error_percent:g} %",
-              abs(m["speed_ratio_error_percent"]) <= ck.speed_ratio_error_percent),
+              abs(m.speed_ratio_error_percent) <= ck.speed_ratio_error_percent),
     ]
     top = ck.harmonics * f_z
     ok = top < rate / 2.0
@@ -293,22 +316,22 @@ def _checks(res: Analysis, case, s, f_z_band: tuple[float, float]) -> list[Check
     out.append(Check("no_aliasing", top, f"{ck.harmonics} x f_z < fs/2 = {rate / 2:g} Hz", ok,
                      note))
     gmf = dict(res.lines["gear_speed"])["1fz"]
-    freq, amp = res.spectra["gear_speed"]
+    freq, amp = res.amplitude_spectra["gear_speed"]
     floor = float(np.median(amp[1:])) if amp.size > 1 else 0.0
     present = gmf.resolvable and gmf.amplitude > LINE_PROMINENCE * floor  # resolvable: +-1 bin
     out.append(Check("gmf_line_present", gmf.measured_Hz if gmf.resolvable else None,
                      f"line at f_z = {f_z:.3f} Hz +- 1 bin, > {LINE_PROMINENCE:g} x floor",
                      bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"
                      if f_z >= rate / 2.0 else "no peak within 1 bin of f_z"))
-    out.append(resonance_check(m, s, f_z, ck, f_z_band))
-    if m["dynamic_factor"] is not None:
-        out.append(Check("dynamic_factor", m["dynamic_factor"], f"<= {ck.dynamic_factor_max:g}",
-                         m["dynamic_factor"] <= ck.dynamic_factor_max,
+    out.append(resonance)
+    if m.dynamic_factor is not None:
+        out.append(Check("dynamic_factor", m.dynamic_factor, f"<= {ck.dynamic_factor_max:g}",
+                         m.dynamic_factor <= ck.dynamic_factor_max,
                          "max normal force / static force over the window"))
     else:
         out.append(Check("dynamic_factor", None, f"<= {ck.dynamic_factor_max:g}", True,
                          "not checked: no load (static force 0)", checked=False))
-    loss = m["contact_loss_fraction"]
+    loss = m.contact_loss_fraction
     out.append(Check("contact_loss_fraction", loss,
                      f"<= {ck.contact_loss_fraction_max:g} "
                      f"({100.0 * ck.contact_loss_fraction_max:g} %)",
@@ -316,10 +339,10 @@ def _checks(res: Analysis, case, s, f_z_band: tuple[float, float]) -> list[Check
                      f"{100.0 * loss:.3g} % of the window without drive-flank contact (tooth "
                      "separation); value and limit as fractions"))
     if ck.dte_peak_to_peak_max is not None:
-        out.append(Check("dte_peak_to_peak_mm", m["dte_peak_to_peak_mm"],
+        out.append(Check("dte_peak_to_peak_mm", m.dte_peak_to_peak_mm,
                          f"<= {ck.dte_peak_to_peak_max:g} mm",
-                         m["dte_peak_to_peak_mm"] <= ck.dte_peak_to_peak_max))
-    eb = s["energy_balance"]["relative_residual"]
+                         m.dte_peak_to_peak_mm <= ck.dte_peak_to_peak_max))
+    eb = s.energy_relative_residual
     out.append(Check("energy_balance", eb, f"<= {ck.energy_balance_tolerance:g}",
                      eb <= ck.energy_balance_tolerance))
     return out

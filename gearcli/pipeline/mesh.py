@@ -7,6 +7,7 @@ mesh stiffness beside ISO 6336-1, and the Harris map on request.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -28,12 +29,17 @@ from gearcli.pipeline.mesh_input import (
     iso_stiffness,
     tooth_stiffness,
 )
+from gearcli.results.models import HarrisMap, IsoResonance, MeshSte, MeshStiffness, MeshSummary
 
 ARCSEC_PER_RAD = 180.0 / math.pi * 3600.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class MeshAnalysis:
+    """Quasi-static loaded tooth contact of a pair (`gearcli mesh`, :func:`gearcli.mesh`):
+    :attr:`summary` STE [µm], mesh stiffness [N/mm] against ISO 6336-1 c′b and c_γα b, n_E1
+    and K_v; :attr:`table` per pinion roll position (mesh.csv); ``notes`` what it leaves out."""
+
     source: LoadedCase  #: the case analysed
     name: str
     geometry: GeometryResult
@@ -42,6 +48,28 @@ class MeshAnalysis:
     iso: IsoStiffness
     harris: tuple[np.ndarray, np.ndarray] | None  #: loads [N], STE peak-to-peak [mm]
     notes: tuple[str, ...]  #: what the quasi-static model leaves out for this case
+
+    @property
+    def summary(self) -> MeshSummary:
+        """The typed document of `gearcli mesh --json`."""
+        return mesh_document(self)
+
+    @property
+    def table(self):
+        """Per pinion roll position ``roll_mm``: STE, unloaded TE [µm], mesh stiffness [N/mm],
+        pairs in contact, each pair's position [mm] and force [N] (mesh.csv), a DataFrame."""
+        from gearcli.io.tables import columns_to_frame
+
+        return columns_to_frame(mesh_table(self), "roll_mm")
+
+    def document(self) -> dict:
+        """What `gearcli mesh --json` prints."""
+        return mesh_document(self).to_dict()
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (f"<Mesh {self.name}: STE {s.ste.peak_to_peak_um:.3g} µm peak to peak, mean "
+                f"stiffness {s.stiffness.mesh_mean_N_mm:.4g} N/mm>")
 
 
 def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None,
@@ -92,57 +120,52 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))
 
 
-def _iso_resonance(res: MeshAnalysis) -> dict:
+def _iso_resonance(res: MeshAnalysis) -> IsoResonance:
     """ISO 6336-1 Method B resonance speed n_E1 and the case's resonance ratio N = n1/n_E1
     with its K_v (the case's deviations: mesh_input.iso_deviations; gearcli/model/iso_kv.py)."""
     from gearcli.model.iso_kv import dynamic_factor
-    from gearcli.pipeline.mesh_input import KV_KEYS, iso_dynamic
+    from gearcli.pipeline.mesh_input import iso_dynamic, kv_arguments
 
     iso = iso_dynamic(res.source.case, res.geometry)
     speed = res.geometry.pinion_speed_rad_s
     if speed:
         n1 = abs(speed) * 30.0 / math.pi
-        ratio = n1 / iso["resonance_speed_rpm"]
-        kv = dynamic_factor(ratio, **{k: iso[k] for k in KV_KEYS})
-        iso.update(pinion_speed_rpm=n1, resonance_ratio=ratio, k_v=float(kv.k_v),
-                   speed_range=str(kv.range_name))
+        ratio = n1 / iso.resonance_speed_rpm
+        kv = dynamic_factor(ratio, **kv_arguments(iso))
+        iso = dataclasses.replace(iso, pinion_speed_rpm=n1, resonance_ratio=ratio,
+                                  k_v=float(kv.k_v), speed_range=str(kv.range_name))
     return iso
 
 
-def mesh_document(res: MeshAnalysis) -> dict:
-    """JSON document of a mesh analysis (internal units, names carry units)."""
+def mesh_document(res: MeshAnalysis) -> MeshSummary:
+    """The typed document of a mesh analysis (its JSON: ``.to_dict()``; internal units, names
+    carry units)."""
     lm, g = res.loaded, res.geometry.geometry
     to_arcsec = ARCSEC_PER_RAD / g.pinion.r_b_mm  # δ along the LoA -> pinion angle
     harm = lm.ste_harmonics_mm(3)
     from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 
-    doc = {
-        "schema_version": RESULTS_SCHEMA_VERSION,
-        "case": res.name,
-        "contact_law": res.law,
-        "force_N": lm.force_N,
-        "mesh_cycles": lm.cycles,
-        "ste": {
-            "mean_um": 1e3 * float(lm.ste_mm.mean()),
-            "peak_to_peak_um": 1e3 * lm.ste_peak_to_peak_mm,
-            "peak_to_peak_arcsec": lm.ste_peak_to_peak_mm * to_arcsec,
-            "harmonics_um": {f"{k + 1}fz": 1e3 * float(a) for k, a in enumerate(harm)},
-            "unloaded_te_peak_to_peak_um": 1e3 * float(np.ptp(lm.unloaded_te_mm)),
-        },
-        "stiffness": {
-            "mesh_mean_N_mm": float(lm.mesh_stiffness_N_mm.mean()),
-            "single_pair_zone_N_mm": json_number(lm.zone_stiffness_N_mm(1)),
-            "double_pair_zone_N_mm": json_number(lm.zone_stiffness_N_mm(2)),
-            "iso6336_single_pair_c_prime_b_N_mm": res.iso.pair_stiffness_N_mm,
-            "iso6336_mean_c_gamma_alpha_b_N_mm": res.iso.mesh_stiffness_N_mm,
-        },
-        "iso6336_method_b": _iso_resonance(res),
-        "notes": list(res.notes),
-    }
+    harris = None
     if res.harris is not None:
         loads, ptp = res.harris
-        doc["harris"] = {"force_N": loads.tolist(), "ste_peak_to_peak_um": (1e3 * ptp).tolist()}
-    return doc
+        harris = HarrisMap(tuple(loads.tolist()), tuple((1e3 * ptp).tolist()))
+    return MeshSummary(
+        schema_version=RESULTS_SCHEMA_VERSION, case=res.name, contact_law=res.law,
+        force_N=lm.force_N, mesh_cycles=lm.cycles,
+        ste=MeshSte(
+            mean_um=1e3 * float(lm.ste_mm.mean()),
+            peak_to_peak_um=1e3 * lm.ste_peak_to_peak_mm,
+            peak_to_peak_arcsec=lm.ste_peak_to_peak_mm * to_arcsec,
+            harmonics_um={f"{k + 1}fz": 1e3 * float(a) for k, a in enumerate(harm)},
+            unloaded_te_peak_to_peak_um=1e3 * float(np.ptp(lm.unloaded_te_mm))),
+        stiffness=MeshStiffness(
+            mesh_mean_N_mm=float(lm.mesh_stiffness_N_mm.mean()),
+            single_pair_zone_N_mm=json_number(lm.zone_stiffness_N_mm(1)),
+            double_pair_zone_N_mm=json_number(lm.zone_stiffness_N_mm(2)),
+            iso6336_single_pair_c_prime_b_N_mm=res.iso.pair_stiffness_N_mm,
+            iso6336_mean_c_gamma_alpha_b_N_mm=res.iso.mesh_stiffness_N_mm),
+        iso6336_method_b=_iso_resonance(res),
+        notes=tuple(res.notes), harris=harris)
 
 
 def mesh_table(res: MeshAnalysis):
@@ -196,7 +219,8 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
 
     case_json = json.loads(res.source.case.model_dump_json())
     with atomic_dir(folder, force) as tmp:
-        (tmp / "mesh.json").write_text(json.dumps(doc or mesh_document(res), indent=2) + "\n")
+        (tmp / "mesh.json").write_text(
+            json.dumps(doc or mesh_document(res).to_dict(), indent=2) + "\n")
         (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
         save_mesh_plot(res, tmp / "mesh.png", units)
         provenance = manifest(res.source.source, case_json, overrides)

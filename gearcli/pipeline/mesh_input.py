@@ -14,6 +14,7 @@ from gearcli.case.schema import Case
 from gearcli.model.mesh import MeshMode, mesh_mode, static_normal_force_N, tooth_mesh_mode
 from gearcli.model.stiffness import derived_pair_stiffness
 from gearcli.pipeline.geometry import GeometryResult
+from gearcli.results.models import IsoResonance
 
 if TYPE_CHECKING:
     from gearcli.model.pair_stiffness import PairStiffness
@@ -123,14 +124,15 @@ def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
                      pinion_free=case.drive.type != "speed")
 
 
-def iso_dynamic(case: Case, geo: GeometryResult):
+def iso_dynamic(case: Case, geo: GeometryResult) -> IsoResonance:
     """ISO 6336-1 Method B resonance data of the case's pair (gearcli/model/iso_kv.py): the
     reduced mass (solid gears, or the given bores), the line load F_t/b [N/mm] (K_A = 1), c′
     and c_γα [N/(mm·µm)] with the standard's low-load factor (the rating values: below
     100 N/mm ISO 6336-1 §9.3 reduces c′ by (F_t K_A/b/100)^0.25, and n_E1 and B_p, B_f, B_k
     are computed from that c′), n_E1 [min⁻¹], and the case's deviations as Method B takes them
-    (:func:`iso_deviations`). Returns a dict (internal units where not stated); the keyword
-    arguments of :func:`gearcli.model.iso_kv.dynamic_factor` are :data:`KV_KEYS`."""
+    (:func:`iso_deviations`), as the mesh JSON's typed ``iso6336_method_b`` (internal units
+    where not stated); :func:`kv_arguments` gives the keyword arguments of
+    :func:`gearcli.model.iso_kv.dynamic_factor`."""
     from gearcli.model.iso_kv import reduced_mass_kg_mm, resonance_speed_rpm
 
     g, gears = geo.geometry, case.gears
@@ -145,17 +147,19 @@ def iso_dynamic(case: Case, geo: GeometryResult):
     line_load = static_force_N(case, geo) * math.cos(g.pressure_angle_rad) / width
     c_prime = iso.c_prime_rating
     c_gamma_alpha = iso.c_gamma_alpha * iso.load_factor
-    out = {"reduced_mass_kg_mm": m_red, "low_load_factor": iso.load_factor,
-           "c_prime_N_mm_um": c_prime, "c_gamma_alpha_N_mm_um": c_gamma_alpha,
-           "line_load_N_mm": line_load, "eps_gamma": g.eps_alpha,
-           "resonance_speed_rpm": resonance_speed_rpm(g.pinion.teeth, c_gamma_alpha, m_red)}
-    out.update(iso_deviations(case, geo, c_prime, line_load))
-    return out
+    return IsoResonance(
+        reduced_mass_kg_mm=m_red, low_load_factor=iso.load_factor, c_prime_N_mm_um=c_prime,
+        c_gamma_alpha_N_mm_um=c_gamma_alpha, line_load_N_mm=line_load, eps_gamma=g.eps_alpha,
+        resonance_speed_rpm=resonance_speed_rpm(g.pinion.teeth, c_gamma_alpha, m_red),
+        **iso_deviations(case, geo, c_prime, line_load))
 
 
-#: The entries of :func:`iso_dynamic` that :func:`gearcli.model.iso_kv.dynamic_factor` takes.
-KV_KEYS = ("eps_gamma", "c_prime_N_mm_um", "line_load_N_mm", "f_pb_eff_um", "f_f_eff_um",
-           "tip_relief_um")
+def kv_arguments(iso: IsoResonance) -> dict[str, float]:
+    """The keyword arguments of :func:`gearcli.model.iso_kv.dynamic_factor` from the ISO data
+    of :func:`iso_dynamic`."""
+    return {"eps_gamma": iso.eps_gamma, "c_prime_N_mm_um": iso.c_prime_N_mm_um,
+            "line_load_N_mm": iso.line_load_N_mm, "f_pb_eff_um": iso.f_pb_eff_um,
+            "f_f_eff_um": iso.f_f_eff_um, "tip_relief_um": iso.tip_relief_um}
 
 
 def running_in_tip_relief_um(sigma_hlim_MPa: float) -> float:

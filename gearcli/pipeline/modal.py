@@ -34,6 +34,9 @@ from gearcli.model.modal import (
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import linearised_mesh
 from gearcli.pipeline.structure import build_structure, refuse_unsupported
+from gearcli.results import Check, ModalDocument, Mode, StoredMode
+from gearcli.results.models import Crossing as CrossingDoc
+from gearcli.results.models import OrderMargin
 
 DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
@@ -43,19 +46,11 @@ SPEED_RANGE_FACTOR = 1.5
 MAX_SPEED_DEG_S = 1e5 * 180.0 / math.pi
 
 
-@dataclass
-class ModalCheck:
-    name: str
-    value: float | None
-    limit: str
-    passed: bool
-    note: str = ""
-    #: False when the check could not apply (the note says why): it passes, shown "not checked"
-    checked: bool = True
-
-
-@dataclass
+@dataclass(repr=False)
 class ModalAnalysis:
+    """Modes of the linearised model, crossings and the resonance-margin check (`gearcli
+    modal`, :func:`gearcli.modal`); ``modes`` the typed modes of :meth:`document`."""
+
     loaded: LoadedCase
     geometry: GeometryResult
     system: LinearSystem
@@ -66,7 +61,7 @@ class ModalAnalysis:
     case_speed_deg_s: float | None
     speed_range_deg_s: tuple[float, float]
     margins: list[Margin] = field(default_factory=list)
-    checks: list[ModalCheck] = field(default_factory=list)
+    checks: list[Check] = field(default_factory=list)
 
     @property
     def name(self) -> str:
@@ -75,6 +70,24 @@ class ModalAnalysis:
     @property
     def passed(self) -> bool:
         return all(c.passed for c in self.checks)
+
+    @property
+    def modes(self) -> list[Mode]:
+        return list(modal_document(self).modes)
+
+    def document(self) -> dict:
+        """What `gearcli modal --json` prints (the JSON data of :func:`modal_document`)."""
+        return modal_document(self).to_dict()
+
+    def plot(self, units: str = "engineering"):
+        """The Campbell diagram and mode shapes (a ``matplotlib.figure.Figure``); the speed
+        axis in the display ``units`` ("engineering": rpm, "si": rad/s)."""
+        return campbell_figure(self, units)
+
+    def __repr__(self) -> str:
+        f = [round(m.natural_frequency_Hz, 1) for m in self.result.modes if not m.rigid
+             and m.natural_frequency_Hz]
+        return f"<Modal {self.name}: modes at {f} Hz>"
 
 
 def _final_drive_torque_Nmm(case: Case) -> float:
@@ -115,12 +128,12 @@ def _solve(system: LinearSystem, file: str | None = None) -> ModalResult:
         raise CaseError(f"modal model: {err}", file=file) from err
 
 
-def modes_summary(result: ModalResult) -> list[dict]:
-    """JSON-ready list of the modes, one dict each: mode, natural_frequency_Hz, damping_ratio,
-    description, rigid_body (frequency and damping ratio None for rigid-body modes)."""
-    return [{"mode": m.number, "natural_frequency_Hz": m.natural_frequency_Hz,
-             "damping_ratio": m.damping_ratio, "description": m.description,
-             "rigid_body": m.rigid} for m in result.modes]
+def modes_summary(result: ModalResult) -> tuple[StoredMode, ...]:
+    """The modes as summary.json keeps them (frequency and damping ratio None for rigid-body
+    modes)."""
+    return tuple(StoredMode(mode=m.number, natural_frequency_Hz=m.natural_frequency_Hz,
+                            damping_ratio=m.damping_ratio, description=m.description,
+                            rigid_body=m.rigid) for m in result.modes)
 
 
 def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = None,
@@ -157,17 +170,17 @@ def run_modal(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     return out
 
 
-def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
+def _margin_check(res: ModalAnalysis, limit: float) -> Check:
     name, lim = "resonance_margin_percent", f">= {limit:g} %"
     if res.case_speed_deg_s is None:
         speed = res.loaded.case.drive.speed
         why = ("a torque drive without drive.reference_speed" if res.system.drive == "torque"
                else "drive.speed has no constant final value" if speed.pp.final_value() is None
                else "the pinion does not turn")
-        return ModalCheck(name, None, lim, True, f"not checked: no case speed ({why}); see the "
+        return Check(name, None, lim, True, f"not checked: no case speed ({why}); see the "
                           "crossing speeds", checked=False)
     if not res.margins:
-        return ModalCheck(name, None, lim, True, "not checked: no elastic mode", checked=False)
+        return Check(name, None, lim, True, "not checked: no elastic mode", checked=False)
     near = res.margins[0]
     note = (f"nearest: {near.order} = {near.excitation_Hz:.1f} Hz vs mode {near.mode} "
             f"{near.mode_Hz:.1f} Hz")
@@ -177,30 +190,30 @@ def _margin_check(res: ModalAnalysis, limit: float) -> ModalCheck:
         note += (f"; mode(s) {', '.join(map(str, no_peak))} have no resonant peak (damping "
                  f"ratio >= {NO_PEAK_DAMPING_RATIO:.3f}) and are not checked")
     if not peaked:
-        return ModalCheck(name, near.margin_percent, lim, True, "not checked: no mode has a "
+        return Check(name, near.margin_percent, lim, True, "not checked: no mode has a "
                           "resonant peak; " + note, checked=False)
     ok = peaked[0].margin_percent >= limit
     if peaked and not ok:
         p = peaked[0]
         note += f"; violated by {p.order} vs mode {p.mode} ({p.margin_percent:.1f} %)"
-    return ModalCheck(name, near.margin_percent, lim, ok, note)
+    return Check(name, near.margin_percent, lim, ok, note)
 
 
-def modal_document(res: ModalAnalysis) -> dict:
-    """JSON-ready report; names carry units."""
+def modal_document(res: ModalAnalysis) -> ModalDocument:
+    """The modal JSON (``.to_dict()``); names carry units."""
     from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 
     m, st = res.mesh, res.system.structure
-    return {
-        "schema_version": RESULTS_SCHEMA_VERSION,
-        "case": res.name,
-        "model": res.loaded.case.model,
-        "drive": res.system.drive,
-        "dofs": list(res.result.dofs),
-        "shape_convention": "each coordinate as a length: rotations as the roll distance "
-                            "r_b theta at the body's base circle (motor, pinion r_b1; gear, load "
-                            "r_b2), centre displacements in mm; largest component = 1",
-        "bodies": {
+    return ModalDocument(
+        schema_version=RESULTS_SCHEMA_VERSION,
+        case=res.name,
+        model=res.loaded.case.model,
+        drive=res.system.drive,
+        dofs=list(res.result.dofs),
+        shape_convention="each coordinate as a length: rotations as the roll distance r_b theta "
+                         "at the body's base circle (motor, pinion r_b1; gear, load r_b2), "
+                         "centre displacements in mm; largest component = 1",
+        bodies={
             "motor_inertia_t_mm2": st.motor_inertia_t_mm2 or None,
             "pinion_inertia_t_mm2": st.J1_t_mm2,
             "gear_inertia_t_mm2": st.J2_t_mm2,
@@ -208,7 +221,7 @@ def modal_document(res: ModalAnalysis) -> dict:
             "pinion_mass_t": st.m1_t if st.lateral else None,
             "gear_mass_t": st.m2_t if st.lateral else None,
         },
-        "linearisation": {
+        linearisation={
             "static_force_N": m.static_force_N,
             "static_deflection_mm": m.static_deflection_mm,
             "pair_stiffness_N_mm": m.pair_stiffness_N_mm,
@@ -220,35 +233,28 @@ def modal_document(res: ModalAnalysis) -> dict:
             "load_quadratic_damping_Nmms_rad": res.system.load_quadratic_damping_Nmms_rad,
             "friction": "off",
         },
-        "modes": [{
-            "mode": md.number,
-            "rigid_body": md.rigid,
-            "natural_frequency_Hz": md.natural_frequency_Hz,
-            "damping_ratio": md.damping_ratio,
-            "damped_frequency_Hz": md.damped_frequency_Hz,
-            "undamped_frequency_Hz": md.undamped_frequency_Hz,
-            "resonant_peak": md.has_peak,
-            "description": md.description,
-            "shape": dict(zip(res.result.dofs, md.shape, strict=True)),
-            "strain_energy_share": md.strain_energy,
-            "kinetic_energy_share": md.kinetic_energy,
-            "eigenvalues_1_s": [[r.real, r.imag] for r in md.eigenvalues],
-        } for md in res.result.modes],
-        "case_speed_deg_s": res.case_speed_deg_s,
-        "speed_range_deg_s": list(res.speed_range_deg_s),
-        "orders_per_pinion_rev": {o.name: o.per_rev for o in res.orders},
-        "crossings": [{"order": c.order, "mode": c.mode, "frequency_Hz": c.frequency_Hz,
-                       "pinion_speed_deg_s": c.pinion_speed_rev_s * 360.0,
-                       "in_range": res.speed_range_deg_s[0] <= c.pinion_speed_rev_s * 360.0
-                       <= res.speed_range_deg_s[1]} for c in res.crossings],
-        "margins_at_case_speed": [{"order": x.order, "mode": x.mode,
-                                   "excitation_Hz": x.excitation_Hz, "mode_Hz": x.mode_Hz,
-                                   "margin_percent": x.margin_percent,
-                                   "resonant_peak": x.has_peak} for x in res.margins],
-        "checks": [{"name": c.name, "value": c.value, "limit": c.limit, "passed": c.passed,
-                    "checked": c.checked, "note": c.note} for c in res.checks],
-        "passed": res.passed,
-    }
+        modes=tuple(Mode(
+            mode=md.number, rigid_body=md.rigid, natural_frequency_Hz=md.natural_frequency_Hz,
+            damping_ratio=md.damping_ratio, damped_frequency_Hz=md.damped_frequency_Hz,
+            undamped_frequency_Hz=md.undamped_frequency_Hz, resonant_peak=md.has_peak,
+            description=md.description, shape=dict(zip(res.result.dofs, md.shape, strict=True)),
+            strain_energy_share=md.strain_energy, kinetic_energy_share=md.kinetic_energy,
+            eigenvalues_1_s=tuple([r.real, r.imag] for r in md.eigenvalues))
+            for md in res.result.modes),
+        case_speed_deg_s=res.case_speed_deg_s,
+        speed_range_deg_s=list(res.speed_range_deg_s),
+        orders_per_pinion_rev={o.name: o.per_rev for o in res.orders},
+        crossings=tuple(CrossingDoc(c.order, c.mode, c.frequency_Hz,
+                                    c.pinion_speed_rev_s * 360.0,
+                                    res.speed_range_deg_s[0] <= c.pinion_speed_rev_s * 360.0
+                                    <= res.speed_range_deg_s[1]) for c in res.crossings),
+        margins_at_case_speed=tuple(OrderMargin(x.order, x.mode, x.excitation_Hz, x.mode_Hz,
+                                                x.margin_percent, x.has_peak)
+                                    for x in res.margins),
+        checks=[{"name": c.name, "value": c.value, "limit": c.limit, "passed": c.passed,
+                 "checked": c.checked, "note": c.note} for c in res.checks],
+        passed=res.passed,
+    )
 
 
 def campbell_figure(res: ModalAnalysis, units: str = "engineering"):

@@ -11,7 +11,7 @@ import numpy as np
 from gearcli.errors import OutputError
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION, manifest
 from gearcli.io.outdir import atomic_dir
-from gearcli.pipeline.simulate import SimulationResult
+from gearcli.results import SummaryDocument
 
 #: Formats of the time series: CSV (10 significant digits, the default; any tool reads it)
 #: and Parquet (full float64 precision, compressed: for long runs and sweeps).
@@ -20,14 +20,15 @@ TIMESERIES_FORMATS = ("csv", "parquet")
 ZOOM_FILE = "zoom.csv"
 
 
-def summary_document(res: SimulationResult) -> dict:
+def summary_document(res) -> SummaryDocument:
+    """summary.json of a run (its JSON: ``.to_dict()``)."""
     k = res.kernel
-    return {
-        "schema_version": RESULTS_SCHEMA_VERSION,
-        "case": res.name,
-        "status": res.status,
-        **({"invalid_reason": res.invalid_reason} if res.status != "ok" else {}),
-        "solver": {
+    return SummaryDocument(
+        schema_version=RESULTS_SCHEMA_VERSION,
+        case=res.name,
+        status=res.status,
+        invalid_reason=res.invalid_reason if res.status != "ok" else None,
+        solver={
             "message": k.message,
             **k.counters,
             "wall_time_s": res.wall_time_s,
@@ -35,14 +36,14 @@ def summary_document(res: SimulationResult) -> dict:
             "engagement": res.loaded.case.contact.engagement,
             "drive": res.loaded.case.drive.type,
         },
-        "rows": int(k.series.shape[0]),
-        "slots": int(k.slot_force.shape[1]),
-        "warnings": res.warnings,
-        "scalars": res.summary,
-    }
+        rows=int(k.series.shape[0]),
+        slots=int(k.slot_force.shape[1]),
+        warnings=tuple(res.warnings),
+        scalars=res.summary,
+    )
 
 
-def timeseries_csv(res: SimulationResult) -> str:
+def timeseries_csv(res) -> str:
     """The time series as CSV text: header of column names with units, numbers as ``%.10g``
     (compiled, gearcli.core.csvtext: the text numpy.savetxt wrote, ~4x faster)."""
     from gearcli.core.csvtext import csv_text
@@ -51,7 +52,7 @@ def timeseries_csv(res: SimulationResult) -> str:
     return csv_text(list(columns), np.column_stack(list(columns.values())))
 
 
-def write_timeseries(res: SimulationResult, folder: Path, fmt: str = "csv") -> Path:
+def write_timeseries(res, folder: Path, fmt: str = "csv") -> Path:
     """``folder``/timeseries.<fmt>; returns its path."""
     if fmt not in TIMESERIES_FORMATS:
         raise OutputError(f"time-series format {fmt!r}: expected one of "
@@ -66,7 +67,7 @@ def write_timeseries(res: SimulationResult, folder: Path, fmt: str = "csv") -> P
     return path
 
 
-def write_simulation(res: SimulationResult, target: str | Path, force: bool,
+def write_simulation(res, target: str | Path, force: bool,
                      overrides: list[str] | None = None, fmt: str = "csv") -> Path:
     """Write the three files atomically into ``target`` (see io.outdir); the time series as
     ``fmt`` (:data:`TIMESERIES_FORMATS`)."""
@@ -75,7 +76,7 @@ def write_simulation(res: SimulationResult, target: str | Path, force: bool,
     return Path(target)
 
 
-def write_simulation_files(res: SimulationResult, folder: Path,
+def write_simulation_files(res, folder: Path,
                            overrides: list[str] | None = None, fmt: str = "csv") -> None:
     """The time series, summary.json and manifest.json into an existing (temporary) folder."""
     case_json = json.loads(res.loaded.case.model_dump_json())
@@ -84,6 +85,7 @@ def write_simulation_files(res: SimulationResult, folder: Path,
         from gearcli.io.tables import columns_to_csv
 
         (folder / ZOOM_FILE).write_text(columns_to_csv(res.zoom))
-    (folder / "summary.json").write_text(json.dumps(summary_document(res), indent=2) + "\n")
+    summary = summary_document(res).to_dict()
+    (folder / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     doc = manifest(res.loaded.source, case_json, overrides)
     (folder / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")

@@ -7,7 +7,6 @@ import gc
 import math
 import sys
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -19,79 +18,13 @@ from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import (
     HARMONICS_RESOLVED,
     SAMPLES_PER_PERIOD,
-    KernelInput,
     build_kernel_input,
 )
+from gearcli.pipeline.simulation import SimulationResult
 from gearcli.pipeline.spectrum import alias_frequency
 from gearcli.pipeline.structure import refuse_unsupported
-from gearcli.pipeline.window import MIN_MESH_CYCLES, Window, steady_window
-
-
-@dataclass
-class SimulationResult:
-    """One finished run: inputs, sampled series, true extrema, counters, summary, warnings."""
-
-    loaded: LoadedCase
-    geometry: GeometryResult
-    kernel_input: KernelInput
-    kernel: object  # core.integrate.KernelResult
-    wall_time_s: float
-    window: Window
-    modes: object = None  # model.modal.ModalResult of the same model, linearised
-    summary: dict = field(default_factory=dict)
-    warnings: list[str] = field(default_factory=list)
-    #: "ok", or "invalid" when the run left the model's range (pipeline/validity.py)
-    status: str = "ok"
-    invalid_reason: str = ""
-    #: the solver's dense output on a fine grid around the force maximum and over the last
-    #: mesh cycles (:func:`dense_zoom`); empty when not made
-    zoom: dict = field(default_factory=dict)
-    #: whether ``wall_time_s`` includes compiling the solver (the first run after install)
-    compiled: bool = False
-
-    @property
-    def name(self) -> str:
-        return self.loaded.name
-
-    def columns(self) -> dict[str, np.ndarray]:
-        """Output columns in file order; names carry units."""
-        from gearcli.core.layout import COLUMN_NAMES, DRIVE_SHAFT, OPTIONAL_COLUMNS, P
-
-        k = self.kernel
-        prm = self.kernel_input.params
-        has = {"lateral": prm[P.lateral] != 0.0,
-               "drive_shaft": prm[P.motor_J] > 0.0 or prm[P.drive_mode] == DRIVE_SHAFT,
-               "load_shaft": prm[P.load_J] > 0.0}
-        names = [n for n in COLUMN_NAMES if n not in OPTIONAL_COLUMNS or has[OPTIONAL_COLUMNS[n]]]
-        cols = {name: k.series[:, i] for i, name in enumerate(COLUMN_NAMES)}
-        out = {n: cols[n] for n in names if not n.endswith("_mJ")
-               and n not in ("friction_power_mW",)}
-        for j in range(k.slot_force.shape[1]):
-            out[f"force_slot{j}_N"] = k.slot_force[:, j]
-        cycle, x = self.slot_positions()
-        out["mesh_cycle"] = cycle
-        for j in range(x.shape[1]):
-            out[f"x_slot{j}_mm"] = x[:, j]
-        for n in names:
-            if n.endswith("_mJ") or n == "friction_power_mW":
-                out[n] = cols[n]
-        return out
-
-
-    def slot_positions(self) -> tuple[np.ndarray, np.ndarray]:
-        """Mesh cycle n and each drive slot's pinion roll position x from A [mm] per sample.
-
-        x_j = x_lo + ((s1 - s1_0) mod p_b) + j p_b with n = floor((s1 - s1_0)/p_b) (core/rhs.py);
-        the pair in slot j has pinion tooth (n - j) mod z1 and gear tooth (n - j) mod z2.
-        """
-        from gearcli.core.layout import P
-
-        prm, g = self.kernel_input.params, self.geometry.geometry
-        r = self.kernel.column("theta1_rad") * g.pinion.r_b_mm - prm[P.s1_0]
-        n = np.floor(r / g.p_b_mm)
-        u = r - n * g.p_b_mm
-        slots = np.arange(self.kernel.slot_force.shape[1])
-        return n, prm[P.x_lo] + u[:, None] + g.p_b_mm * slots[None, :]
+from gearcli.pipeline.window import MIN_MESH_CYCLES, steady_window
+from gearcli.results import EnergyBalance, Summary
 
 
 @contextlib.contextmanager
@@ -264,7 +197,7 @@ def validity_of(res: SimulationResult):
         pinion_speed_rad_s=k.column("omega1_rad_s")[w] if free_pinion else None,
         window_s=res.window.t1_s - res.window.t0_s,
         teeth=(res.geometry.geometry.pinion.teeth, res.geometry.geometry.gear.teeth),
-        energy_relative_residual=res.summary["energy_balance"]["relative_residual"])
+        energy_relative_residual=res.summary.energy_relative_residual)
 
 
 def output_rows(case, f_z: float | None) -> tuple[float, str]:
@@ -362,7 +295,7 @@ def static_force_at(res: SimulationResult, omega2_rad_s: float) -> float:
                               gear_side_damping(res.loaded.case))
 
 
-def summarize(res: SimulationResult) -> dict:
+def summarize(res: SimulationResult) -> Summary:
     """Key scalars over the steady window (internal units; names carry them)."""
     from gearcli.pipeline.modal import modes_summary
 
@@ -376,41 +309,41 @@ def summarize(res: SimulationResult) -> dict:
     mm = ki.mesh
     mesh_f, mesh_zeta = mesh_mode_of(res)
     f_static = static_force_at(res, float(omega2.mean()))
-    return {
-        "window_s": [res.window.t0_s, res.window.t1_s],
-        "window_reason": res.window.reason,
-        "samples_in_window": int(w.sum()),
-        "output_rate_Hz": ki.output_rate_Hz,
+    return Summary(
+        window_s=(res.window.t0_s, res.window.t1_s),
+        window_reason=res.window.reason,
+        samples_in_window=int(w.sum()),
+        output_rate_Hz=ki.output_rate_Hz,
         # measured over the window, as analysis.json's (the nominal one, from the case's speed
         # or reference_speed, sizes the run: output rate, zoom, settling)
-        "gear_mesh_frequency_Hz": g.pinion.teeth * abs(float(omega1.mean())) / (2.0 * math.pi),
-        "pinion_speed_mean_deg_s": math.degrees(float(omega1.mean())),
-        "gear_speed_mean_deg_s": math.degrees(float(omega2.mean())),
-        "speed_ratio_mean": float(omega1.mean() / omega2.mean()),
-        "speed_ratio_theory": g.ratio,
-        "force_mean_N": float(force.mean()),
-        "force_rms_N": float(np.sqrt(np.mean(force**2))),
-        "force_max_N": k.extremum("force_total_max_N"),
-        "force_max_t_s": k.extremum("force_total_max_t_s"),
-        "force_min_N": k.extremum("force_total_min_N"),
-        "force_static_N": f_static,
-        "dynamic_factor": k.extremum("force_total_max_N") / f_static
+        gear_mesh_frequency_Hz=g.pinion.teeth * abs(float(omega1.mean())) / (2.0 * math.pi),
+        pinion_speed_mean_deg_s=math.degrees(float(omega1.mean())),
+        gear_speed_mean_deg_s=math.degrees(float(omega2.mean())),
+        speed_ratio_mean=float(omega1.mean() / omega2.mean()),
+        speed_ratio_theory=g.ratio,
+        force_mean_N=float(force.mean()),
+        force_rms_N=float(np.sqrt(np.mean(force**2))),
+        force_max_N=k.extremum("force_total_max_N"),
+        force_max_t_s=k.extremum("force_total_max_t_s"),
+        force_min_N=k.extremum("force_total_min_N"),
+        force_static_N=f_static,
+        dynamic_factor=k.extremum("force_total_max_N") / f_static
         if mm.static_force_N > 0 else None,
-        "dte_mean_mm": float(delta.mean()),
-        "dte_peak_to_peak_mm": float(np.ptp(delta)),
-        "dte_rms_mm": float(np.sqrt(np.mean((delta - delta.mean()) ** 2))),
-        "pairs_in_contact_mean": float(k.column("pairs_in_contact")[w].mean()),
-        "contact_loss_fraction": float(np.mean(force <= 0.0)),
-        "coast_force_max_N": float(np.nanmax(k.column("force_coast_N")[w])),
-        "mesh_stiffness_N_mm": mm.mesh_stiffness_N_mm,
-        "single_pair_stiffness_N_mm": json_number(mm.single_pair_stiffness_N_mm),
-        "double_pair_stiffness_N_mm": json_number(mm.double_pair_stiffness_N_mm),
-        "static_deflection_mm": mm.static_deflection_mm,
-        "mesh_natural_frequency_Hz": mesh_f,
-        "mesh_damping_ratio": mesh_zeta,
-        "energy_balance": energy_balance(k),
-        "modes": modes_summary(res.modes) if res.modes is not None else [],
-    }
+        dte_mean_mm=float(delta.mean()),
+        dte_peak_to_peak_mm=float(np.ptp(delta)),
+        dte_rms_mm=float(np.sqrt(np.mean((delta - delta.mean()) ** 2))),
+        pairs_in_contact_mean=float(k.column("pairs_in_contact")[w].mean()),
+        contact_loss_fraction=float(np.mean(force <= 0.0)),
+        coast_force_max_N=float(np.nanmax(k.column("force_coast_N")[w])),
+        mesh_stiffness_N_mm=mm.mesh_stiffness_N_mm,
+        single_pair_stiffness_N_mm=json_number(mm.single_pair_stiffness_N_mm),
+        double_pair_stiffness_N_mm=json_number(mm.double_pair_stiffness_N_mm),
+        static_deflection_mm=mm.static_deflection_mm,
+        mesh_natural_frequency_Hz=mesh_f,
+        mesh_damping_ratio=mesh_zeta,
+        energy_balance=energy_balance(k),
+        modes=modes_summary(res.modes) if res.modes is not None else (),
+    )
 
 
 def mesh_mode_of(res: SimulationResult) -> tuple[float, float]:
@@ -424,7 +357,7 @@ def mesh_mode_of(res: SimulationResult) -> tuple[float, float]:
     return mode.natural_frequency_Hz, mode.damping_ratio
 
 
-def energy_balance(k) -> dict:
+def energy_balance(k) -> EnergyBalance:
     """ΔE_kin + ΔV (contact, shafts, bearings) against the net work in, over the run
     [N·mm = mJ].
 
@@ -445,10 +378,10 @@ def energy_balance(k) -> dict:
         - terms["loss_damping_mJ"] - terms["loss_friction_mJ"]
     residual = d_kin + d_pot + d_spring - net
     scale = max(abs(v) for v in (*terms.values(), d_kin, d_pot, d_spring, 1e-300))
-    return {**{k_: float(v) for k_, v in terms.items()},
-            "delta_kinetic_mJ": float(d_kin), "delta_contact_mJ": float(d_pot),
-            "delta_spring_mJ": float(d_spring),
-            "residual_mJ": float(residual), "relative_residual": float(abs(residual) / scale)}
+    return EnergyBalance(**{k_: float(v) for k_, v in terms.items()},
+                         delta_kinetic_mJ=float(d_kin), delta_contact_mJ=float(d_pot),
+                         delta_spring_mJ=float(d_spring), residual_mJ=float(residual),
+                         relative_residual=float(abs(residual) / scale))
 
 
 #: Coast force [fraction of the static force, of 1 kN without load] that a warning counts.
@@ -461,18 +394,18 @@ def collect_warnings(res: SimulationResult) -> list[str]:
 
     s, ki = res.summary, res.kernel_input
     out = bore_notes(res.loaded.case, res.geometry)
-    if s["mesh_damping_ratio"] > 1.0:
-        out.append(f"overdamped mesh: damping ratio {s['mesh_damping_ratio']:.2f} > 1 "
+    if s.mesh_damping_ratio > 1.0:
+        out.append(f"overdamped mesh: damping ratio {s.mesh_damping_ratio:.2f} > 1 "
                    f"(c_max {res.loaded.case.contact.max_damping:g} N*s/mm); measured gear "
                    "meshes have 0.03-0.1")
-    if s["contact_loss_fraction"] > 0.0:
+    if s.contact_loss_fraction > 0.0:
         out.append(f"contact loss: no drive-flank contact during "
-                   f"{100 * s['contact_loss_fraction']:.3g} % of the steady window "
+                   f"{100 * s.contact_loss_fraction:.3g} % of the steady window "
                    "(tooth separation)")
     # a coast contact counts from 0.1 % of the static force (1 N without load): zero backlash
     # leaves the coast flanks touching at round-off forces (1.7e-8 N) that are no impact
-    if s["coast_force_max_N"] > COAST_FORCE_FRACTION * max(ki.mesh.static_force_N, 1e3):
-        text = (f"coast-flank impacts: coast force up to {s['coast_force_max_N']:.4g} N "
+    if s.coast_force_max_N > COAST_FORCE_FRACTION * max(ki.mesh.static_force_N, 1e3):
+        text = (f"coast-flank impacts: coast force up to {s.coast_force_max_N:.4g} N "
                 "in the steady window")
         j_n = res.geometry.geometry.j_n_mm
         if j_n <= 1e-9:

@@ -41,6 +41,10 @@ def hann_response(delta: float) -> float:
     return abs(np.sinc(delta) / (1.0 - delta * delta))
 
 
+#: Spectra `gearcli analyze` takes: (name in the files, time-series column, unit).
+SIGNALS = (("gear_speed", "omega2_rad_s", "rad/s"), ("dte", "delta_mm", "mm"),
+           ("force", "force_total_N", "N"))
+
 @dataclass(frozen=True)
 class Line:
     expected_Hz: float

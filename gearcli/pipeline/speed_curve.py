@@ -21,12 +21,17 @@ gear's speed over the level and the run's energy residual.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import sys
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from gearcli.results import SpeedLevel
+from gearcli.results.models import IsoResonance
+from gearcli.results.run import SPEED_CURVE_COLUMNS
 
 #: Mesh cycles each speed is held, and over which its speed change is made (smooth STEP).
 DWELL_CYCLES = 150
@@ -39,10 +44,8 @@ SAMPLES_PER_PERIOD = 30
 MIN_START_S = 0.05
 
 DIRECTIONS = ("up", "down")
-COLUMNS = ("point", "direction", "mesh_frequency [Hz]", "pinion_speed [rpm]",
-           "resonance_ratio", "iso_resonance_ratio", "dynamic_factor", "force_max_N",
-           "dte_peak_to_peak_mm",
-           "contact_loss_fraction", "status", "error")
+#: summary.csv's columns (gearcli.results.SpeedLevel's fields).
+COLUMNS = SPEED_CURVE_COLUMNS
 
 
 @dataclass(frozen=True)
@@ -98,7 +101,7 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
 
     j_n = ki.params[P.backlash_n]
     free_pinion = ki.params[P.drive_mode] != DRIVE_SPEED
-    residual = res.summary["energy_balance"]["relative_residual"]
+    residual = res.summary.energy_relative_residual
     z1 = res.geometry.geometry.pinion.teeth
     rows = []
     for i, (fz, (t0, t1)) in enumerate(zip(stairs.f_z_Hz, stairs.windows_s, strict=True)):
@@ -113,15 +116,16 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
         # each level's own static force: the resisted torque at its gear speed (§7.3)
         f_static = static_force_at(res, float(omega2[w].mean()))
         valid = status == "ok"
-        rows.append({
-            "point": first_point + i, "direction": direction, "mesh_frequency [Hz]": fz,
-            "pinion_speed [rpm]": fz / z1 * 60.0, "resonance_ratio": fz / f_n_Hz,
-            "dynamic_factor": f_max / f_static if valid and ki.mesh.static_force_N > 0
+        rows.append(SpeedLevel(
+            point=first_point + i, direction=direction, mesh_frequency_Hz=fz,
+            pinion_speed_rpm=fz / z1 * 60.0, resonance_ratio=fz / f_n_Hz,
+            iso_resonance_ratio=math.nan,  # set with the ISO data (run_speed_curve)
+            dynamic_factor=f_max / f_static if valid and ki.mesh.static_force_N > 0
             else math.nan,
-            "force_max_N": f_max if valid else math.nan,
-            "dte_peak_to_peak_mm": float(np.ptp(delta[w])) if valid else math.nan,
-            "contact_loss_fraction": float(np.mean(force[w] <= 0.0)) if valid else math.nan,
-            "status": status, "error": reason})
+            force_max_N=f_max if valid else math.nan,
+            dte_peak_to_peak_mm=float(np.ptp(delta[w])) if valid else math.nan,
+            contact_loss_fraction=float(np.mean(force[w] <= 0.0)) if valid else math.nan,
+            status=status, error=reason))
     return rows
 
 
@@ -130,7 +134,7 @@ def run_direction(payload: dict) -> dict:
     out). Returns {"rows": [...], "f_n_Hz": ..., "error": ""}."""
     from gearcli.errors import GearcliError
     from gearcli.pipeline.simulate import run_simulation
-    from gearcli.pipeline.sweep_run import case_from_json
+    from gearcli.pipeline.sweep.run import case_from_json
 
     stairs = Staircase(tuple(payload["f_z_Hz"]), payload["expression"],
                        tuple(map(tuple, payload["windows_s"])), payload["end_time_s"])
@@ -139,14 +143,12 @@ def run_direction(payload: dict) -> dict:
     except GearcliError as exc:  # every level of this direction is a failed row, with the reason
         error = str(exc).splitlines()[0]
         teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
-        rows = [{"point": payload["first"] + i, "direction": payload["direction"],
-                 "mesh_frequency [Hz]": fz, "pinion_speed [rpm]": fz / teeth * 60.0,
-                 "resonance_ratio": math.nan, "dynamic_factor": math.nan,
-                 "force_max_N": math.nan, "dte_peak_to_peak_mm": math.nan,
-                 "contact_loss_fraction": math.nan, "status": "failed", "error": error}
+        rows = [SpeedLevel(point=payload["first"] + i, direction=payload["direction"],
+                           mesh_frequency_Hz=fz, pinion_speed_rpm=fz / teeth * 60.0,
+                           status="failed", error=error)
                 for i, fz in enumerate(stairs.f_z_Hz)]
         return {"rows": rows, "f_n_Hz": math.nan, "error": error}
-    f_n = res.summary["mesh_natural_frequency_Hz"]
+    f_n = res.summary.mesh_natural_frequency_Hz
     return {"rows": measure_levels(res, stairs, payload["direction"], f_n, payload["first"]),
             "f_n_Hz": f_n, "error": ""}
 
@@ -192,12 +194,13 @@ class SpeedCurve:
     """A finished speed curve: one row per speed and direction, and the case's mesh mode."""
 
     name: str
-    rows: list[dict]
+    rows: list[SpeedLevel]
     f_n_Hz: float
     errors: list[str]  #: a direction whose simulation failed: its one-line error
     study_file: str = ""
     base_case_json: str = "{}"
-    iso: dict | None = None  #: ISO 6336-1 Method B data of the base case (mesh_input.iso_dynamic)
+    #: ISO 6336-1 Method B data of the base case (mesh_input.iso_dynamic)
+    iso: IsoResonance | None = None
     pinion_teeth: int = 0
     notes: list[str] = field(default_factory=list)  #: what limits the reading of the curve
 
@@ -206,10 +209,10 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
     """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow)."""
     from gearcli.pipeline.geometry import run_geometry
     from gearcli.pipeline.mesh_input import iso_dynamic
-    from gearcli.pipeline.sweep_run import case_from_json, execute
+    from gearcli.pipeline.sweep.run import case_from_json, execute
 
     results = list(execute(run_direction, plan(study), jobs, scheduler))
-    rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r["point"])
+    rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r.point)
     base = case_from_json(study.base_case_json, study.name)
     geo = run_geometry(base)
     f_n = next((res["f_n_Hz"] for res in results if not res["error"]), math.nan)
@@ -218,10 +221,11 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
 
         f_n = linearised_mesh(base.case, geo).natural_frequency_Hz
     iso = iso_dynamic(base.case, geo)
-    for r in rows:
-        r["iso_resonance_ratio"] = r["pinion_speed [rpm]"] / iso["resonance_speed_rpm"]
-        if not math.isfinite(r["resonance_ratio"]):  # a failed row: still placed on the axis
-            r["resonance_ratio"] = r["mesh_frequency [Hz]"] / f_n
+    rows = [dataclasses.replace(
+        r, iso_resonance_ratio=r.pinion_speed_rpm / iso.resonance_speed_rpm,
+        # a failed row: still placed on the axis
+        resonance_ratio=r.resonance_ratio if math.isfinite(r.resonance_ratio)
+        else r.mesh_frequency_Hz / f_n) for r in rows]
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
                       _notes(base.case))
@@ -249,13 +253,13 @@ def iso_curve(curve: SpeedCurve, points: int = 400):
     """(N = f_z/f_n [-], K_v [-], ISO ranges) of ISO 6336-1 Method B over the curve's speeds,
     on the figure's axis (the ISO resonance ratio n1/n_E1 mapped through f_z)."""
     from gearcli.model.iso_kv import dynamic_factor
-    from gearcli.pipeline.mesh_input import KV_KEYS
+    from gearcli.pipeline.mesh_input import kv_arguments
 
     iso = curve.iso
-    f_z = np.linspace(min(r["mesh_frequency [Hz]"] for r in curve.rows),
-                      max(r["mesh_frequency [Hz]"] for r in curve.rows), points)
-    n_iso = f_z / curve.pinion_teeth * 60.0 / iso["resonance_speed_rpm"]
-    kv = dynamic_factor(n_iso, **{k: iso[k] for k in KV_KEYS})
+    f_z = np.linspace(min(r.mesh_frequency_Hz for r in curve.rows),
+                      max(r.mesh_frequency_Hz for r in curve.rows), points)
+    n_iso = f_z / curve.pinion_teeth * 60.0 / iso.resonance_speed_rpm
+    kv = dynamic_factor(n_iso, **kv_arguments(iso))
     return f_z / curve.f_n_Hz, kv.k_v, n_iso
 
 
@@ -274,13 +278,14 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         writer = csv.DictWriter(buf, fieldnames=list(COLUMNS), lineterminator="\n")
         writer.writeheader()
         for r in curve.rows:
-            writer.writerow({c: ("" if isinstance(r[c], float) and math.isnan(r[c]) else r[c])
-                             for c in COLUMNS})
+            writer.writerow({c: "" if isinstance(v, float) and math.isnan(v) else v
+                             for c, v in r.to_row().items()})
         (tmp / "summary.csv").write_text(buf.getvalue())
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
-               "iso6336_method_b": curve.iso, "errors": curve.errors, "notes": curve.notes}
+               "iso6336_method_b": curve.iso.to_dict() if curve.iso else None,
+               "errors": curve.errors, "notes": curve.notes}
         (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,
@@ -288,6 +293,6 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
         fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name,
                                iso=iso_curve(curve) if curve.iso else None,
-                               iso_factors=tuple((curve.iso or {}).get(k, d) for k, d in
-                                                 (("B_p", 0.0), ("B_f", 0.0), ("B_k", 1.0))))
+                               iso_factors=(curve.iso.B_p, curve.iso.B_f, curve.iso.B_k)
+                               if curve.iso else (0.0, 0.0, 1.0))
         fig.savefig(tmp / "speed_curve.png", dpi=110)

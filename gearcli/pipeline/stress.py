@@ -42,6 +42,15 @@ from gearcli.model.rating import (
     static_rating,
 )
 from gearcli.pipeline.geometry import run_geometry
+from gearcli.results.stress import (
+    GearPeaks,
+    GearStress,
+    Safety,
+    StaticGear,
+    StaticRatingDoc,
+    StressDocument,
+    StressPeak,
+)
 
 #: Stress correction factor of the standard reference test gear (ISO 6336-3:2019, σ_FE =
 #: σ_Flim Y_ST; ISO 6336-5 gives σ_Flim for it).
@@ -51,9 +60,11 @@ SAMPLES_PER_MESH_FOR_PEAKS = 50
 STRESS_FILES = ("stress.csv", "stress.json")
 
 
-@dataclass
+@dataclass(repr=False)
 class StressResult:
-    """Stress histories of one run; arrays (samples, slots) in MPa unless named otherwise."""
+    """Stress histories of one run (`gearcli stress`, :func:`gearcli.stress`); arrays
+    (samples, slots) in MPa unless named otherwise; :attr:`pinion`, :attr:`gear` the peak
+    dynamic stresses against the ISO 6336 static values and the safety factors."""
 
     run: StoredRun
     name: str
@@ -81,11 +92,32 @@ class StressResult:
         t0, t1 = self.window_s
         return window_mask(self.t_s, t0, t1)
 
+    def document(self) -> dict:
+        """stress.json as a dict."""
+        return stress_document(self).to_dict()
+
+    @property
+    def pinion(self) -> GearStress:
+        return GearStress.of(stress_document(self), "pinion")
+
+    @property
+    def gear(self) -> GearStress:
+        return GearStress.of(stress_document(self), "gear")
+
+    def __repr__(self) -> str:
+        p = self.pinion
+
+        def mpa(value):
+            return "–" if value is None else f"{value:.4g} MPa"
+
+        return (f"<Stress {self.name}: σ_H peak {mpa(p.sigma_H_peak_MPa)}, σ_F peak pinion "
+                f"{mpa(p.sigma_F_peak_MPa)}>")
+
 
 def _column_set(run: StoredRun) -> int:
     """Number of pair slots; ResultsError when the per-pair columns are missing."""
     names = run.columns
-    slots = int(run.summary.get("slots", 0) or 0)
+    slots = int(run.summary.slots or 0)
     need = ["mesh_cycle"] + [f"{p}{j}_{u}" for j in range(max(slots, 1))
                              for p, u in (("force_slot", "N"), ("x_slot", "mm"))]
     missing = [n for n in need if n not in names]
@@ -101,17 +133,15 @@ def _column_set(run: StoredRun) -> int:
 
 def _window(run: StoredRun, given) -> tuple[tuple[float, float], str]:
     t = run.column("t_s")
-    if given is None:
-        s = run.summary.get("scalars", {})
-        if "window_s" not in s:
-            return (float(t[0]), float(t[-1])), "the whole run (summary has no window)"
-        t0, t1 = s["window_s"]
-        return (float(t0), float(t1)), s.get("window_reason", "summary window")
+    s = run.summary.scalars
+    if given is None:  # a stored run has a window (io.results.check_summary)
+        t0, t1 = s.window_s
+        return (float(t0), float(t1)), s.window_reason
     t0, t1 = map(float, given)
     if not (t[0] - 1e-12 <= t0 < t1 <= t[-1] + 1e-9):
         raise ResultsError(f"--window {t0:g} {t1:g}: outside the run or empty; expected "
                            f"{t[0]:g} <= T0 < T1 <= {t[-1]:g} s")
-    f_z = run.summary.get("scalars", {}).get("gear_mesh_frequency_Hz")
+    f_z = s.gear_mesh_frequency_Hz
     if f_z and (t1 - t0) * f_z < 1.0:  # a peak over part of a mesh cycle misses pair zones
         raise ResultsError(f"--window {t0:g} {t1:g}: {t1 - t0:g} s is shorter than one mesh "
                            f"cycle (1/f_z = {1.0 / f_z:.3g} s); expected a window of at least "
@@ -164,11 +194,8 @@ def compute_stress(folder: str | Path, window: tuple[float, float] | None = None
     youngs, poisson, limits = _materials(case)
     if require_limits:
         _require_limits(run, case, limits)
-    f_static = run.summary.get("scalars", {}).get("force_static_N")
-    if f_static is None:
-        final = case.load.torque.pp.final_value()
-        f_static = abs(final if final is not None else 0.0) / geo.gear.r_b_mm
-    static = static_rating(geo, float(f_static), youngs, poisson)
+    # a stored run has its static force (io.results.check_summary)
+    static = static_rating(geo, float(run.summary.scalars.force_static_N), youngs, poisson)
 
     c = run.column
     force = np.column_stack([c(f"force_slot{j}_N") for j in range(slots)])
@@ -212,8 +239,8 @@ def _warnings(res: StressResult) -> list[str]:
             out.append(f"coast-flank contact (up to {coast:.4g} N) is not in the stress "
                        "histories (per-pair coast forces are not written); it reverses the "
                        "root stress")
-    s = res.run.summary.get("scalars", {})
-    rate, f_z = s.get("output_rate_Hz"), s.get("gear_mesh_frequency_Hz")
+    s = res.run.summary.scalars
+    rate, f_z = s.output_rate_Hz, s.gear_mesh_frequency_Hz
     if rate and f_z and rate / f_z < SAMPLES_PER_MESH_FOR_PEAKS:
         out.append(f"peaks come from the output samples: {rate / f_z:.1f} samples per mesh "
                    f"cycle (< {SAMPLES_PER_MESH_FOR_PEAKS}); raise run.output_rate for "
@@ -245,15 +272,15 @@ def _zone(geo: PairGeometry, x: float) -> str:
     return "A-B (two pairs)" if x < b else "B-D (single pair)" if x <= d else "D-E (two pairs)"
 
 
-def _peak(res: StressResult, values: np.ndarray, sel: np.ndarray, teeth: int) -> dict:
+def _peak(res: StressResult, values: np.ndarray, sel: np.ndarray, teeth: int) -> StressPeak:
     masked = np.where(sel[:, None] & (res.force_N > 0.0), values, -np.inf)
     i, j = np.unravel_index(int(np.argmax(masked)), masked.shape)
     if not np.isfinite(masked[i, j]):
-        return {"MPa": None}
+        return StressPeak(None)
     x = float(res.x_mm[i, j])
-    return {"MPa": float(values[i, j]), "t_s": float(res.t_s[i]), "slot": int(j),
-            "tooth": int((int(res.mesh_cycle[i]) - j) % teeth), "x_from_A_mm": x,
-            "force_N": float(res.force_N[i, j]), "zone": _zone(res.geometry, x)}
+    return StressPeak(MPa=float(values[i, j]), t_s=float(res.t_s[i]), slot=int(j),
+                      tooth=int((int(res.mesh_cycle[i]) - j) % teeth), x_from_A_mm=x,
+                      force_N=float(res.force_N[i, j]), zone=_zone(res.geometry, x))
 
 
 _num = json_number
@@ -264,85 +291,81 @@ def _ratio(num, den):
     return _num(num / den) if num is not None and den else None
 
 
-def _static_doc(st: StaticRating) -> dict:
-    def gear(g, z_name, m_name, point) -> dict:
-        return {
-            m_name: g.M_single, z_name: g.Z_single,
-            "sigma_H_iso_MPa": g.Z_single * st.sigma_H0_MPa,
-            f"sigma_H_at_{point}_MPa": g.sigma_H_single_MPa,
-            "face_width_bending_mm": g.face_width_mm,
-            "s_Fn_mm": g.section.s_Fn_mm, "rho_F_mm": g.section.rho_F_mm,
-            "h_Fe_mm": g.h_Fe_mm, "alpha_Fen_deg": math.degrees(g.alpha_Fen_rad),
-            "Y_F": g.Y_F, "Y_S": g.Y_S, "sigma_F0_MPa": g.sigma_F0_MPa,
-            "Y_Fa": g.Y_Fa, "Y_Sa": g.Y_Sa, "sigma_F0_tip_MPa": g.sigma_F0_tip_MPa,
-        }
+def _static_doc(st: StaticRating) -> StaticRatingDoc:
+    def gear(g, **at_point) -> StaticGear:
+        return StaticGear(
+            **at_point, sigma_H_iso_MPa=g.Z_single * st.sigma_H0_MPa,
+            face_width_bending_mm=g.face_width_mm, s_Fn_mm=g.section.s_Fn_mm,
+            rho_F_mm=g.section.rho_F_mm, h_Fe_mm=g.h_Fe_mm,
+            alpha_Fen_deg=math.degrees(g.alpha_Fen_rad), Y_F=g.Y_F, Y_S=g.Y_S,
+            sigma_F0_MPa=g.sigma_F0_MPa, Y_Fa=g.Y_Fa, Y_Sa=g.Y_Sa,
+            sigma_F0_tip_MPa=g.sigma_F0_tip_MPa)
 
-    return {
-        "force_normal_N": st.force_normal_N, "force_tangential_N": st.force_tangential_N,
-        "ratio_u": st.ratio_u, "E_star_MPa": st.e_star_MPa, "Z_H": st.Z_H,
-        "Z_E_sqrt_MPa": st.Z_E, "Z_eps": st.Z_eps, "Y_eps": st.Y_eps,
-        "contact_face_width_mm": st.contact_face_width_mm,
-        "sigma_H0_MPa": st.sigma_H0_MPa, "sigma_H0_with_Z_eps_MPa": st.sigma_H0_iso_MPa,
-        "pinion": gear(st.pinion, "Z_B", "M1", "B"),
-        "gear": gear(st.gear, "Z_D", "M2", "D"),
-        "factors_taken_as_1": "K_A K_v K_Halpha K_Hbeta K_Falpha K_Fbeta Z_beta Y_beta Y_B Y_DT",
-    }
+    p, w = st.pinion, st.gear
+    return StaticRatingDoc(
+        force_normal_N=st.force_normal_N, force_tangential_N=st.force_tangential_N,
+        ratio_u=st.ratio_u, E_star_MPa=st.e_star_MPa, Z_H=st.Z_H, Z_E_sqrt_MPa=st.Z_E,
+        Z_eps=st.Z_eps, Y_eps=st.Y_eps, contact_face_width_mm=st.contact_face_width_mm,
+        sigma_H0_MPa=st.sigma_H0_MPa, sigma_H0_with_Z_eps_MPa=st.sigma_H0_iso_MPa,
+        pinion=gear(p, M1=p.M_single, Z_B=p.Z_single, sigma_H_at_B_MPa=p.sigma_H_single_MPa),
+        gear=gear(w, M2=w.M_single, Z_D=w.Z_single, sigma_H_at_D_MPa=w.sigma_H_single_MPa),
+        factors_taken_as_1="K_A K_v K_Halpha K_Hbeta K_Falpha K_Fbeta Z_beta Y_beta Y_B Y_DT")
 
 
-def _safety(limits, peak_h, peak_f, iso_h, iso_f) -> dict | None:
+def _safety(limits, peak_h, peak_f, iso_h, iso_f) -> Safety | None:
     h_lim, f_lim = limits
     if h_lim is None and f_lim is None:
         return None
 
     f_g = f_lim * Y_ST if f_lim is not None else None
-    return {
-        "sigma_Hlim_MPa": h_lim, "sigma_Flim_MPa": f_lim, "Y_ST": Y_ST,
-        "S_H": _ratio(h_lim, peak_h), "S_F": _ratio(f_g, peak_f),
-        "S_H_static": _ratio(h_lim, iso_h), "S_F_static": _ratio(f_g, iso_f),
-        "note": "S_H = sigma_Hlim/sigma_H,max, S_F = sigma_Flim Y_ST/sigma_F,max against the "
-                "peak dynamic stresses (life and influence factors Z_NT ... Y_X = 1)",
-    }
+    return Safety(
+        sigma_Hlim_MPa=h_lim, sigma_Flim_MPa=f_lim, Y_ST=Y_ST,
+        S_H=_ratio(h_lim, peak_h), S_F=_ratio(f_g, peak_f),
+        S_H_static=_ratio(h_lim, iso_h), S_F_static=_ratio(f_g, iso_f),
+        note="S_H = sigma_Hlim/sigma_H,max, S_F = sigma_Flim Y_ST/sigma_F,max against the "
+             "peak dynamic stresses (life and influence factors Z_NT ... Y_X = 1)")
 
 
-def stress_document(res: StressResult) -> dict:
-    """stress.json: static ISO values, maxima per tooth, peaks, ratios, safety factors."""
+def stress_document(res: StressResult) -> StressDocument:
+    """stress.json (its JSON: ``.to_dict()``): static ISO values, maxima per tooth, peaks,
+    ratios, safety factors."""
     sel = res.in_window
     loaded = res.force_N > 0.0
     st = res.static
     from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 
-    doc = {"schema_version": RESULTS_SCHEMA_VERSION,
-           "case": res.name, "window_s": list(res.window_s), "window_reason": res.window_reason,
-           "units": {"stress": "MPa", "force": "N", "length": "mm"},
-           "static": _static_doc(st)}
+    gears = {}
     for which, sig_f in (("pinion", res.sigma_F_pinion), ("gear", res.sigma_F_gear)):
         g = getattr(res.geometry, which)
         gs = getattr(st, which)
         iso_h = gs.Z_single * st.sigma_H0_MPa
         peak_h = _peak(res, res.sigma_H, sel, g.teeth)
         peak_f = _peak(res, sig_f, sel, g.teeth)
-        h_max, f_max = peak_h["MPa"], peak_f["MPa"]
-        doc[which] = {
-            "teeth": g.teeth,
-            "sigma_H_max_per_tooth_MPa": [_num(v) for v in tooth_maxima(
-                res.sigma_H, res.mesh_cycle, sel, loaded, g.teeth)],
-            "sigma_F_max_per_tooth_MPa": [_num(v) for v in tooth_maxima(
-                sig_f, res.mesh_cycle, sel, loaded, g.teeth)],
-            "peak_sigma_H": peak_h, "peak_sigma_F": peak_f,
-            "ratio_sigma_H_to_static": _ratio(h_max, iso_h),
-            "ratio_sigma_F_to_static": _ratio(f_max, gs.sigma_F0_MPa),
-            "safety": _safety(res.limits[which], h_max, f_max, iso_h, gs.sigma_F0_MPa),
-        }
-    doc["ratio_definition"] = ("peak dynamic stress in the window / ISO static value of that "
-                               "gear: sigma_H vs Z_B sigma_H0 (pinion), Z_D sigma_H0 (gear); "
-                               "sigma_F vs sigma_F0 (Method B, outer point of single contact)")
-    doc["run_max_MPa"] = {"sigma_H": float(res.sigma_H.max(initial=0.0)),
-                          "sigma_F_pinion": float(res.sigma_F_pinion.max(initial=0.0)),
-                          "sigma_F_gear": float(res.sigma_F_gear.max(initial=0.0))}
-    doc["samples"] = {"in_window": int(sel.sum()),
-                      "loaded_at_sharp_corner": int(res.clamped[sel].sum())}
-    doc["warnings"] = res.warnings
-    return doc
+        h_max, f_max = peak_h.MPa, peak_f.MPa
+        gears[which] = GearPeaks(
+            teeth=g.teeth,
+            sigma_H_max_per_tooth_MPa=tuple(_num(v) for v in tooth_maxima(
+                res.sigma_H, res.mesh_cycle, sel, loaded, g.teeth)),
+            sigma_F_max_per_tooth_MPa=tuple(_num(v) for v in tooth_maxima(
+                sig_f, res.mesh_cycle, sel, loaded, g.teeth)),
+            peak_sigma_H=peak_h, peak_sigma_F=peak_f,
+            ratio_sigma_H_to_static=_ratio(h_max, iso_h),
+            ratio_sigma_F_to_static=_ratio(f_max, gs.sigma_F0_MPa),
+            safety=_safety(res.limits[which], h_max, f_max, iso_h, gs.sigma_F0_MPa))
+    return StressDocument(
+        schema_version=RESULTS_SCHEMA_VERSION, case=res.name, window_s=tuple(res.window_s),
+        window_reason=res.window_reason,
+        units={"stress": "MPa", "force": "N", "length": "mm"}, static=_static_doc(st),
+        **gears,
+        ratio_definition=("peak dynamic stress in the window / ISO static value of that gear: "
+                          "sigma_H vs Z_B sigma_H0 (pinion), Z_D sigma_H0 (gear); sigma_F vs "
+                          "sigma_F0 (Method B, outer point of single contact)"),
+        run_max_MPa={"sigma_H": float(res.sigma_H.max(initial=0.0)),
+                     "sigma_F_pinion": float(res.sigma_F_pinion.max(initial=0.0)),
+                     "sigma_F_gear": float(res.sigma_F_gear.max(initial=0.0))},
+        samples={"in_window": int(sel.sum()),
+                 "loaded_at_sharp_corner": int(res.clamped[sel].sum())},
+        warnings=tuple(res.warnings))
 
 
 def stress_columns(res: StressResult) -> dict[str, np.ndarray]:
@@ -361,7 +384,7 @@ def write_stress(res: StressResult, doc: dict | None = None) -> dict:
     from gearcli.io.files import write_atomic
     from gearcli.io.tables import columns_to_csv
 
-    doc = doc or stress_document(res)
+    doc = doc or stress_document(res).to_dict()
     folder = res.run.folder
     write_atomic(folder / "stress.csv", columns_to_csv(stress_columns(res)))
     write_atomic(folder / "stress.json", json.dumps(doc, indent=2) + "\n")
@@ -374,10 +397,10 @@ def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -
     from gearcli.plotting.stress import plot_stress_of_run
 
     geo = res.geometry
-    f_z = res.run.summary.get("scalars", {}).get("gear_mesh_frequency_Hz") or 0.0
+    f_z = res.run.summary.scalars.gear_mesh_frequency_Hz or 0.0
     fig = plot_stress_of_run(
         res.t_s, res.x_mm, res.force_N, res.sigma_H, res.sigma_F_pinion, res.sigma_F_gear,
-        geometry=geo, static=_static_doc(res.static), window_s=res.window_s,
+        geometry=geo, static=_static_doc(res.static).to_dict(), window_s=res.window_s,
         f_z_Hz=f_z, cycles=cycles,
         title=f"{res.name}: tooth stresses (z1 = {geo.pinion.teeth}, z2 = {geo.gear.teeth})")
     save_figure(fig, path, 130)

@@ -129,10 +129,11 @@ def _plot_shapes(ax, result: ModalResult, colours) -> None:
     ax.grid(axis="y", alpha=0.3)
 
 
-def plot_campbell_summary(modes: list[dict], pinion_teeth: int, case_speed_rpm: float,
+def plot_campbell_summary(modes, pinion_teeth: int, case_speed_rpm: float,
                           harmonics: int = 5, title: str = "",
                           units: str = "engineering") -> Figure:
-    """Campbell diagram from a run's stored modes (summary.json ``scalars.modes``): the mode
+    """Campbell diagram from a run's stored modes (summary.json ``scalars.modes``,
+    gearcli.results.StoredMode): the mode
     frequencies [Hz] as horizontal lines (dashed: no resonant peak, ζ >= 1/√2), the gear-mesh
     orders k z1 n1/60 (k = 1 .. ``harmonics``) against the pinion speed [rpm] up to 1.5 times
     the case speed, their crossings with the peaked modes circled and the case speed marked;
@@ -148,8 +149,8 @@ def plot_campbell_summary(modes: list[dict], pinion_teeth: int, case_speed_rpm: 
     ax = fig.add_subplot()
     top_speed = 1.5 * case_speed_rpm if case_speed_rpm > 0 else 1000.0
     n = np.linspace(0.0, top_speed, 200)
-    elastic = [m for m in modes if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
-    f_top = max([m["natural_frequency_Hz"] for m in elastic]
+    elastic = [m for m in modes if not m.rigid_body and m.natural_frequency_Hz]
+    f_top = max([m.natural_frequency_Hz for m in elastic]
                 + [harmonics * pinion_teeth * top_speed / 60.0]) * 1.1
     for k in range(1, harmonics + 1):
         ax.plot(k_n * n, k * pinion_teeth * n / 60.0, color="0.35", lw=0.9)
@@ -157,11 +158,11 @@ def plot_campbell_summary(modes: list[dict], pinion_teeth: int, case_speed_rpm: 
         ax.text(k_n * x_end, k * pinion_teeth * x_end / 60.0, f" {k}×f_z", fontsize=7,
                 va="bottom")
     for i, m in enumerate(elastic):
-        f = m["natural_frequency_Hz"]
-        peaked = has_resonant_peak(m.get("damping_ratio") or 0.0)
+        f = m.natural_frequency_Hz
+        peaked = has_resonant_peak(m.damping_ratio or 0.0)
         colour = _MODE_COLOURS[i % len(_MODE_COLOURS)]
         ax.axhline(f, color=colour, ls="-" if peaked else "--", lw=1.2,
-                   label=f"mode {m['mode']}: {f:.0f} Hz, ζ {m.get('damping_ratio') or 0:.3f}"
+                   label=f"mode {m.mode}: {f:.0f} Hz, ζ {m.damping_ratio or 0:.3f}"
                          + ("" if peaked else " (no resonant peak)"))
         if peaked:
             for k in range(1, harmonics + 1):

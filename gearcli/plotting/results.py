@@ -1,4 +1,5 @@
-"""Figures of a finished run: speeds, mesh force, load sharing, DTE, spectra, errors and relief.
+"""Figures of a finished run: speeds, mesh force, load sharing, DTE, errors and relief (the
+spectra: gearcli/plotting/spectra.py).
 
 Every function takes plain arrays and dicts (internal units: s, rad, mm, N; spectra in the units
 of analysis' spectrum.csv) and returns one matplotlib Figure (Agg canvas, never shown). The title
@@ -17,8 +18,8 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["plot_speeds", "plot_force", "plot_mesh_cycles", "plot_dte", "plot_spectra",
-           "plot_modifications", "mesh_cycle_mean", "plot_lateral", "plot_drivetrain"]
+__all__ = ["plot_speeds", "plot_force", "plot_mesh_cycles", "plot_dte", "plot_modifications",
+           "mesh_cycle_mean", "plot_lateral", "plot_drivetrain", "stacked_figure"]
 
 PINION, GEAR, KIN, FORCE = "#1f5fa8", "#d9771e", "#222222", "#4a4a4a"
 STATIC, PEAK = "#2e7d32", "#c62828"
@@ -26,7 +27,7 @@ HARMONIC, SIDEBAND, ALIAS = "#c62828", "#8c8c8c", "#7b2d8e"
 _WINDOW_FILL = "#eef3ea"
 
 
-def _figure(rows: int, height: float = 3.1, ratios=None) -> tuple[Figure, list[Axes]]:
+def stacked_figure(rows: int, height: float = 3.1, ratios=None) -> tuple[Figure, list[Axes]]:
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(10.0, 0.9 + height * rows), layout="constrained")
@@ -89,7 +90,7 @@ def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_
     w1 = speed_from_rad_s(np.asarray(omega1_rad_s, float), units)
     w2 = speed_from_rad_s(np.asarray(omega2_rad_s, float), units)
     kin = w1 * teeth[0] / teeth[1]
-    fig, (ax, zx) = _figure(2)
+    fig, (ax, zx) = stacked_figure(2)
     _shade_window(ax, window_s)
     ax.plot(t, w1, color=PINION, lw=1.0, label=f"pinion ω1 (z1 = {teeth[0]})")
     ax.plot(t, w2, color=GEAR, lw=0.6, label=f"gear ω2 (z2 = {teeth[1]})")
@@ -123,7 +124,7 @@ def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, win
     zoom (else the zoom shows the output samples)."""
     t, f = np.asarray(t_s, float), np.asarray(force_N, float)
     stat = np.broadcast_to(np.asarray(static_N, float), t.shape)
-    fig, (ax, zx) = _figure(2)
+    fig, (ax, zx) = stacked_figure(2)
     _shade_window(ax, window_s)
     ax.plot(t, f / 1e3, color=FORCE, lw=0.35, label="total normal force (output samples)")
     ax.plot(t, stat / 1e3, color=STATIC, lw=1.2, ls="--",
@@ -181,7 +182,7 @@ def plot_mesh_cycles(t_s, force_N, slot_forces: dict[str, np.ndarray], pairs, zo
     z = _in(t, zoom_s)
     ms = (t[z] - zoom_s[0]) * 1e3
     cycles = _mesh_cycles(zoom_s, f_z_Hz)
-    fig, (ax,) = _figure(1, height=4.6)
+    fig, (ax,) = stacked_figure(1, height=4.6)
     nz = np.asarray(pairs, float)[z]
     tw = ax.twinx()
     tw.fill_between(ms, nz, step="mid", color="#9fb7d6", alpha=0.25, lw=0)
@@ -223,7 +224,7 @@ def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = Non
 
     u, k = unit_and_factor("mm", units, fine=True)
     t, d = np.asarray(t_s, float), np.asarray(dte_mm, float) * k
-    fig, (ax, zx) = _figure(2)
+    fig, (ax, zx) = stacked_figure(2)
     _shade_window(ax, window_s)
     ax.plot(t, d, color=PINION, lw=0.4, label="DTE δ (output samples)")
     sel = _in(t, window_s) if window_s is not None else np.ones(t.size, bool)
@@ -256,136 +257,6 @@ def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = Non
     return fig
 
 
-def _decade(value: float, _pos=None) -> str:
-    """Log-axis tick label: 1e-3, 0.01, 0.1, 1, 10, 100, 1e3."""
-    if value <= 0.0:
-        return ""
-    e = round(math.log10(value))
-    return f"{value:g}" if -2 <= e <= 2 else f"1e{e}"
-
-
-def _alias(f: float, fs: float) -> float:
-    return abs(f - fs * round(f / fs))
-
-
-def _folds(f_z: float, fs: float, x_max: float, first: int) -> np.ndarray:
-    """Where the mesh harmonics from ``first`` (and above f_s/2) up to 2 f_s land after
-    sampling (aliases) [Hz]."""
-    k = np.arange(max(math.floor(0.5 * fs / f_z) + 1, first), math.floor(2.0 * fs / f_z) + 1)
-    f = k * f_z
-    a = np.abs(f - fs * np.round(f / fs))
-    return np.unique(np.round(a[(a > 0.0) & (a <= x_max)], 3))
-
-
-def plot_spectra(freq_Hz, spectra: dict[str, tuple[str, str, np.ndarray]],
-                 lines: dict[str, dict[str, dict]], f_z_Hz: float, harmonics: int,
-                 sample_rate_Hz: float, *, order_Hz: float | None = None,
-                 db: bool = False) -> Figure:
-    """Amplitude spectra (log scale), one panel per signal, with the mesh harmonics k·f_z and
-    their shaft-frequency sidebands marked.
-
-    ``spectra`` maps a signal key to (title, unit, amplitudes); ``lines`` maps the same key to
-    analysis.json's lines ({label: {expected_Hz, measured_Hz, amplitude, resolvable}}).
-    Harmonics above the Nyquist frequency are drawn where they fold to (aliases).
-    ``order_Hz``: draw against the order (frequency / ``order_Hz``, e.g. the pinion shaft
-    frequency: the mesh harmonics at k·z1) instead of the frequency; ``db``: amplitudes in dB
-    re each panel's largest line instead of a log axis.
-    """
-    from matplotlib.ticker import FuncFormatter, NullLocator
-
-    sx = 1.0 / order_Hz if order_Hz else 1.0  # x axis: frequency [Hz] or order [-]
-
-    def level(a, ref: float):
-        """Amplitudes as plotted: dB re ``ref`` (the panel's largest) with ``db``, else as is."""
-        return 20.0 * np.log10(np.maximum(np.asarray(a, float), 1e-300) / ref) if db else a
-
-    freq = np.asarray(freq_Hz, float)
-    nyq = 0.5 * sample_rate_Hz
-    aliased = f_z_Hz >= nyq
-    x_max = min((harmonics + 0.5) * f_z_Hz, nyq)
-    fig, axes = _figure(len(spectra), height=2.5)
-    drawn: set[str] = set()
-    sel = (freq > 0.0) & (freq <= x_max)
-    for i, (key, (title, unit, amp)) in enumerate(spectra.items()):
-        ax = axes[i]
-        a = np.asarray(amp, float)[sel]
-        top = float(a.max(initial=0.0)) or 1.0
-        if db:
-            ax.plot(sx * freq[sel], level(a, top), color=FORCE, lw=0.7)
-            ax.set_ylim(-140.0, 10.0)
-        else:
-            ax.semilogy(sx * freq[sel], a, color=FORCE, lw=0.7)
-            positive = a[a > 0]
-            bottom = max(float(positive.min()) if positive.size else top * 1e-8, top * 1e-7)
-            ax.set_ylim(bottom, top * 30.0)
-        for label, ln in lines.get(key, {}).items():
-            f = ln.get("expected_Hz")
-            if f is None:
-                continue
-            side = "+" in label or "-" in label
-            if f > nyq:
-                if not side:
-                    ax.axvline(sx * _alias(f, sample_rate_Hz), color=ALIAS, ls="-.", lw=0.9)
-                    drawn.add("alias")
-                    if i == 0:
-                        ax.text(sx * _alias(f, sample_rate_Hz), 1.01,
-                                label.replace("fz", " f_z") + " alias", color=ALIAS,
-                                fontsize=7, ha="center", va="bottom",
-                                transform=ax.get_xaxis_transform())
-                continue
-            if f > x_max:
-                continue
-            if side:
-                ax.axvline(sx * f, color=SIDEBAND, ls=":", lw=0.6, zorder=1)
-                drawn.add("side")
-                continue
-            ax.axvline(sx * f, color=HARMONIC, ls="--", lw=0.8, alpha=0.7, zorder=1)
-            drawn.add("harm")
-            if i == 0:
-                ax.text(sx * f, 1.01, label.replace("fz", " f_z"), color=HARMONIC, fontsize=8,
-                        ha="center", va="bottom", transform=ax.get_xaxis_transform())
-            if ln.get("resolvable") and ln.get("amplitude"):
-                ax.plot(sx * ln["measured_Hz"], level(ln["amplitude"], top), "o", mfc="none",
-                        color=HARMONIC, ms=6)
-                drawn.add("meas")
-        folds = _folds(f_z_Hz, sample_rate_Hz, x_max, harmonics + 1)
-        if folds.size:
-            drawn.add("fold")
-            ax.plot(sx * folds, np.full(folds.size, 0.985), ls="", marker=7, ms=5, color=ALIAS,
-                    alpha=0.8, transform=ax.get_xaxis_transform(), clip_on=False)
-        ax.set_xlim(0.0, sx * x_max)
-        if db:
-            ax.set_ylabel("amplitude [dB re max]")
-        else:
-            ax.yaxis.set_minor_locator(NullLocator())  # log minor ticks: clutter, slow layout
-            ax.yaxis.set_major_formatter(FuncFormatter(_decade))  # plain text, no mathtext
-            ax.set_ylabel(f"amplitude [{unit}]")
-        ax.text(0.995, 0.96, title, transform=ax.transAxes, ha="right", va="top", fontsize=9,
-                bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none"})
-    axes[-1].set_xlabel("order (per pinion revolution) [-]" if order_Hz else "frequency [Hz]")
-    from matplotlib.lines import Line2D
-
-    legend = {
-        "harm": Line2D([], [], color=HARMONIC, ls="--", label="mesh harmonics k·f_z"),
-        "side": Line2D([], [], color=SIDEBAND, ls=":", label="sidebands k·f_z ± n1, n2"),
-        "meas": Line2D([], [], color=HARMONIC, marker="o", mfc="none", ls="",
-                       label="measured line amplitude"),
-        "alias": Line2D([], [], color=ALIAS, ls="-.", label="alias of k·f_z (k analysed)"),
-        "fold": Line2D([], [], color=ALIAS, marker=7, ls="",
-                       label="where higher harmonics above f_s/2 fold (aliases)"),
-    }
-    handles = [h for key, h in legend.items() if key in drawn]
-    if aliased:
-        fig.suptitle(f"f_z = {f_z_Hz:.1f} Hz is above the Nyquist frequency {nyq:.0f} Hz: "
-                     "the output cannot show the mesh lines, only their aliases")
-    else:
-        fig.suptitle(f"Spectra of the steady window: lines at the mesh frequency "
-                     f"f_z = {f_z_Hz:.2f} Hz and its harmonics")
-    fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8,
-               frameon=False)
-    return fig
-
-
 def plot_modifications(errors: dict | None = None, relief: dict | None = None) -> Figure:
     """What the case's manufacturing errors and profile reliefs do.
 
@@ -399,7 +270,7 @@ def plot_modifications(errors: dict | None = None, relief: dict | None = None) -
     panels = [p for p in (errors, relief) if p is not None]
     if not panels:
         raise ValueError("nothing to draw: the case has no errors and no profile relief")
-    fig, axes = _figure(len(panels), height=3.4)
+    fig, axes = stacked_figure(len(panels), height=3.4)
     if errors is not None:
         ax = axes[0]
         t = np.asarray(errors["t_s"], float)
@@ -465,7 +336,7 @@ def _time_panels(t_s, window_s, panels, title: str, ncol: int) -> Figure:
     """One panel per (y label, curves) of ``panels`` against time [s], the steady window
     shaded; curves are (values, label, colour, line style)."""
     t = np.asarray(t_s, float)
-    fig, axes = _figure(len(panels))
+    fig, axes = stacked_figure(len(panels))
     for ax, (ylabel, curves) in zip(axes, panels, strict=True):
         _shade_window(ax, window_s)
         for values, label, colour, style in curves:

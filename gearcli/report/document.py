@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from gearcli.io.metrics import display
 from gearcli.report import tables as tb
 from gearcli.report.data import ReportData
 from gearcli.report.figures import FigureFile
+from gearcli.results import shown_values
 
 
 @dataclass(frozen=True)
@@ -75,9 +77,9 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
     def tables(*items: tb.Table | None) -> list[NumberedTable]:
         return [NumberedTable(next(counter), t) for t in items if t is not None]
 
-    checks = data.analysis.get("checks", [])
-    failed = [c.get("name", "?") for c in checks if not c.get("passed")]
-    skipped = [c.get("name", "?") for c in checks if c.get("checked", True) is False]
+    checks = data.analysis.checks
+    failed = [c.name for c in checks if not c.passed]
+    skipped = [c.name for c in checks if c.checked is False]
     done = len(checks) - len(skipped)
     not_checked = (f" Not checked: {', '.join(map(str, skipped))} (see the notes)."
                    if skipped else "")
@@ -85,15 +87,10 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
                          "pass") if not failed
                else Paragraph(f"Analysis FAILED: {len(failed)} of {done} checks fail "
                               f"({', '.join(map(str, failed))}).{not_checked}", "fail"))
-    m = data.metrics
     headline = []
-    for key, label in (("gear_mesh_frequency_Hz", "gear-mesh frequency f_z"),
-                       ("force_max_N", "maximum normal force"), ("dynamic_factor",
-                                                                 "dynamic factor"),
-                       ("dte_peak_to_peak_mm", "DTE peak to peak"),
-                       ("mesh_efficiency", "mesh efficiency")):
-        if isinstance(m.get(key), int | float):
-            _, value, unit = display(key, m[key], data.units)
+    for key, value in shown_values(data.metrics, "headline").items():
+        if isinstance(value, int | float) and math.isfinite(value):
+            label, value, unit = display(key, value, data.units)
             headline.append(f"{label}: {tb.fmt(value)} {unit if unit != '–' else ''}".rstrip())
     warnings = data.warnings
     overrides = [str(o) for o in data.run.manifest.get("overrides") or []]
@@ -121,6 +118,6 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
                 [NumberedFigure(k, f) for k, f in enumerate(figures, start=1)]),
         Section("Provenance", "provenance", tables(tb.provenance_table(data))),
     ]
-    name = str(data.case.get("name") or data.run.summary.get("case") or data.folder.name)
-    return Document(f"gearcli report: {name}", str(data.case.get("description") or "").strip(),
+    name = str(data.case.name or data.run.summary.case or data.folder.name)
+    return Document(f"gearcli report: {name}", data.case.description.strip(),
                     sections)

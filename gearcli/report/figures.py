@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 import io
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -14,7 +16,8 @@ from gearcli.plotting import results as plots
 from gearcli.plotting.campbell import plot_campbell_summary
 from gearcli.plotting.geometry import plot_pair
 from gearcli.plotting.orders import plot_order_map
-from gearcli.report.data import ReportData, number
+from gearcli.plotting.spectra import plot_spectra
+from gearcli.report.data import ReportData
 
 #: Resolution of the PNG files (the HTML embeds them) [dots per inch].
 PNG_DPI = 110
@@ -59,15 +62,16 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
         # f_z is lower (a run that never settles) it does not cover them, and the samples do
         if _zoom_of(zc, end_zoom, None, column="delta_mm") is not None:
             mesh_zoom, dense = end_zoom, zc
-    teeth = (int(data.case["gears"]["pinion"]["teeth"]), int(data.case["gears"]["gear"]["teeth"]))
+    teeth = (data.case.gears.pinion.teeth, data.case.gears.gear.teeth)
     s, m = data.scalars, data.metrics
-    f_max = m.get("force_max_N", s.get("force_max_N"))
-    t_max = m.get("force_max_t_s",
-                  s.get("force_max_t_s") if f_max == s.get("force_max_N") else None)
+    analysed = math.isfinite(m.force_max_N)  # an analysis.json before these metrics: the run's
+    f_max = m.force_max_N if analysed else s.force_max_N
+    t_max = m.force_max_t_s if math.isfinite(m.force_max_t_s) else (
+        s.force_max_t_s if f_max == s.force_max_N else None)
     force_zoom = None if t_max is None else (t_max - 1.5 * period, t_max + 1.5 * period)
     r_b2 = data.geometry.gear.r_b_mm if data.geometry else None
     static = (_static_force(c, r_b2, data.gear_side_damping) if r_b2
-              else m.get("force_static_N", s["force_static_N"]))
+              else m.force_static_N if math.isfinite(m.force_static_N) else s.force_static_N)
     slots = {f"slot {k[len('force_slot'):-2]}": v for k, v in dense.items()
              if k.startswith("force_slot") and k.endswith("_N")}
     jobs = [
@@ -101,24 +105,24 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
         jobs.insert(0, ("geometry", "The pair in mesh at its operating centre distance, drawn "
                         "from the generated tooth profiles (involute, trochoid fillet, tip), "
                         "with the line of action and the path of contact.",
-                        lambda: plot_pair(data.geometry, title=f"{data.run.summary.get('case')}: "
+                        lambda: plot_pair(data.geometry, title=f"{data.run.summary.case}: "
                                           "spur pair in mesh")))
-    modes = data.scalars.get("modes") or []
-    if any(not m.get("rigid_body") for m in modes):
+    modes = data.scalars.modes
+    if any(not m.rigid_body for m in modes):
         jobs.append(("campbell", "Campbell diagram from the modes of the linearised model "
                      "(summary.json): gear-mesh orders k·f_z against pinion speed, the modes "
                      "(dashed: overdamped, no resonant peak), crossings with peaked modes "
                      "circled and the case speed marked.",
                      lambda: plot_campbell_summary(
-                         modes, teeth[0], abs(data.scalars.get("pinion_speed_mean_deg_s", 0.0))
-                         / 6.0, int(data.case.get("checks", {}).get("harmonics", 5)),
+                         modes, teeth[0], abs(data.scalars.pinion_speed_mean_deg_s)
+                         / 6.0, data.case.checks.harmonics,
                          units=data.units)))
     omega1 = c["omega1_rad_s"]
     # a run-up (the speed below 99 % of its final value for at least a tenth of the run, not
     # only a start-up transient): the order map
     if np.mean(np.abs(omega1) < 0.99 * abs(float(omega1[-1]))) >= 0.1:
-        elastic_Hz = [m["natural_frequency_Hz"] for m in modes
-                      if not m.get("rigid_body") and m.get("natural_frequency_Hz")]
+        elastic_Hz = [m.natural_frequency_Hz for m in modes
+                      if not m.rigid_body and m.natural_frequency_Hz]
         jobs.append(("orders", "Order map of the run-up: short-time spectra of the mesh force "
                      "against pinion speed (left) and time (right), with the mesh orders "
                      "k·z1·n/60 (white) and the modes (dashed); dB re the largest amplitude.",
@@ -163,10 +167,10 @@ def _stress(data: ReportData):
     return plot_stress_of_run(
         ss["t_s"], stack("x_slot{}_mm", c), stack("force_slot{}_N", c),
         stack("sigma_H_slot{}_MPa", ss), stack("sigma_F_pinion_slot{}_MPa", ss),
-        stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st["static"],
-        window_s=tuple(st["window_s"]),
-        f_z_Hz=data.scalars.get("gear_mesh_frequency_Hz") or 0.0,  # as `gearcli stress --plot`
-        title=f"{st.get('case')}: tooth stresses (z1 = {geo.pinion.teeth}, "
+        stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st.static.to_dict(),
+        window_s=tuple(st.window_s),
+        f_z_Hz=data.scalars.gear_mesh_frequency_Hz or 0.0,  # as `gearcli stress --plot`
+        title=f"{st.case}: tooth stresses (z1 = {geo.pinion.teeth}, "
               f"z2 = {geo.gear.teeth})")
 
 
@@ -231,72 +235,72 @@ def _cycle_start(t, pairs, window, period: float) -> float:
 
 
 def _spectra(data: ReportData):
-    harmonics = int((data.case.get("checks") or {}).get("harmonics") or 5)
+    harmonics = data.case.checks.harmonics
     return spectra_figure(data.spectrum, data.analysis, harmonics, units=data.units)
 
 
-def spectra_figure(spectrum: dict, analysis: dict, harmonics: int, order_axis: bool = False,
+def spectra_figure(spectrum: dict, analysis, harmonics: int, order_axis: bool = False,
                    db: bool = False, units: str = "engineering"):
-    """The spectra figure from spectrum.csv's columns and analysis.json (dict): on a
+    """The spectra figure from spectrum.csv's columns and analysis.json (its typed
+    gearcli.results.AnalysisDocument): on a
     frequency or (``order_axis``) pinion-order axis, log amplitudes or dB (``db``), amplitudes
     in the display ``units`` (gear speed in rpm or rad/s, DTE in µm or m)."""
     from gearcli.display_units import unit_and_factor
 
-    m = analysis["metrics"]
+    m = analysis.metrics
     panels, lines = {}, {}
     for key, (title, col, unit) in SPECTRA.items():
         if col not in spectrum:
             continue
         shown, k = unit_and_factor(unit, units, fine=key == "dte")
         panels[key] = (title, shown, spectrum[col] * k)
-        lines[key] = {label: {**ln, "amplitude": None if ln.get("amplitude") is None
-                              else ln["amplitude"] * k}
-                      for label, ln in (analysis.get("lines") or {}).get(key, {}).items()}
-    return plots.plot_spectra(spectrum["frequency_Hz"], panels, lines,
-                              float(m["gear_mesh_frequency_Hz"]), harmonics,
-                              float(m["output_rate_Hz"]),
-                              order_Hz=float(m["pinion_shaft_Hz"]) if order_axis else None,
+        lines[key] = {label: dataclasses.replace(ln, amplitude=None if ln.amplitude is None
+                                                 else ln.amplitude * k)
+                      for label, ln in analysis.lines.get(key, {}).items()}
+    return plot_spectra(spectrum["frequency_Hz"], panels, lines,
+                              float(m.gear_mesh_frequency_Hz), harmonics,
+                              float(m.output_rate_Hz),
+                              order_Hz=float(m.pinion_shaft_Hz) if order_axis else None,
                               db=db)
 
 
 def _modifications(data: ReportData, period: float):
-    case = data.case
+    e, m = data.case.errors, data.case.modifications
     errors = _errors_panel(data, period) if any(
-        v is not None for pair in (case.get("errors") or {}).values() for v in pair.values()
-    ) else None
+        x is not None for x in (e.runout.pinion, e.runout.gear, e.pitch_deviation.pinion,
+                                e.pitch_deviation.gear)) else None
     relief = _relief_panel(data) if any(
-        v is not None for pair in (case.get("modifications") or {}).values()
-        for v in pair.values()
-    ) else None
+        x is not None for x in (m.tip_relief.pinion, m.tip_relief.gear, m.root_relief.pinion,
+                                m.root_relief.gear)) else None
     if errors is None and relief is None:
         raise ValueError("no errors and no relief in the case")
     return plots.plot_modifications(errors, relief)
 
 
 def _errors_panel(data: ReportData, period: float) -> dict:
-    errs, m = data.case["errors"], data.metrics
-    shaft = {"pinion": float(m.get("pinion_shaft_Hz") or 0.0),
-             "gear": float(m.get("gear_shaft_Hz") or 0.0)}
+    errs, m = data.case.errors, data.metrics
+    shaft = {"pinion": float(m.pinion_shaft_Hz or 0.0), "gear": float(m.gear_shaft_Hz or 0.0)}
     parts, rev_s, ecc = [], 0.0, 0.0
     for gear in ("pinion", "gear"):
-        run_out = (errs.get("runout") or {}).get(gear)
-        pitch = (errs.get("pitch_deviation") or {}).get(gear)
+        run_out = getattr(errs.runout, gear)
+        pitch = getattr(errs.pitch_deviation, gear)
         if run_out is None and pitch is None:
             continue
         if shaft[gear] > 0:
             rev_s = max(rev_s, 1.0 / shaft[gear])
         if run_out is not None:
-            ecc += number(run_out["eccentricity"])
-            parts.append(f"{gear} runout e = {number(run_out['eccentricity']) * 1e3:.1f} µm")
+            ecc += run_out.eccentricity  # [mm]
+            parts.append(f"{gear} runout e = {run_out.eccentricity * 1e3:.1f} µm")
         if pitch is not None:
-            grade = pitch.get("iso1328_grade")
+            grade = pitch.iso1328_grade
             parts.append(f"{gear} pitch deviations"
                          + (f" (ISO 1328 grade {grade})" if grade else ""))
     t, d = data.run.columns["t_s"], data.run.columns["delta_mm"]
     w0, w1 = data.window_s
     span = 3.0 * rev_s if rev_s > 0 else w1 - w0
     sel = (t >= max(w0, w1 - span)) & (t <= w1)
-    rate = float(data.metrics.get("output_rate_Hz") or data.scalars["output_rate_Hz"])
+    rate = float(data.metrics.output_rate_Hz if math.isfinite(data.metrics.output_rate_Hz)
+                 else data.scalars.output_rate_Hz)
     t_mean, d_mean = plots.mesh_cycle_mean(t[sel], d[sel], rate * period)
     return {
         "t_s": t[sel], "dte_mm": d[sel], "cycle_t_s": t_mean, "cycle_mean_mm": d_mean,
@@ -305,38 +309,38 @@ def _errors_panel(data: ReportData, period: float) -> dict:
     }
 
 
-def _relief(spec: dict | None) -> Relief | None:
+def _relief(spec) -> Relief | None:
+    """The model's relief of a case's (gearcli.case.schema.Relief, internal units) or None."""
     if spec is None:
         return None
-    length, start = spec.get("length"), spec.get("start_diameter")
-    return Relief(number(spec["amount"]), None if length is None else number(length),
-                  None if start is None else number(start), spec.get("shape") or "linear")
+    return Relief(spec.amount, spec.length, spec.start_diameter, spec.shape)
 
 
 def _relief_panel(data: ReportData) -> dict | None:
     geo = data.geometry
     if geo is None:
         return None
-    mods_in = data.case["modifications"]
-    tip, root = mods_in.get("tip_relief") or {}, mods_in.get("root_relief") or {}
-    mods = Modifications(_relief(tip.get("pinion")), _relief(tip.get("gear")),
-                         _relief(root.get("pinion")), _relief(root.get("gear")))
+    mods_in = data.case.modifications
+    tip, root = mods_in.tip_relief, mods_in.root_relief
+    mods = Modifications(_relief(tip.pinion), _relief(tip.gear), _relief(root.pinion),
+                         _relief(root.gear))
     x = np.linspace(-0.5, geo.g_alpha_mm + 0.5, 801)
     (g1, _), (g2, _) = modification_gaps(geo, mods, x)
     curves, parts = {}, []
     for gear, values in (("pinion", g1), ("gear", g2)):
-        kinds = [k for k, src in (("tip", tip), ("root", root)) if src.get(gear) is not None]
+        kinds = [k for k, src in (("tip", tip), ("root", root))
+                 if getattr(src, gear) is not None]
         if kinds:
             curves[f"{gear} {' + '.join(kinds)} relief"] = values
         for kind, src in (("tip", tip), ("root", root)):
-            r = src.get(gear)
+            r = getattr(src, gear)
             if r is not None:
-                extent = (f"over {number(r['length']):g} mm" if r.get("length") is not None
-                          else f"from d = {number(r['start_diameter']):g} mm")
-                parts.append(f"{gear} {kind} relief C = {number(r['amount']) * 1e3:g} µm "
-                             f"{extent} ({r.get('shape') or 'linear'})")
+                extent = (f"over {r.length:g} mm" if r.length is not None
+                          else f"from d = {r.start_diameter:g} mm")
+                parts.append(f"{gear} {kind} relief C = {r.amount * 1e3:g} µm "
+                             f"{extent} ({r.shape})")
     points = {k: v - geo.A_mm for k, v in geo.line_of_action_points().items()
               if k in ("A", "B", "C", "D", "E")}
-    mean = data.metrics.get("dte_mean_mm")
+    mean = data.metrics.dte_mean_mm if math.isfinite(data.metrics.dte_mean_mm) else None
     return {"x_mm": x, "curves": curves, "points": points, "dte_mean_mm": mean,
             "label": "; ".join(parts)}

@@ -7,8 +7,11 @@ import shlex
 from dataclasses import dataclass, field
 
 from gearcli.display_units import DEFAULT, convert, unit_and_factor
-from gearcli.io.metrics import METRICS, display
-from gearcli.report.data import ReportData, number, unit_of
+from gearcli.io.metrics import display
+from gearcli.report.data import ReportData
+from gearcli.results import shown_values
+from gearcli.results.stress import Safety
+from gearcli.units import split_internal
 
 
 @dataclass(frozen=True)
@@ -47,7 +50,7 @@ def fmt(value, digits: int = 4) -> str:
 def _cells(value, system: str, unit: str | None = None) -> tuple[str, str]:
     """(value, unit) cells in the display units ``system`` (gearcli/display_units.py) of a
     stored "number unit" string (internal units), or of the number ``value`` in ``unit``."""
-    x, u = (value, unit) if unit is not None else (number(value), unit_of(value))
+    x, u = (value, unit) if unit is not None else split_internal(value)
     shown, shown_unit = convert(x, u, system)
     return fmt(shown), shown_unit
 
@@ -57,22 +60,30 @@ def qty(value, system: str = DEFAULT, unit: str | None = None) -> str:
     return "–" if value is None else " ".join(_cells(value, system, unit)).strip()
 
 
+def _unit(text: str) -> str:
+    """The unit of a stored "number unit" text; "" for a word ("derived", "linear")."""
+    try:
+        return split_internal(text)[1]
+    except ValueError:
+        return ""
+
+
 def _is_number(value) -> bool:
     """Whether a stored case value is a number (or "number unit"), not a word like "derived"."""
     try:
-        return math.isfinite(number(value))
+        return math.isfinite(split_internal(value)[0])
     except (TypeError, ValueError):
         return False
 
 
 def _deg(value) -> str:
-    return "–" if value is None else f"{math.degrees(number(value)):.4g} deg"
+    return "–" if value is None else f"{math.degrees(split_internal(value)[0]):.4g} deg"
 
 
 # --- the case ---------------------------------------------------------------------------------
 def gears_table(data: ReportData) -> Table:
     """Table 1-style: teeth, module, pressure angle, face width, diameters, material."""
-    case, geo, u = data.case, data.geometry, data.units
+    case, geo, u = data.case_data, data.geometry, data.units
     g = case["gears"]
     p, w = g["pinion"], g["gear"]
     mat = case.get("material") or {}
@@ -115,7 +126,7 @@ def _inertia(gear: dict, u: str) -> str:
         text = "solid disc, " + ("pitch diameter" if d is None else qty(d, u))
     else:
         text = f"given J = {qty(i.get('value'), u)}"
-    extra = number(i.get("extra")) if i.get("extra") is not None else 0.0
+    extra = split_internal(i.get("extra"))[0] if i.get("extra") is not None else 0.0
     return text + (f" + {qty(i.get('extra'), u)}" if extra else "")
 
 
@@ -140,26 +151,26 @@ def geometry_table(data: ReportData) -> Table | None:
 
 def contact_table(data: ReportData) -> Table:
     """Table 3-style: contact law and friction parameters."""
-    c = data.case.get("contact") or {}
-    f = data.case.get("friction") or {}
+    c = data.case_data.get("contact") or {}
+    f = data.case_data.get("friction") or {}
     rows = [("contact law", str(c.get("law", "")), ""),
             ("engagement model", str(c.get("engagement", "")), "")]
     if c.get("law") == "tooth":  # docs/theory.md §4b, §4c: no IMPACT parameters
         rows.append(("mesh damping ratio ζ", fmt(c.get("damping_ratio")), "–"))
         for gear in ("pinion", "gear"):
-            bore = ((data.case.get("gears") or {}).get(gear) or {}).get("bore_diameter")
+            bore = ((data.case_data.get("gears") or {}).get(gear) or {}).get("bore_diameter")
             rows.append((f"{gear} bore (gear-body compliance)",
                          *(_cells(bore, data.units) if bore is not None
                            else ("default (docs/theory.md §4b)", ""))))
-        k = data.scalars.get("mesh_stiffness_N_mm")
+        k = data.scalars.mesh_stiffness_N_mm
         if isinstance(k, int | float):
             rows.append(("mesh stiffness, linearised at the static load",
                          *_cells(k, data.units, "N/mm")))
     else:
-        e = number(c.get("exponent", 1.0))
+        e = split_internal(c.get("exponent", 1.0))[0]
         stiffness = c.get("stiffness")
         rows += [
-            ("stiffness K", fmt(number(stiffness)) if _is_number(stiffness)
+            ("stiffness K", fmt(split_internal(stiffness)[0]) if _is_number(stiffness)
              else str(stiffness), f"N/mm^{e:g}"),
             ("force exponent e", fmt(e), "–"),
             ("maximum damping c_max", *_cells(c.get("max_damping"), data.units)),
@@ -184,7 +195,7 @@ def _function(spec: dict | None) -> str:
 
 def drive_table(data: ReportData) -> Table:
     """Drive and load functions, bearing losses and run settings."""
-    case = data.case
+    case = data.case_data
     d, ld = case.get("drive") or {}, case.get("load") or {}
     b, r = case.get("bearings") or {}, case.get("run") or {}
     kind, u = d.get("type", ""), data.units
@@ -197,8 +208,8 @@ def drive_table(data: ReportData) -> Table:
         ("bearing damping pinion / gear", f"{qty((b.get('pinion') or {}).get('damping'), u)} / "
                                           f"{qty((b.get('gear') or {}).get('damping'), u)}"),
         ("end time", qty(r.get("end_time"), u)),
-        ("output", f"{fmt(data.scalars.get('output_rate_Hz'))} Hz "
-                   f"({data.run.summary.get('rows', '?')} rows)"),
+        ("output", f"{fmt(data.scalars.output_rate_Hz)} Hz "
+                   f"({data.run.summary.rows} rows)"),
         ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / " + (
             qty(r.get("atol"), u) if r.get("atol") is not None
             else "default (1e-5 of the static deflection, at most 1 µm)")),
@@ -222,9 +233,9 @@ def _setting(value, u: str) -> str:
     units ``u``, numbers with 4 significant digits (never Python's repr)."""
     if isinstance(value, dict):
         return "; ".join(f"{k.replace('_', ' ')} {_setting(v, u)}" for k, v in value.items())
-    if isinstance(value, str) and unit_of(value) == "rad":  # angles as the case takes them
+    if isinstance(value, str) and _unit(value) == "rad":  # angles as the case takes them
         return _deg(value)
-    if isinstance(value, str) and unit_of(value):
+    if isinstance(value, str) and _unit(value):
         return qty(value, u)
     return fmt(value)
 
@@ -233,7 +244,7 @@ def modifications_table(data: ReportData) -> Table | None:
     """Profile reliefs and manufacturing errors that are set (None when there are none)."""
     rows = []
     for group in ("modifications", "errors"):
-        for kind, pair in (data.case.get(group) or {}).items():
+        for kind, pair in (data.case_data.get(group) or {}).items():
             for gear, spec in (pair or {}).items():
                 if spec is not None:
                     text = ", ".join(f"{k} = {_setting(v, data.units)}"
@@ -243,54 +254,26 @@ def modifications_table(data: ReportData) -> Table | None:
 
 
 # --- results ----------------------------------------------------------------------------------
-#: (metrics key, label, unit, scale) in report order; keys absent from analysis.json are skipped.
-#: The metrics of the results table, in order (labels and units: gearcli/io/metrics.py).
-RESULT_KEYS = (
-    "pinion_speed_mean_deg_s", "gear_speed_mean_deg_s", "speed_ratio", "speed_ratio_theory",
-    "speed_ratio_error_percent", "gear_speed_fluctuation_percent", "force_static_N",
-    "force_mean_N", "force_rms_N", "force_max_N", "force_min_N", "dynamic_factor",
-    "dte_mean_mm", "dte_peak_to_peak_mm", "dte_rms_mm", "contact_loss_fraction",
-    "coast_impacts", "input_power_W", "friction_loss_W", "damping_loss_W", "mesh_efficiency",
-    "drive_torque_mean_Nmm", "drive_torque_ripple_Nmm", "gear_mesh_frequency_Hz",
-    "pinion_shaft_Hz", "gear_shaft_Hz", "mesh_natural_frequency_Hz", "mesh_damping_ratio",
-    "resonance_margins_percent", "output_rate_Hz", "frequency_resolution_Hz", "samples",
-)
-_NOT_SHOWN = {"window_s", "window_reason", "force_max_source"}
-
-
 def results_table(data: ReportData) -> Table:
-    """Key metrics of analysis.json with units; unknown numeric metrics follow by name."""
+    """The metrics of analysis.json shown at "report" (field metadata, gearcli/results/) with
+    their labels and display units."""
     m = data.metrics
     w0, w1 = data.window_s
     rows = [("steady window analysed", f"{w0:.4g} – {w1:.4g}", "s")]
-    for key in RESULT_KEYS:
-        if key not in m:
-            continue
-        label, v, unit = display(key, m[key], data.units)
-        if key == "force_max_N" and m.get("force_max_source"):
-            label += f" (from the {m['force_max_source']})"
+    for key, value in shown_values(m, "report").items():
+        label, v, unit = display(key, list(value) if isinstance(value, tuple) else value,
+                                 data.units)
+        if key == "force_max_N" and m.force_max_source:
+            label += f" (from the {m.force_max_source})"
         rows.append((label, fmt(v), unit))
-    known = set(RESULT_KEYS) | _NOT_SHOWN
-    for key, v in m.items():
-        if key in known or isinstance(v, bool):
-            continue
-        if key in METRICS and isinstance(v, int | float):  # the registry's label and unit
-            rows.append(tuple(fmt(x) if i == 1 else x
-                              for i, x in enumerate(display(key, v, data.units))))
-            continue
-        if isinstance(v, int | float) or (isinstance(v, list)
-                                           and all(isinstance(x, int | float) for x in v)):
-            label = _key_label(key)
-            unit = label[label.rfind("[") + 1:-1] if label.endswith("]") else ""
-            rows.append((label.rsplit(" [", 1)[0] if unit else label, fmt(v), unit))
-    note = str(data.analysis.get("window_reason") or "")
+    note = data.analysis.window_reason
     return Table("Results of the steady window", ("quantity", "value", "unit"), rows,
                  f"window: {note}" if note else "")
 
 
 def lines_table(data: ReportData) -> Table | None:
     """Amplitude of the mesh harmonics k·f_z in each spectrum (sidebands: harmonics.csv)."""
-    lines = data.analysis.get("lines") or {}
+    lines = data.analysis.lines
     # (signal, stored unit, a deflection?) -> the display unit and factor of its amplitudes
     signals = [(s, *unit_and_factor(u, data.units, fine)) for s, u, fine in
                (("gear_speed", "rad/s", False), ("dte", "mm", True), ("force", "N", False))
@@ -302,12 +285,12 @@ def lines_table(data: ReportData) -> Table | None:
     for label, ln in first.items():
         if "+" in label or "-" in label:
             continue
-        cells = [label.replace("fz", " f_z"), fmt(ln.get("expected_Hz"))]
+        cells = [label.replace("fz", " f_z"), fmt(ln.expected_Hz)]
         for sig, _, factor in signals:
-            other = lines[sig].get(label) or {}
-            amp = other.get("amplitude")
+            other = lines[sig].get(label)
+            amp = None if other is None else other.amplitude
             cells.append(fmt(None if amp is None else amp * factor)
-                         if other.get("resolvable") else "not resolvable")
+                         if other is not None and other.resolvable else "not resolvable")
         rows.append(tuple(cells))
     names = {"gear_speed": "gear speed", "dte": "DTE", "force": "force"}
     headers = ("line", "frequency [Hz]") + tuple(
@@ -318,13 +301,12 @@ def lines_table(data: ReportData) -> Table | None:
 
 def modes_table(data: ReportData) -> Table | None:
     """Modes of the linearised model as simulate stored them (the ones `gearcli modal` gives)."""
-    modes = data.scalars.get("modes") or []
+    modes = data.scalars.modes
     if not modes:
         return None
-    rows = [(str(m["mode"]),
-             "rigid body" if m.get("rigid_body") else fmt(m.get("natural_frequency_Hz")),
-             "–" if m.get("rigid_body") else fmt(m.get("damping_ratio")),
-             str(m.get("description", ""))) for m in modes]
+    rows = [(str(m.mode), "rigid body" if m.rigid_body else fmt(m.natural_frequency_Hz),
+             "–" if m.rigid_body else fmt(m.damping_ratio), str(m.description))
+            for m in modes]
     return Table("Modes of the linearised model", ("mode", "f_n [Hz]", "damping ratio ζ",
                                                    "dominant motion"), rows,
                  "the margins of the results table are measured to these; details and mode "
@@ -334,12 +316,11 @@ def modes_table(data: ReportData) -> Table | None:
 def checks_table(data: ReportData) -> Table:
     """Every check of analysis.json, marked pass or fail."""
     rows, status = [], []
-    for c in data.analysis.get("checks", []):
-        ok = bool(c.get("passed"))
-        checked = c.get("checked", True) is not False
+    for c in data.analysis.checks:
+        ok = bool(c.passed)
+        checked = c.checked is not False
         result = "not checked" if not checked else "pass" if ok else "FAIL"
-        rows.append((str(c.get("name", "")), fmt(c.get("value")), str(c.get("limit", "")),
-                     result, str(c.get("note") or "")))
+        rows.append((str(c.name), fmt(c.value), str(c.limit), result, str(c.note or "")))
         status.append("fail" if not ok else "pass" if checked else "")
     return Table("Checks", ("check", "value", "limit", "result", "note"), rows, status=status)
 
@@ -366,7 +347,7 @@ def provenance_table(data: ReportData) -> Table:
             ("overrides", "; ".join(str(o) for o in man.get("overrides") or []) or "none")]
     rows += [(name if name == "platform" else f"{name} version", str(v))
              for name, v in (man.get("versions") or {}).items()]
-    s = data.run.summary.get("solver") or {}
+    s = data.run.summary.solver or {}
     if s:
         rows.append(("solver", ", ".join(f"{_key_label(k)} {fmt(v)}" for k, v in s.items())))
     return Table("Provenance (manifest.json, summary.json)", ("item", "value"), rows)
@@ -379,22 +360,23 @@ def stress_table(data: ReportData) -> Table | None:
         return None
     rows, status = [], []
     for gear in ("pinion", "gear"):
-        g, ref = st[gear], st["static"][gear]
-        safety = g.get("safety") or {}
-        for kind, peak_key, ref_key, ratio_key, s_key in (
-            ("contact σ_H", "peak_sigma_H", "sigma_H_iso_MPa", "ratio_sigma_H_to_static", "S_H"),
-            ("root σ_F", "peak_sigma_F", "sigma_F0_MPa", "ratio_sigma_F_to_static", "S_F"),
+        g, ref = getattr(st, gear), getattr(st.static, gear)
+        safety = g.safety or Safety()
+        for kind, peak, static, ratio, s_factor in (
+            ("contact σ_H", g.peak_sigma_H, ref.sigma_H_iso_MPa, g.ratio_sigma_H_to_static,
+             safety.S_H),
+            ("root σ_F", g.peak_sigma_F, ref.sigma_F0_MPa, g.ratio_sigma_F_to_static,
+             safety.S_F),
         ):
-            peak = g[peak_key]
-            rows.append((gear, kind, fmt(peak["MPa"]), f"{fmt(peak['t_s'])} s, tooth "
-                         f"{peak['tooth']}, {peak['zone']}", fmt(ref[ref_key]),
-                         fmt(g[ratio_key]), fmt(safety.get(s_key))))
+            rows.append((gear, kind, fmt(peak.MPa), f"{fmt(peak.t_s)} s, tooth "
+                         f"{peak.tooth}, {peak.zone}", fmt(static), fmt(ratio), fmt(s_factor)))
             status.append("")
-    note = str(st.get("ratio_definition", ""))
-    window = st.get("window_s")
-    if window:  # gearcli stress has its own window: say which, and when it is not analyze's
+    note = st.ratio_definition
+    window = st.window_s
+    if all(math.isfinite(x) for x in window):  # gearcli stress has its own window: say which,
+        # and when it is not analyze's
         note = (f"Peaks in the window {fmt(window[0])}-{fmt(window[1])} s of gearcli stress "
-                f"({st.get('window_reason', '')})" + (
+                f"({st.window_reason})" + (
                     f", not the analysis window {fmt(data.window_s[0])}-"
                     f"{fmt(data.window_s[1])} s of the tables above"
                     if data.window_s and any(abs(a - b) > 1e-9 for a, b in

@@ -123,12 +123,14 @@ def test_spectra_figure_on_an_order_axis_in_db(seed_dir, tmp_path):
     from gearcli.pipeline.analysis_io import analysis_document, spectrum_columns
     from gearcli.pipeline.analyze import analyze
     from gearcli.report.figures import spectra_figure
+    from gearcli.results import AnalysisDocument
 
     res = runner.invoke(app, ["analyze", str(seed_dir), "--force", "-q", "--spectra",
                               str(tmp_path / "s.png"), "--order-axis", "--db"])
     assert res.exit_code == 4 and (tmp_path / "s.png").stat().st_size > 10_000
     result = analyze(seed_dir)
-    fig = spectra_figure(spectrum_columns(result), analysis_document(result), 5, True, True)
+    fig = spectra_figure(spectrum_columns(result),
+                         AnalysisDocument.from_document(analysis_document(result)), 5, True, True)
     ax = fig.axes[0]
     dashed = sorted(round(line.get_xdata()[0], 6) for line in ax.lines
                     if line.get_linestyle() == "--")

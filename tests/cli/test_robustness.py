@@ -364,7 +364,7 @@ def test_a_run_without_load_is_judged_by_the_tooth_thickness_and_reported(tmp_pa
 
     res = run_simulation(SEED, ["load.torque=0", "run.end_time=0.5"], zoom=False)
     assert res.status == "ok", res.invalid_reason
-    assert res.summary["dynamic_factor"] is None  # no static force: no dynamic factor
+    assert res.summary.dynamic_factor is None  # no static force: no dynamic factor
     r = invoke("run", ROOT / "cases" / "iso_pair.yaml", "-o", tmp_path / "o", "--set",
                "load.torque=0", "--set", "run.end_time=0.2")
     assert r.exit_code in (0, 4), r.output
@@ -569,7 +569,7 @@ def test_round_off_coast_contact_is_no_impact_warning():
 
     res = run_simulation(ROOT / "cases" / "iso_pair.yaml", ["run.end_time=0.3"], zoom=False)
     warned = any(w.startswith("coast-flank impacts") for w in res.warnings)
-    assert warned == (res.summary["coast_force_max_N"]
+    assert warned == (res.summary.coast_force_max_N
                       > COAST_FORCE_FRACTION * res.kernel_input.mesh.static_force_N)
     # near resonance without backlash the coast flanks are hit: 11 kN
     hit = run_simulation(ROOT / "cases" / "iso_pair.yaml", [

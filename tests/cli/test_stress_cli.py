@@ -73,7 +73,7 @@ def _along_path(folder):
     t = run.column("t_s")
     sel = (t >= 0.1) & (t <= 0.5)
     out = [[], [], [], []]
-    for j in range(int(run.summary["slots"])):
+    for j in range(int(run.summary.slots)):
         on = sel & (run.column(f"force_slot{j}_N") > 0.0)
         for k, name in enumerate((f"sigma_H_slot{j}_MPa", f"sigma_F_pinion_slot{j}_MPa",
                                   f"sigma_F_gear_slot{j}_MPa")):
@@ -137,7 +137,7 @@ def test_table_files_and_plot(plain_dir, tmp_path):
         assert text in result.stdout
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     header = (plain_dir / "stress.csv").read_text().splitlines()[0].split(",")
-    slots = read_run(plain_dir).summary["slots"]
+    slots = read_run(plain_dir).summary.slots
     assert header[:2] == ["t_s", "mesh_cycle"] and len(header) == 2 + 3 * slots
     assert "sigma_F_gear_slot0_MPa" in header
     doc = json.loads((plain_dir / "stress.json").read_text())

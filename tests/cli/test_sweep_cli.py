@@ -9,7 +9,7 @@ import time
 from typer.testing import CliRunner
 
 from gearcli.cli import app
-from gearcli.pipeline.sweep_run import SUMMARY
+from gearcli.pipeline.sweep.run import SUMMARY
 from tests.unit.sweep_helpers import write_study
 
 runner = CliRunner()

@@ -72,7 +72,7 @@ def test_tip_relief_lowers_entry_force_and_dte():
         return f[near].mean()
 
     assert force_at_A(relieved) < 0.7 * force_at_A(plain)
-    assert relieved.summary["dte_peak_to_peak_mm"] < plain.summary["dte_peak_to_peak_mm"]
+    assert relieved.summary.dte_peak_to_peak_mm < plain.summary.dte_peak_to_peak_mm
 
 
 def test_backlash_zero_load_rattles():
@@ -80,8 +80,8 @@ def test_backlash_zero_load_rattles():
     res = run(*CLEAN, "load.torque=0", "gears.gear.thickness_allowance=0.2",
               "errors.runout.gear={eccentricity: 0.02}", "run.end_time=1.0")
     s = res.summary
-    assert s["contact_loss_fraction"] > 0.05
-    assert s["coast_force_max_N"] > 0.0
+    assert s.contact_loss_fraction > 0.05
+    assert s.coast_force_max_N > 0.0
     assert any("coast-flank impacts" in w for w in res.warnings)
 
 
@@ -93,10 +93,11 @@ def test_backlash_irrelevant_under_large_load():
     base = run(*CLEAN, heavy)
     slack = run(*CLEAN, heavy, "gears.gear.thickness_allowance=0.2")
     assert slack.geometry.geometry.j_n_mm > 0.15
-    assert base.summary["contact_loss_fraction"] == 0.0
+    assert base.summary.contact_loss_fraction == 0.0
     for key in ("force_mean_N", "force_max_N", "dte_mean_mm", "dte_peak_to_peak_mm"):
-        assert slack.summary[key] == pytest.approx(base.summary[key], rel=1e-3), key
-    assert slack.summary["coast_force_max_N"] == 0.0
+        assert getattr(slack.summary, key) == pytest.approx(getattr(base.summary, key),
+                                                            rel=1e-3), key
+    assert slack.summary.coast_force_max_N == 0.0
 
 
 def test_runout_makes_sidebands():

@@ -75,9 +75,9 @@ def test_mesh_document_of_the_seed_case():
     lm = res.loaded
     # equilibrium (1): the gear's torque balance at every position
     assert np.all(lm.pairs_in_contact >= 1)
-    assert doc["ste"]["peak_to_peak_um"] == pytest.approx(1e3 * np.ptp(lm.ste_mm))
-    assert doc["stiffness"]["double_pair_zone_N_mm"] > doc["stiffness"]["single_pair_zone_N_mm"]
-    assert any("friction" in n for n in doc["notes"])  # the seed has friction: said so
+    assert doc.ste.peak_to_peak_um == pytest.approx(1e3 * np.ptp(lm.ste_mm))
+    assert doc.stiffness.double_pair_zone_N_mm > doc.stiffness.single_pair_zone_N_mm
+    assert any("friction" in n for n in doc.notes)  # the seed has friction: said so
     loads, ptp = res.harris
     assert loads.size == 20 and np.all(np.diff(loads) > 0) and np.all(ptp > 0)
     # no relief: the stiffening p^1.5 law's STE fluctuation grows with the load

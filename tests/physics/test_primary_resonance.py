@@ -24,7 +24,7 @@ def test_speed_sweep_peaks_at_the_mesh_mode():
     (mode,) = modal.result.elastic  # speed drive: the gear against the prescribed pinion
     f_n = mode.natural_frequency_Hz
     assert 0.05 < mode.damping_ratio < 0.2
-    dte = [run_simulation(SEED, [*BASE, _speed(r, f_n)]).summary["dte_peak_to_peak_mm"]
+    dte = [run_simulation(SEED, [*BASE, _speed(r, f_n)]).summary.dte_peak_to_peak_mm
            for r in RATIOS]
     peak = RATIOS[int(np.argmax(dte))]
     # measured: DTE p-p 0.093, 0.170, 0.546, 0.797, 0.111, 0.067, 0.048 mm. The peak sits at

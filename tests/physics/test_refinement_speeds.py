@@ -46,7 +46,7 @@ def law_case(request, tmp_path_factory):
                                                                         IMPACT_CONTACT)
     path = tmp_path_factory.mktemp(request.param) / f"iso_pair_{request.param}.yaml"
     path.write_text(text)
-    f_n = run_simulation(path, ["run.end_time=0.01"]).summary["mesh_natural_frequency_Hz"]
+    f_n = run_simulation(path, ["run.end_time=0.01"]).summary.mesh_natural_frequency_Hz
     return request.param, path, f_n
 
 
@@ -55,7 +55,7 @@ def dynamic_factor(path, f_z: float, extra: list[str]) -> float:
     overrides = ["friction.enabled=false", f"drive.speed=STEP(time, 0, 0, 0.05, {deg_s})",
                  "load.torque=STEP(time, 0, 0, 0.05, 3e5)", f"run.end_time={0.05 + CYCLES / f_z}",
                  *extra]
-    return run_simulation(path, overrides).summary["dynamic_factor"]
+    return run_simulation(path, overrides).summary.dynamic_factor
 
 
 @pytest.mark.slow

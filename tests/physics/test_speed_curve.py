@@ -72,7 +72,8 @@ def test_outputs_and_provenance(curve):
 
     overrides = {"contact.damping_ratio": 0.03, "gears.pinion.thickness_allowance": "0.2 mm",
                  "friction.enabled": False}
-    k = gearcli.mesh(ROOT / "cases" / "iso_pair.yaml", set=overrides).summary.mesh_mean_N_mm
+    mesh = gearcli.mesh(ROOT / "cases" / "iso_pair.yaml", set=overrides)
+    k = mesh.summary.stiffness.mesh_mean_N_mm
     geo = gearcli.geometry(ROOT / "cases" / "iso_pair.yaml", set=overrides)
     m = geo.mass[1].inertia_t_mm2 / geo.geometry.gear.r_b_mm ** 2
     f_n = math.sqrt(k / m) / (2.0 * math.pi)

@@ -36,9 +36,9 @@ def test_energy_balance_closes_with_every_body():
     load inertia, friction on: stored energy (kinetic, contact, springs) = work in - work out -
     losses. At rtol = atol = 1e-9 the residual is integration error only (measured 4.2e-9)."""
     res = run_simulation(DRIVETRAIN, ["run.end_time=0.3", "run.rtol=1e-9", "run.atol=1e-9"])
-    eb = res.summary["energy_balance"]
-    assert eb["relative_residual"] < 1e-6, eb
-    assert eb["delta_spring_mJ"] > 0.0 and eb["loss_bearing_mJ"] > 0.0
+    eb = res.summary.energy_balance
+    assert eb.relative_residual < 1e-6, eb
+    assert eb.delta_spring_mJ > 0.0 and eb.loss_bearing_mJ > 0.0
     c = res.columns()
     for loss in ("loss_bearing_mJ", "loss_damping_mJ", "loss_friction_mJ"):
         assert np.all(np.diff(c[loss]) >= -1e-9), loss
@@ -73,7 +73,7 @@ def test_stiff_supports_reduce_to_the_torsional_model():
     lat = run(NO_FRICTION, *lateral(1e9, 100.0)).summary
     for key in ("force_mean_N", "force_max_N", "dte_mean_mm", "dte_peak_to_peak_mm",
                 "gear_speed_mean_deg_s"):
-        assert lat[key] == pytest.approx(tors[key], rel=5e-3), key
+        assert getattr(lat, key) == pytest.approx(getattr(tors, key), rel=5e-3), key
 
 
 def test_load_inertia_on_a_stiff_shaft_reduces_to_the_load_on_the_gear():
@@ -85,7 +85,7 @@ def test_load_inertia_on_a_stiff_shaft_reduces_to_the_load_on_the_gear():
               "load.inertia=1 t*mm^2")
     s = res.summary
     for key in ("force_mean_N", "force_max_N", "dte_peak_to_peak_mm", "gear_speed_mean_deg_s"):
-        assert s[key] == pytest.approx(tors[key], rel=5e-3), key
+        assert getattr(s, key) == pytest.approx(getattr(tors, key), rel=5e-3), key
     assert wmean(res, "load_shaft_torque_Nmm") == pytest.approx(4.5e5, rel=1e-3)
     assert wmean(res, "omega_load_rad_s") == pytest.approx(wmean(res, "omega2_rad_s"), rel=1e-6)
 

@@ -57,10 +57,10 @@ def test_soft_entry_and_no_spike_above_resonance():
             f"run.output_rate={1000 * f_z}"]
     ext = run_simulation(ISO_PAIR, base)
     rigid = run_simulation(ISO_PAIR, [*base, "contact.engagement=rigid"])
-    assert ext.summary["dynamic_factor"] <= 1.10 * rigid.summary["dynamic_factor"]
+    assert ext.summary.dynamic_factor <= 1.10 * rigid.summary.dynamic_factor
     t = ext.kernel.column("t_s")
     window = t >= ext.window.t0_s
-    static = ext.summary["force_static_N"]
+    static = ext.summary.force_static_N
     jumps = entry_jumps(ext, window)
     assert jumps.size > 50 and jumps.max() <= 0.02 * static
     force = ext.kernel.column("force_total_N")[window]

@@ -46,7 +46,7 @@ def test_zero_backlash_resonance_is_invalid_and_with_backlash_it_is_valid():
     # (measured: dynamic factor 2.8, tooth separation 38 % of the time, no coast contact)
     ok = run_simulation(SEED, [*RESONANCE, *BACKLASH])
     assert ok.status == OK and ok.invalid_reason == ""
-    assert ok.summary["coast_force_max_N"] == 0.0
+    assert ok.summary.coast_force_max_N == 0.0
     assert ok.kernel.extremum("penetration_max_mm") < 10 * ok.kernel_input.mesh.static_deflection_mm
 
 

@@ -51,7 +51,7 @@ def test_simulate_returns_the_numbers_of_the_cli_files(tmp_path):
     for name in ("dynamic_factor", "force_max_N", "dte_peak_to_peak_mm", "force_static_N",
                  "mesh_natural_frequency_Hz", "contact_loss_fraction"):
         assert getattr(s, name) == pytest.approx(scalars[name], rel=1e-12), name
-    assert s.status == "ok" and sim.warnings == sim.result.warnings
+    assert sim.status == "ok" and isinstance(sim.warnings, list)
     df = sim.series
     assert df.index.name == "t_s" and "force_total_N" in df.columns
     assert df["force_total_N"].max() <= s.force_max_N * (1 + 1e-12)
@@ -75,8 +75,8 @@ def test_analyze_a_simulation_equals_analyze_of_the_cli_folder(tmp_path):
         if isinstance(value, float):
             assert api_metrics[key] == pytest.approx(value, rel=1e-9, nan_ok=True), key
     # the typed metrics are analysis.json's metrics, field by field
-    for key, value in from_folder.result.metrics.items():
-        if key in folder_metrics and isinstance(value, float):
+    for key, value in from_folder.document()["metrics"].items():
+        if isinstance(value, float):
             assert folder_metrics[key] == value, key
     assert from_api.passed == from_folder.passed and from_api.checks
     spectra = gearcli.spectra_frame(from_api)
@@ -174,18 +174,16 @@ def test_metric_labels_and_units_come_from_one_registry():
     typed Summary, the report's results table and the CLI tables read it (issue 17)."""
     import dataclasses
 
-    from gearcli.cli.analyze import ANALYZE_KEYS
-    from gearcli.cli.simulate import SUMMARY_KEYS
     from gearcli.io.metrics import METRICS
-    from gearcli.report.tables import RESULT_KEYS
+    from gearcli.results import PLACES, AnalysisMetrics, shown
 
     for f in dataclasses.fields(gearcli.Summary):
-        if f.name in ("status", "invalid_reason"):
-            continue
-        assert f.metadata["label"] == METRICS[f.name].label, f.name
-        assert f.metadata["unit"] == METRICS[f.name].unit, f.name
-    for keys in (ANALYZE_KEYS, SUMMARY_KEYS, RESULT_KEYS):
-        assert set(keys) <= set(METRICS)
+        if f.name in METRICS:
+            assert f.metadata["label"] == METRICS[f.name].label, f.name
+            assert f.metadata["unit"] == METRICS[f.name].unit, f.name
+    for place in PLACES:  # every shown metric has the registry's label and unit
+        for cls in (gearcli.Summary, AnalysisMetrics):
+            assert set(shown(cls, place)) <= set(METRICS), (place, cls)
 
 
 def test_mesh_returns_a_typed_summary_equal_to_the_cli_json():
@@ -194,13 +192,14 @@ def test_mesh_returns_a_typed_summary_equal_to_the_cli_json():
     assert res.exit_code == 0, res.output
     doc = json.loads(res.output)
     assert isinstance(m.summary, gearcli.MeshSummary)
-    assert m.summary.ste_peak_to_peak_um == doc["ste"]["peak_to_peak_um"]
-    assert m.summary.mesh_mean_N_mm == doc["stiffness"]["mesh_mean_N_mm"]
-    assert m.summary.k_v == doc["iso6336_method_b"]["k_v"]
+    assert m.summary.to_dict() == doc  # the typed document is the JSON
+    assert m.summary.ste.peak_to_peak_um == doc["ste"]["peak_to_peak_um"]
+    assert m.summary.stiffness.mesh_mean_N_mm == doc["stiffness"]["mesh_mean_N_mm"]
+    assert m.summary.iso6336_method_b.k_v == doc["iso6336_method_b"]["k_v"]
     table = m.table
     assert table.index.name == "roll_mm" and "ste_um" in table.columns
     assert table["ste_um"].max() - table["ste_um"].min() == pytest.approx(
-        m.summary.ste_peak_to_peak_um, rel=1e-9)
+        m.summary.ste.peak_to_peak_um, rel=1e-9)
     schema = json.loads(runner.invoke(app, ["schema", "--results", "--kind", "mesh"]).output)
     for group in ("ste", "stiffness", "iso6336_method_b"):
         for key in schema["properties"][group]["properties"]:
@@ -264,7 +263,7 @@ def test_api_takes_quantities_with_units_like_the_command_line():
     m = gearcli.mesh(SEED, load_N="2 kN")
     assert m.summary.force_N == pytest.approx(2000.0)
     modal = gearcli.modal(SEED, speed_range_deg_s=("0 rpm", "6000 rpm"))
-    assert modal.result.speed_range_deg_s == pytest.approx((0.0, 36000.0))
+    assert modal.speed_range_deg_s == pytest.approx((0.0, 36000.0))
     with pytest.raises(TypeError, match="progress=1: expected a callable"):
         gearcli.simulate(SEED, progress=1)
     with pytest.raises(TypeError, match="progress=1: expected a callable"):

@@ -151,11 +151,11 @@ def test_the_case_deviations_enter_b_p_and_b_k():
         return iso_dynamic(loaded.case, run_geometry(loaded))
 
     plain = iso()
-    assert (plain["B_p"], plain["B_f"], plain["B_k"]) == (0.0, 0.0, 1.0)
-    assert plain["tip_relief_um"] == 0.0
+    assert (plain.B_p, plain.B_f, plain.B_k) == (0.0, 0.0, 1.0)
+    assert plain.tip_relief_um == 0.0
     # seed: F_t/b = 3600 N / 100 mm = 36 N/mm < 100: c′ (rating) = c′ (36/100)^0.25
-    assert plain["line_load_N_mm"] == pytest.approx(36.0, rel=1e-9)
-    assert plain["low_load_factor"] == pytest.approx(0.36 ** 0.25, rel=1e-12)
+    assert plain.line_load_N_mm == pytest.approx(36.0, rel=1e-9)
+    assert plain.low_load_factor == pytest.approx(0.36 ** 0.25, rel=1e-12)
     graded = iso("errors.pitch_deviation.gear={iso1328_grade: 7}",
                  "errors.pitch_deviation.pinion={values: [0.005, -0.008, 0.006"
                  + ", 0.0" * 14 + "]}",
@@ -165,19 +165,19 @@ def test_the_case_deviations_enter_b_p_and_b_k():
     # pinion's values have mean 0.003/17 mm: largest |f_pt - mean| = 8.18 µm < 19.5 µm
     f_pt = (0.001 * 250.0 + 0.4 * 10.0 + 5.0) * 2.0
     assert iso1328_single_pitch_tolerance_um(7, 250.0, 10.0) == pytest.approx(f_pt)
-    assert graded["f_pb_eff_um"] == pytest.approx(f_pt * math.cos(math.radians(20.0)))
-    c, w = graded["c_prime_N_mm_um"], graded["line_load_N_mm"]
-    assert graded["B_p"] == pytest.approx(c * graded["f_pb_eff_um"] / w)
-    assert graded["B_k"] == pytest.approx(max(abs(1 - c * 5.0 / w), abs(1 - c * 20.0 / w)))
-    assert plain["c_prime_N_mm_um"] == pytest.approx(c)  # the deviations leave c′ alone
+    assert graded.f_pb_eff_um == pytest.approx(f_pt * math.cos(math.radians(20.0)))
+    c, w = graded.c_prime_N_mm_um, graded.line_load_N_mm
+    assert graded.B_p == pytest.approx(c * graded.f_pb_eff_um / w)
+    assert graded.B_k == pytest.approx(max(abs(1 - c * 5.0 / w), abs(1 - c * 20.0 / w)))
+    assert plain.c_prime_N_mm_um == pytest.approx(c)  # the deviations leave c′ alone
     only_pinion = iso("errors.pitch_deviation.pinion={values: [0.005, -0.008, 0.006"
                       + ", 0.0" * 14 + "]}",
                       "modifications.tip_relief.pinion={amount: 0.003, length: 5}")
     mean = (0.005 - 0.008 + 0.006) / 17
-    assert only_pinion["f_pb_eff_um"] == pytest.approx(
+    assert only_pinion.f_pb_eff_um == pytest.approx(
         1e3 * (0.008 + mean) * math.cos(math.radians(20.0)))
     # the unrelieved gear competes with B_k = 1 (C_a = 0): the larger B_k wins
-    assert only_pinion["B_k"] == pytest.approx(max(1.0, abs(1 - c * 3.0 / w)))
+    assert only_pinion.B_k == pytest.approx(max(1.0, abs(1 - c * 3.0 / w)))
 
 
 def test_running_in_amount_of_the_kissoft_printout():
@@ -191,5 +191,5 @@ def test_running_in_amount_of_the_kissoft_printout():
     assert running_in_tip_relief_um(1500.0) == pytest.approx(1.995, abs=5e-4)
     loaded = load_case("cases/seed.yaml", ["material.contact_fatigue_limit=1500 MPa"])
     d = iso_dynamic(loaded.case, run_geometry(loaded))
-    assert d["tip_relief_um"] == pytest.approx(running_in_tip_relief_um(1500.0))
-    assert d["tip_relief_source"] == "running-in amount C_ay"
+    assert d.tip_relief_um == pytest.approx(running_in_tip_relief_um(1500.0))
+    assert d.tip_relief_source == "running-in amount C_ay"

@@ -77,7 +77,7 @@ def test_linearisation_follows_the_tip_relief():
         loaded = gearcli.load_case("cases/iso_pair.yaml", set=overrides)
         geo = run_geometry(loaded)
         modes[name] = (linearised_mesh(loaded.case, geo), case_mesh(loaded.case, geo))
-        k_ltca = gearcli.mesh(loaded).summary.mesh_mean_N_mm
+        k_ltca = gearcli.mesh(loaded).summary.stiffness.mesh_mean_N_mm
         lin = modes[name][0]
         assert lin.mesh_stiffness_N_mm == pytest.approx(k_ltca, rel=5e-3)
         assert lin.natural_frequency_Hz == pytest.approx(
@@ -101,7 +101,7 @@ def test_static_force_includes_the_speed_dependent_resisting_torques():
     r_b2 = res.geometry.geometry.gear.r_b_mm
     w2 = 1500 * 2 * math.pi / 60 * 21 / 43  # speed drive: the window's mean is this
     torque = 300e3 + 500 * w2 + 1.0 * w2**2 + 200 * w2
-    assert res.summary["force_static_N"] == pytest.approx(torque / r_b2, rel=1e-6)
+    assert res.summary.force_static_N == pytest.approx(torque / r_b2, rel=1e-6)
     assert res.kernel_input.mesh.static_force_N == pytest.approx(300e3 / r_b2, rel=1e-12)
-    assert res.summary["dynamic_factor"] == pytest.approx(
-        res.summary["force_max_N"] / (torque / r_b2), rel=1e-6)
+    assert res.summary.dynamic_factor == pytest.approx(
+        res.summary.force_max_N / (torque / r_b2), rel=1e-6)

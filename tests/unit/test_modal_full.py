@@ -312,10 +312,11 @@ def test_case_modes_and_summary_match_run_modal():
     assert result.modes == run_modal(loaded).result.modes
     assert result.model == "lateral-torsional"
     summary = modes_summary(result)
-    assert [set(m) for m in summary] == [{"mode", "natural_frequency_Hz", "damping_ratio",
-                                          "description", "rigid_body"}] * len(result.modes)
-    assert [m["mode"] for m in summary] == list(range(1, len(summary) + 1))
-    assert summary[0]["natural_frequency_Hz"] == pytest.approx(result.modes[0]
+    assert [set(m.to_dict()) for m in summary] == [
+        {"mode", "natural_frequency_Hz", "damping_ratio", "description", "rigid_body"}
+    ] * len(result.modes)
+    assert [m.mode for m in summary] == list(range(1, len(summary) + 1))
+    assert summary[0].natural_frequency_Hz == pytest.approx(result.modes[0]
                                                                .natural_frequency_Hz)
 
 

@@ -18,7 +18,9 @@ import pytest
 
 from gearcli.errors import OutputError, ResultsError
 from gearcli.plotting import results as plots
+from gearcli.plotting.spectra import plot_spectra
 from gearcli.report import build_report
+from gearcli.results import SpectrumLine
 from tests.physics.simrun import write_run
 
 SHORT = ["drive.speed=STEP(time, 0, 0, 0.2, 3000)", "load.torque=STEP(time, 0, 0, 0.2, 4.5e5)",
@@ -248,9 +250,9 @@ def test_spectra_mark_aliases_when_the_mesh_is_above_nyquist():
     fs, f_z = 200.0, 141.67
     freq = np.linspace(0.0, 100.0, 401)
     amp = np.full(freq.size, 1e-3)
-    lines = {"force": {"1fz": {"expected_Hz": f_z, "resolvable": False},
-                       "2fz": {"expected_Hz": 2 * f_z, "resolvable": False}}}
-    fig = plots.plot_spectra(freq, {"force": ("force", "N", amp)}, lines, f_z, 2, fs)
+    lines = {"force": {"1fz": SpectrumLine(expected_Hz=f_z, resolvable=False),
+                       "2fz": SpectrumLine(expected_Hz=2 * f_z, resolvable=False)}}
+    fig = plot_spectra(freq, {"force": ("force", "N", amp)}, lines, f_z, 2, fs)
     ax = fig.axes[0]
     assert ax.get_xlim() == (0.0, 100.0)  # never past Nyquist
     labels = {t.get_text() for t in ax.texts}

@@ -73,8 +73,8 @@ def test_derived_stiffness_raises_mesh_frequency_with_face_width():
     wide = run_simulation(SEED, [*args, "gears.face_width=150"])
     # heavier gear (inertia ~ b) but stiffer mesh (~ b, at full load): f_n changes little; the
     # low-load factor (F_t/b)^0.25 makes the wider, less loaded mesh relatively softer
-    assert wide.summary["mesh_stiffness_N_mm"] > narrow.summary["mesh_stiffness_N_mm"]
-    assert math.isfinite(wide.summary["mesh_natural_frequency_Hz"])
+    assert wide.summary.mesh_stiffness_N_mm > narrow.summary.mesh_stiffness_N_mm
+    assert math.isfinite(wide.summary.mesh_natural_frequency_Hz)
 
 
 def test_derived_contact_stiffness_means_c_gamma_alpha_and_follows_e():

@@ -16,7 +16,7 @@ from typer.testing import CliRunner
 
 from gearcli.cli import app
 from gearcli.errors import CaseError, OutputError
-from gearcli.pipeline.sweep_study import MAX_POINTS_YES, load_study
+from gearcli.pipeline.sweep.study import MAX_POINTS_YES, load_study
 from tests.conftest import ROOT
 from tests.unit.sweep_helpers import write_study
 
@@ -108,7 +108,7 @@ def test_bad_scheduler_is_a_usage_error(tmp_path, address):
 
 
 def test_scheduler_that_never_speaks_dask_times_out():
-    from gearcli.pipeline.sweep_run import probe_scheduler
+    from gearcli.pipeline.sweep.run import probe_scheduler
 
     server = socket.socket()
     server.bind(("127.0.0.1", 0))
@@ -124,7 +124,7 @@ def test_scheduler_that_never_speaks_dask_times_out():
 
 
 def test_refused_connection_is_exit_1():
-    from gearcli.pipeline.sweep_run import probe_scheduler
+    from gearcli.pipeline.sweep.run import probe_scheduler
 
     s = socket.socket()
     s.bind(("127.0.0.1", 0))
@@ -136,7 +136,7 @@ def test_refused_connection_is_exit_1():
 
 WORKER = """
 import os, sys, time
-from gearcli.pipeline import sweep_run
+from gearcli.pipeline.sweep import run as sweep_run
 sweep_run.PARENT_POLL_S = 0.05
 parent = os.getpid()
 pid = os.fork()
@@ -182,7 +182,7 @@ def _running(pid: int) -> bool:
 def test_watching_the_own_process_does_nothing():
     """A LocalCluster's nannies run in the sweep's process: watching "the sweep" from there
     must not end the sweep (it did when the sweep itself was an orphan, e.g. run with &)."""
-    from gearcli.pipeline.sweep_run import watch_parent
+    from gearcli.pipeline.sweep.run import watch_parent
 
     watch_parent(os.getpid())
     assert not any(t.name == "gearcli-parent-watch" for t in threading.enumerate())

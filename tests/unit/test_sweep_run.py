@@ -7,15 +7,15 @@ import math
 import numpy as np
 import pytest
 
-from gearcli.pipeline.sweep_run import (
+from gearcli.pipeline.sweep.run import (
     SUMMARY,
     TIMING_COLUMNS,
     read_summary,
     run_study,
     summary_columns,
 )
-from gearcli.pipeline.sweep_study import load_study
-from gearcli.pipeline.sweep_trends import parameter_levels, trend_rows, write_trends
+from gearcli.pipeline.sweep.study import load_study
+from gearcli.pipeline.sweep.trends import parameter_levels, trend_rows, write_trends
 from tests.unit.sweep_helpers import write_study
 
 SMALL = """parameters:

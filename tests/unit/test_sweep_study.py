@@ -3,7 +3,7 @@
 import pytest
 
 from gearcli.errors import CaseError
-from gearcli.pipeline.sweep_study import MAX_POINTS, load_study
+from gearcli.pipeline.sweep.study import MAX_POINTS, load_study
 from tests.unit.sweep_helpers import write_study
 
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 import pandas as pd
 import pytest
 
-from gearcli.pipeline.sweep_study import load_study_text
-from gearcli.pipeline.sweep_trends import _trend_lines, trend_rows
+from gearcli.pipeline.sweep.study import load_study_text
+from gearcli.pipeline.sweep.trends import _trend_lines, trend_rows
 from tests.unit.sweep_helpers import FAST_SET
 
 COL = "gears.face_width [mm]"

@@ -19,18 +19,19 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.pipeline.sweep_study import MESH_FREQUENCY, Study
+from gearcli.pipeline.sweep.design import MESH_FREQUENCY
+from gearcli.pipeline.sweep.study import Study
+from gearcli.results import sweep_metrics
 
-#: Metrics of the seed's Table 5.
-TREND_METRICS = ("force_max_N", "dynamic_factor", "dte_peak_to_peak_mm",
-                 "gear_speed_gmf_amplitude_rad_s")
+#: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results/).
+TREND_METRICS = sweep_metrics("trend")
 TREND_COLUMNS = ("parameter", "metric", "points", "parameter_min", "parameter_max",
                  "metric_at_min", "metric_at_max", "change_percent", "ratio", "spearman_rho",
                  "direction")
 #: Most lines (combinations of the other parameters) in one trend plot.
 MAX_LINES = 8
-#: Further metrics of the speed plot.
-PLOT_METRICS = ("dte_rms_mm", "mesh_natural_frequency_Hz")
+#: Further metrics of the speed plot (field metadata "trend_plot").
+PLOT_METRICS = sweep_metrics("trend_plot")
 #: |Spearman rho| needed to call a trend monotonic.
 MONOTONIC_RHO = 0.8
 #: Relative changes below this [%] are "no effect".
@@ -141,7 +142,7 @@ def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Pat
     """Write trends.csv, trends.md and the plots; returns the paths written."""
     import pandas as pd
 
-    from gearcli.pipeline.sweep_run import summary_columns
+    from gearcli.pipeline.sweep.run import summary_columns
 
     out = Path(folder)
     columns = summary_columns(study)

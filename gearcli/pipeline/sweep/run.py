@@ -23,8 +23,8 @@ from pathlib import Path
 
 from gearcli import guards
 from gearcli.errors import GearcliError, OutputError
-from gearcli.pipeline.sweep_metrics import METRICS
-from gearcli.pipeline.sweep_study import Study
+from gearcli.pipeline.sweep.metrics import METRICS
+from gearcli.pipeline.sweep.study import Study
 
 SUMMARY = "summary.csv"
 #: Largest summary.csv read back for resuming [bytes] (~1 kB a row, 100 000 points).
@@ -51,7 +51,7 @@ def run_point(payload: dict) -> dict:
     try:
         from gearcli.case.load import load_case
         from gearcli.pipeline.simulate import run_simulation
-        from gearcli.pipeline.sweep_metrics import point_metrics
+        from gearcli.pipeline.sweep.metrics import point_metrics
 
         keep = payload.get("keep_dir")
         if keep:  # the resolved case beside the results: `gearcli simulate` can rerun it

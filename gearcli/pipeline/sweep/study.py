@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import copy
 import hashlib
-import itertools
 import json
 import math
 import re
@@ -54,6 +53,13 @@ from gearcli.case.schema import Case
 from gearcli.case.types import checked_quantity
 from gearcli.case.yamlsrc import Source, parse_source, read_source
 from gearcli.errors import CaseError
+from gearcli.pipeline.sweep.design import (
+    MESH_FREQUENCY,
+    Parameter,
+    check_design,
+    design_points,
+    design_size,
+)
 
 #: Without ``--yes``, studies with more points than this are refused.
 MAX_POINTS = 1000
@@ -61,11 +67,6 @@ MAX_POINTS = 1000
 MAX_POINTS_YES = 100_000
 #: File types a study's ``base:`` may name.
 CASE_SUFFIXES = (".yaml", ".yml", ".json")
-#: A virtual parameter: the gear-mesh frequency f_z [Hz], set through ``drive.speed``.
-MESH_FREQUENCY = "mesh_frequency"
-#: Most speeds per direction of a speed curve (its staircase is one time-function expression,
-#: at most 2000 characters: gearcli/pipeline/speed_curve.py).
-MAX_SPEEDS = 40
 _RAMP = re.compile(r"^\s*(STEP5?|RAMP)\s*\(\s*time\s*,([^,]+),([^,]+),([^,]+),([^,()]+)\)\s*$",
                    re.IGNORECASE)
 _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
@@ -112,23 +113,6 @@ class StudyFile(_Strict):
     parameters: dict[str, list[Any] | Range] = Field(min_length=1)
     metrics: list[str] | None = Field(None, min_length=1)
     checks: list[Check] = Field(default_factory=list)
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """One varied key path: its values as passed to the override, and as numbers in ``unit``."""
-
-    key: str
-    unit: str  #: "" for unitless or non-numeric values
-    values: tuple  #: override values (numbers, or strings with units)
-    numbers: tuple  #: the values as floats in ``unit`` (nan where not numeric)
-    log: bool = False
-    bounds: tuple[float, float] | None = None  #: a range's ends (for lhs)
-    extra: tuple[str, ...] = ()  #: overrides set with the parameter (``with``)
-
-    @property
-    def column(self) -> str:
-        return f"{self.key} [{self.unit}]" if self.unit else self.key
 
 
 @dataclass
@@ -196,7 +180,8 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
     for key, spec_p in spec.parameters.items():
         if isinstance(spec_p, Range) and spec_p.with_:
             _check_keys(src, ("parameters", key, "with"), spec_p.with_)
-    _check_design(src, spec, params)
+    check_design(src, spec, params,
+                 {k: v for k, v in spec.parameters.items() if isinstance(v, Range)})
     size = design_size(spec, params)  # before the design is built: it may be astronomical
     where = ("samples",) if spec.design == "lhs" else ("parameters",)
     if size > MAX_POINTS_YES:
@@ -206,7 +191,7 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         raise src.error(where, f"the {spec.design} has {size} points "
                         f"(> {MAX_POINTS}); pass --yes to run it")
     _check_metrics(src, spec)
-    combos = _design(spec, params)
+    combos = design_points(spec, params)
     base_values = {p.column: _base_value(base_src.data, p) for p in params}
     points = []
     for i, combo in enumerate(combos):
@@ -221,20 +206,9 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
                  _canonical(base), base_values)
 
 
-def design_size(spec: StudyFile, params: list[Parameter]) -> int:
-    """Number of points of the design, computed without building it."""
-    if spec.design == "grid":
-        return math.prod(len(p.values) for p in params)
-    if spec.design in ("zip", "speed_curve"):
-        return len(params[0].values)
-    if spec.design == "one_at_a_time":
-        return 1 + sum(len(p.values) for p in params)
-    return int(spec.samples or 0)
-
-
 def _check_metrics(src: Source, spec: StudyFile) -> None:
     """Kept metrics and the metrics of checks must exist (and checks must be kept)."""
-    from gearcli.pipeline.sweep_metrics import METRICS
+    from gearcli.pipeline.sweep.metrics import METRICS
 
     for k, m in enumerate(spec.metrics or ()):
         if m not in METRICS:
@@ -374,73 +348,6 @@ def _range(src: Source, key: str, spec: Range) -> Parameter:
     numbers = tuple(float(f"{x:.12g}") for x in nums)
     values = tuple(f"{x:.12g} {unit}" if unit else x for x in numbers)
     return Parameter(key, unit, values, numbers, kind == "logspace", (lo, hi))
-
-
-def _check_design(src: Source, spec: StudyFile, params: list[Parameter]) -> None:
-    ranges = {k: v for k, v in spec.parameters.items() if isinstance(v, Range)}
-    if spec.design == "lhs":
-        if spec.samples is None:
-            raise src.error(("design",), "a Latin hypercube needs 'samples' (and 'seed')")
-        return
-    for key, r in ranges.items():
-        if r.num is None and r.values is None:
-            raise src.error(("parameters", key), f"a range in a {spec.design} needs 'num'")
-    if spec.design == "speed_curve":
-        if [p.key for p in params] != [MESH_FREQUENCY]:
-            raise src.error(("parameters",), "a speed_curve takes exactly one parameter, "
-                            f"{MESH_FREQUENCY} (the speeds to run up and down)")
-        if not 2 <= len(params[0].values) <= MAX_SPEEDS:
-            raise src.error(("parameters", MESH_FREQUENCY), f"got {len(params[0].values)} "
-                            f"speeds; a speed_curve takes 2 to {MAX_SPEEDS}")
-    if spec.design == "zip":
-        sizes = {p.key: len(p.values) for p in params}
-        if len(set(sizes.values())) > 1:
-            raise src.error(("design",), f"zip needs lists of one length; got {sizes}")
-    if spec.samples is not None:
-        raise src.error(("samples",), "'samples' is for design: lhs only")
-
-
-def _design(spec: StudyFile, params: list[Parameter]) -> list[list[tuple[Parameter, int]]]:
-    """Each point as a list of (parameter, value index)."""
-    if spec.design == "grid":
-        return [list(zip(params, idx, strict=True))
-                for idx in itertools.product(*(range(len(p.values)) for p in params))]
-    if spec.design in ("zip", "speed_curve"):
-        return [[(p, i) for p in params] for i in range(len(params[0].values))]
-    if spec.design == "one_at_a_time":
-        out: list = [[]]  # the base point
-        for p in params:
-            out.extend([[(p, i)] for i in range(len(p.values))])
-        return out
-    return _lhs(spec, params)
-
-
-def _lhs(spec: StudyFile, params: list[Parameter]) -> list[list[tuple[Parameter, int]]]:
-    """Latin hypercube (scipy.stats.qmc) over the ranges; lists are sampled by index."""
-    from scipy.stats import qmc
-
-    u = qmc.LatinHypercube(d=len(params), seed=spec.seed).random(spec.samples)
-    out = []
-    sampled: list[Parameter] = []
-    for p in params:
-        if p.bounds is None:
-            sampled.append(p)
-            continue
-        lo, hi = p.bounds
-        x = (np.exp(np.log(lo) + u[:, len(sampled)] * (np.log(hi) - np.log(lo))) if p.log
-             else lo + u[:, len(sampled)] * (hi - lo))
-        numbers = tuple(float(f"{v:.12g}") for v in x)
-        values = tuple(f"{v:.12g} {p.unit}" if p.unit else v for v in numbers)
-        sampled.append(Parameter(p.key, p.unit, values, numbers, p.log, p.bounds, p.extra))
-    params[:] = sampled
-    for i in range(spec.samples):
-        combo = []
-        for j, p in enumerate(params):
-            k = i if p.bounds is not None else min(int(u[i, j] * len(p.values)),
-                                                   len(p.values) - 1)
-            combo.append((p, k))
-        out.append(combo)
-    return out
 
 
 def _base_value(data: dict, p: Parameter):

@@ -1,0 +1,39 @@
+"""Typed result documents (issues 17, 27): the summary of a run, the metrics of its analysis, the
+stress peaks of a gear and the modes of the linearised model, as frozen dataclasses.
+
+Each field's name is its key in the JSON document (summary.json ``scalars``, analysis.json
+``metrics``, stress.json per gear, the modal JSON's ``modes``) and carries its unit in the name
+or is dimensionless; ``metadata`` holds the label and stored unit from the one metric registry
+(gearcli/io/metrics.py), the registry the command line's and the report's tables print from
+(gearcli/io/metrics.rows, in the chosen display units). :func:`json_schema` derives the
+documents' JSON Schemas (``gearcli schema --results``). The documents' version is
+:data:`SCHEMA_VERSION` (raised when a key is renamed or removed).
+"""
+
+from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
+from gearcli.results.analysis import (
+    AnalysisDocument,
+    AnalysisMetrics,
+    Check,
+    ResonanceMargin,
+    SpectrumLine,
+)
+from gearcli.results.fields import PLACES, Document, shown, shown_values
+from gearcli.results.models import MeshSummary, ModalDocument, Mode
+from gearcli.results.run import (
+    EnergyBalance,
+    PointLines,
+    SpeedLevel,
+    StoredMode,
+    Summary,
+    SummaryDocument,
+    sweep_metrics,
+)
+from gearcli.results.schema import KINDS, json_schema
+from gearcli.results.stress import GearStress, StressDocument
+
+__all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
+           "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin", "Check",
+           "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
+           "SpeedLevel", "Document", "PLACES", "shown", "shown_values", "sweep_metrics",
+           "json_schema", "KINDS"]

@@ -1,0 +1,116 @@
+"""The documents of `gearcli analyze`: the metrics of analysis.json and its checks (one
+:class:`Check` type for analyze and modal)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+
+from gearcli.results.fields import Document, metric_field
+
+
+@dataclasses.dataclass(frozen=True)
+class ResonanceMargin(Document):
+    """A mesh harmonic k f_z against a mode (analysis.json's ``metrics.resonance_margins``)."""
+
+    harmonic: int = metric_field("harmonic", 0)
+    mode: int | None = metric_field("mode", None)
+    excitation_Hz: float = metric_field("excitation_Hz")
+    mode_Hz: float = metric_field("mode_Hz")
+    margin_percent: float = metric_field("margin_percent")
+    resonant_peak: bool = metric_field("resonant_peak", False)
+
+
+_TABLES = "analyze report"
+
+
+@dataclasses.dataclass(frozen=True)
+class AnalysisMetrics(Document):
+    """The metrics of an analysis window (analysis.json's ``metrics``)."""
+
+    window_s: tuple[float, float] = metric_field("window_s", (math.nan, math.nan))
+    window_reason: str = metric_field("window_reason", "")
+    samples: int = metric_field("samples", 0, "report")
+    pinion_speed_mean_deg_s: float = metric_field("pinion_speed_mean_deg_s", show="report")
+    gear_speed_mean_deg_s: float = metric_field("gear_speed_mean_deg_s", show=_TABLES)
+    speed_ratio: float = metric_field("speed_ratio", show="report")
+    speed_ratio_theory: float = metric_field("speed_ratio_theory", show="report")
+    speed_ratio_error_percent: float = metric_field("speed_ratio_error_percent", show=_TABLES)
+    gear_speed_fluctuation_percent: float = metric_field("gear_speed_fluctuation_percent",
+                                                   show=_TABLES)
+    force_mean_N: float = metric_field("force_mean_N", show=_TABLES)
+    force_rms_N: float = metric_field("force_rms_N", show=_TABLES)
+    force_max_N: float = metric_field("force_max_N", show=_TABLES + " headline")
+    force_max_t_s: float = metric_field("force_max_t_s", show="report")
+    force_max_source: str = metric_field("force_max_source", "")
+    force_min_N: float = metric_field("force_min_N", show="report")
+    force_static_N: float = metric_field("force_static_N", show=_TABLES)
+    dynamic_factor: float | None = metric_field("dynamic_factor", None, _TABLES + " headline")
+    dte_mean_mm: float = metric_field("dte_mean_mm", show="report")
+    dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm", show=_TABLES + " headline")
+    dte_rms_mm: float = metric_field("dte_rms_mm", show=_TABLES)
+    contact_loss_fraction: float = metric_field("contact_loss_fraction", show=_TABLES)
+    coast_impacts: int = metric_field("coast_impacts", 0, _TABLES)
+    friction_loss_W: float | None = metric_field("friction_loss_W", None, _TABLES)
+    damping_loss_W: float | None = metric_field("damping_loss_W", None, _TABLES)
+    input_power_W: float | None = metric_field("input_power_W", None, "report")
+    mesh_efficiency: float | None = metric_field("mesh_efficiency", None, _TABLES + " headline")
+    drive_torque_mean_Nmm: float | None = metric_field("drive_torque_mean_Nmm", None, "report")
+    drive_torque_ripple_Nmm: float | None = metric_field("drive_torque_ripple_Nmm", None, "report")
+    mesh_natural_frequency_Hz: float | None = metric_field("mesh_natural_frequency_Hz", None,
+                                                     _TABLES)
+    mesh_damping_ratio: float | None = metric_field("mesh_damping_ratio", None, _TABLES)
+    gear_mesh_frequency_Hz: float | None = metric_field("gear_mesh_frequency_Hz", None,
+                                                  _TABLES + " headline")
+    pinion_shaft_Hz: float | None = metric_field("pinion_shaft_Hz", None, "report")
+    gear_shaft_Hz: float | None = metric_field("gear_shaft_Hz", None, "report")
+    output_rate_Hz: float = metric_field("output_rate_Hz", show="report")
+    frequency_resolution_Hz: float = metric_field("frequency_resolution_Hz", show="report")
+    resonance_margins_percent: tuple[float, ...] = metric_field("resonance_margins_percent", (),
+                                                          "report")
+    resonance_margins: tuple[ResonanceMargin, ...] | None = metric_field(
+        "resonance_margins", None, omit_none=True, nested=ResonanceMargin)
+
+
+@dataclasses.dataclass
+class Check(Document):
+    """A check of `gearcli analyze` or `gearcli modal` (analysis.json's and the modal JSON's
+    ``checks``): its value against the limit (a text), passed or not."""
+
+    name: str
+    value: float | str | None
+    limit: str
+    passed: bool
+    note: str = ""
+    #: False when the check could not apply (the note says why); it then passes, and the
+    #: tables print "not checked" instead of "pass"
+    checked: bool = True
+
+
+@dataclasses.dataclass(frozen=True)
+class SpectrumLine(Document):
+    """An expected line of a spectrum, measured (gearcli/pipeline/spectrum.measure_line)."""
+
+    expected_Hz: float = metric_field("expected_Hz")
+    measured_Hz: float | None = metric_field("measured_Hz", None)
+    amplitude: float | None = metric_field("amplitude", None)
+    bin_error: float | None = metric_field("bin_error", None)  #: (measured - expected) / bin
+    resolvable: bool = metric_field("resolvable", False)
+
+
+@dataclasses.dataclass(frozen=True)
+class AnalysisDocument(Document):
+    """analysis.json (`gearcli analyze`): the metrics, the checks, the warnings and the
+    measured lines of each spectrum ({signal: {line label: SpectrumLine}})."""
+
+    schema_version: int = metric_field("schema_version", 0)
+    case: str | None = metric_field("case", None)
+    passed: bool = metric_field("passed", True)
+    window_s: tuple[float, float] = metric_field("window_s", (math.nan, math.nan))
+    window_reason: str = metric_field("window_reason", "")
+    metrics: AnalysisMetrics = metric_field("metrics", AnalysisMetrics(), nested=AnalysisMetrics)
+    checks: tuple[Check, ...] = metric_field("checks", (), nested=Check)
+    warnings: tuple[str, ...] = metric_field("warnings", ())
+    lines: Mapping[str, Mapping[str, SpectrumLine]] = metric_field(
+        "lines", {}, nested=SpectrumLine, mapping_depth=2)

@@ -1,0 +1,113 @@
+"""The machinery of the result documents (gearcli/results): a field's metadata (label and
+stored unit from the metric registry gearcli/io/metrics.py, where it is shown, whether a stored
+document must have it), the JSON of a document (``to_dict``, ``from_document``) and the
+queries of what is shown where (:func:`shown`, :func:`shown_values`)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from gearcli.io.metrics import METRICS
+
+#: Where a metric is shown (field metadata ``show``): the tables of `gearcli simulate`
+#: ("simulate") and `gearcli analyze` ("analyze"), the report's results table ("report"), the
+#: columns of a sweep's summary.csv ("sweep"), its trend table and figure ("trend") and the
+#: further panels of its speed figure ("trend_plot"), the report's summary line ("headline").
+PLACES = ("simulate", "analyze", "report", "sweep", "trend", "trend_plot", "headline")
+
+
+def metric_field(key: str, default: Any = math.nan, show: str = "", *, required: bool = False,
+           omit_none: bool = False, nested: type | None = None, metric: str | None = None,
+           **extra):
+    """A field of a document: ``key`` its name, with the label and stored unit of metric
+    ``metric or key`` (gearcli/io/metrics.py); ``show`` the places it is shown
+    (:data:`PLACES`, space-separated); ``required``: a stored document without it is refused
+    (gearcli/io/results.py); ``omit_none``: left out of the JSON when None; ``nested``: the
+    document class of its value (a tuple of them when the default is a tuple); ``extra``
+    further metadata."""
+    m = METRICS.get(metric or key)
+    places = frozenset(show.split())
+    assert places <= set(PLACES), places
+    meta = {"label": m.label, "unit": m.unit} if m else {"label": key.replace("_", " ")}
+    meta.update(show=places, required=required, omit_none=omit_none, nested=nested,
+                metric=metric or key, **extra)
+    if isinstance(default, list | dict):
+        return dataclasses.field(default_factory=lambda: type(default)(default), metadata=meta)
+    return dataclasses.field(default=default, metadata=meta)
+
+
+def _plain(value):
+    """A field's value as JSON data (documents as dicts, tuples as lists)."""
+    if isinstance(value, Document):
+        return value.to_dict()
+    if isinstance(value, tuple | list):
+        return [_plain(v) for v in value]
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    return value
+
+
+class Document:
+    """A result document: ``to_dict()`` is its JSON (fields in order, the keys of the files),
+    ``from_document()`` reads it back (absent keys take the field's default)."""
+
+    def to_dict(self) -> dict[str, Any]:
+        out = {}
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if value is None and f.metadata.get("omit_none"):
+                continue
+            out[f.name] = _plain(value)
+        return out
+
+    @classmethod
+    def from_document(cls, doc: Mapping[str, Any]):
+        values = {}
+        for f in dataclasses.fields(cls):
+            if f.name not in doc:
+                continue
+            value, nested = doc[f.name], f.metadata.get("nested")
+            if nested is not None and value is not None:
+                value = _read_nested(nested, value, f.metadata.get("mapping_depth", 0))
+            elif isinstance(value, list):
+                value = tuple(value)
+            values[f.name] = value
+        return cls(**values)
+
+
+def _read_nested(cls, value, mapping_depth: int):
+    """A nested document, a list of them, or (``mapping_depth`` levels of) mappings of them."""
+    if mapping_depth:
+        return {k: _read_nested(cls, v, mapping_depth - 1) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return tuple(cls.from_document(v) for v in value)
+    return cls.from_document(value)
+
+
+def shown(cls, place: str) -> tuple[str, ...]:
+    """The metric keys of ``cls``'s fields shown at ``place`` (:data:`PLACES`), in field order;
+    nested documents (not lists of them) contribute theirs."""
+    out: list[str] = []
+    for f in dataclasses.fields(cls):
+        nested = f.metadata.get("nested")
+        if nested is not None and not isinstance(f.default, tuple):
+            out.extend(shown(nested, place))
+        elif place in f.metadata.get("show", ()):
+            out.append(f.metadata["metric"])
+    return tuple(out)
+
+
+def shown_values(doc: Document, place: str) -> dict[str, Any]:
+    """{metric key: value} of the fields of ``doc`` shown at ``place``, in order."""
+    out: dict[str, Any] = {}
+    for f in dataclasses.fields(doc):
+        nested = f.metadata.get("nested")
+        value = getattr(doc, f.name)
+        if nested is not None and isinstance(value, Document):
+            out.update(shown_values(value, place))
+        elif place in f.metadata.get("show", ()):
+            out[f.metadata["metric"]] = value
+    return out

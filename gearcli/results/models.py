@@ -1,0 +1,152 @@
+"""The documents of `gearcli stress`, `gearcli modal` and `gearcli mesh`."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from gearcli.results.fields import Document, metric_field
+
+
+@dataclasses.dataclass(frozen=True)
+class Mode(Document):
+    """One mode of the linearised model (the modal JSON's ``modes``)."""
+
+    mode: int = metric_field("mode", 0)
+    rigid_body: bool = metric_field("rigid_body", False)
+    natural_frequency_Hz: float | None = metric_field("natural_frequency_Hz", None)
+    damping_ratio: float | None = metric_field("damping_ratio", None)
+    damped_frequency_Hz: float | None = metric_field("damped_frequency_Hz", None)
+    undamped_frequency_Hz: float | None = metric_field("undamped_frequency_Hz", None)
+    resonant_peak: bool = metric_field("resonant_peak", False)
+    description: str = metric_field("description", "")
+    shape: Mapping[str, float] = metric_field("shape", None)
+    strain_energy_share: Mapping[str, float] = metric_field("strain_energy_share", None)
+    kinetic_energy_share: Mapping[str, float] = metric_field("kinetic_energy_share", None)
+    eigenvalues_1_s: tuple = metric_field("eigenvalues_1_s", ())  #: [[Re, Im], ...] [1/s]
+
+
+@dataclasses.dataclass(frozen=True)
+class Crossing(Document):
+    """Where a mesh order meets a mode on the Campbell diagram."""
+
+    order: str = metric_field("order", "")
+    mode: int = metric_field("mode", 0)
+    frequency_Hz: float = metric_field("frequency_Hz")
+    pinion_speed_deg_s: float = metric_field("pinion_speed_deg_s")
+    in_range: bool = metric_field("in_range", False)  #: inside the diagram's speed range
+
+
+@dataclasses.dataclass(frozen=True)
+class OrderMargin(Document):
+    """A mesh order at the case speed against a mode."""
+
+    order: str = metric_field("order", "")
+    mode: int = metric_field("mode", 0)
+    excitation_Hz: float = metric_field("excitation_Hz")
+    mode_Hz: float = metric_field("mode_Hz")
+    margin_percent: float = metric_field("margin_percent")
+    resonant_peak: bool = metric_field("resonant_peak", False)
+
+
+@dataclasses.dataclass(frozen=True)
+class ModalDocument(Document):
+    """`gearcli modal --json`: the linearised model, its :class:`Mode` s, the crossings of the
+    mesh orders with them and the resonance-margin check."""
+
+    schema_version: int = metric_field("schema_version", 0)
+    case: str = metric_field("case", "")
+    model: str = metric_field("model", "")
+    drive: str = metric_field("drive", "")
+    dofs: tuple[str, ...] = metric_field("dofs", ())
+    shape_convention: str = metric_field("shape_convention", "")
+    bodies: Mapping[str, float | None] = metric_field("bodies", {})
+    linearisation: Mapping[str, Any] = metric_field("linearisation", {})
+    modes: tuple[Mode, ...] = metric_field("modes", (), nested=Mode)
+    case_speed_deg_s: float | None = metric_field("case_speed_deg_s", None)
+    speed_range_deg_s: tuple[float, float] = metric_field("speed_range_deg_s",
+                                                          (math.nan, math.nan))
+    orders_per_pinion_rev: Mapping[str, float] = metric_field("orders_per_pinion_rev", {})
+    crossings: tuple[Crossing, ...] = metric_field("crossings", (), nested=Crossing)
+    margins_at_case_speed: tuple[OrderMargin, ...] = metric_field(
+        "margins_at_case_speed", (), nested=OrderMargin)
+    #: each a :class:`gearcli.results.Check` as {name, value, limit, passed, checked, note}
+    checks: tuple[Mapping[str, Any], ...] = metric_field("checks", ())
+    passed: bool = metric_field("passed", True)
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshSte(Document):
+    """The loaded static transmission error over the analysed mesh cycles [µm]."""
+
+    mean_um: float = metric_field("mean_um", metric="ste_mean_um")
+    peak_to_peak_um: float = metric_field("peak_to_peak_um", metric="ste_peak_to_peak_um")
+    peak_to_peak_arcsec: float = metric_field("peak_to_peak_arcsec",
+                                              metric="ste_peak_to_peak_arcsec")
+    harmonics_um: Mapping[str, float] = metric_field("harmonics_um", {})  #: "1fz": amplitude
+    unloaded_te_peak_to_peak_um: float = metric_field("unloaded_te_peak_to_peak_um")
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshStiffness(Document):
+    """The mesh stiffness of the loaded contact against ISO 6336-1 [N/mm]."""
+
+    mesh_mean_N_mm: float = metric_field("mesh_mean_N_mm")
+    single_pair_zone_N_mm: float | None = metric_field("single_pair_zone_N_mm", None)
+    double_pair_zone_N_mm: float | None = metric_field("double_pair_zone_N_mm", None)
+    iso6336_single_pair_c_prime_b_N_mm: float = metric_field(
+        "iso6336_single_pair_c_prime_b_N_mm")
+    iso6336_mean_c_gamma_alpha_b_N_mm: float = metric_field("iso6336_mean_c_gamma_alpha_b_N_mm")
+
+
+@dataclasses.dataclass(frozen=True)
+class IsoResonance(Document):
+    """ISO 6336-1 Method B resonance data of the pair (gearcli/pipeline/mesh_input.iso_dynamic)
+    and, with a case speed, its resonance ratio and K_v."""
+
+    reduced_mass_kg_mm: float = metric_field("reduced_mass_kg_mm")
+    low_load_factor: float = metric_field("low_load_factor")
+    c_prime_N_mm_um: float = metric_field("c_prime_N_mm_um")
+    c_gamma_alpha_N_mm_um: float = metric_field("c_gamma_alpha_N_mm_um")
+    line_load_N_mm: float = metric_field("line_load_N_mm")
+    eps_gamma: float = metric_field("eps_gamma")
+    resonance_speed_rpm: float = metric_field("resonance_speed_rpm")
+    f_pb_eff_um: float = metric_field("f_pb_eff_um")
+    f_f_eff_um: float = metric_field("f_f_eff_um")
+    tip_relief_um: float = metric_field("tip_relief_um")
+    tip_relief_source: str = metric_field("tip_relief_source", "")
+    B_p: float = metric_field("B_p")
+    B_f: float = metric_field("B_f")
+    B_k: float = metric_field("B_k")
+    pinion_speed_rpm: float | None = metric_field("pinion_speed_rpm", None, omit_none=True)
+    resonance_ratio: float | None = metric_field("resonance_ratio", None, omit_none=True)
+    k_v: float | None = metric_field("k_v", None, omit_none=True)
+    speed_range: str | None = metric_field("speed_range", None, omit_none=True)
+
+
+@dataclasses.dataclass(frozen=True)
+class HarrisMap(Document):
+    """STE peak to peak against the static force (`gearcli mesh --harris`)."""
+
+    force_N: tuple[float, ...] = metric_field("force_N", ())
+    ste_peak_to_peak_um: tuple[float, ...] = metric_field("ste_peak_to_peak_um", ())
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshSummary(Document):
+    """A quasi-static loaded contact analysis (`gearcli mesh --json`): the static normal force,
+    the STE, the mesh stiffness against ISO 6336-1 and the ISO 6336-1 Method B data."""
+
+    schema_version: int = metric_field("schema_version", 0)
+    case: str = metric_field("case", "")
+    contact_law: str = metric_field("contact_law", "")
+    force_N: float = metric_field("force_N")
+    mesh_cycles: int = metric_field("mesh_cycles", 0)
+    ste: MeshSte = metric_field("ste", MeshSte(), nested=MeshSte)
+    stiffness: MeshStiffness = metric_field("stiffness", MeshStiffness(), nested=MeshStiffness)
+    iso6336_method_b: IsoResonance = metric_field("iso6336_method_b", IsoResonance(),
+                                                  nested=IsoResonance)
+    notes: tuple[str, ...] = metric_field("notes", ())
+    harris: HarrisMap | None = metric_field("harris", None, omit_none=True, nested=HarrisMap)

@@ -1,0 +1,114 @@
+"""JSON Schemas of the result documents (`gearcli schema --results --kind KIND`), derived from
+the typed documents of gearcli/results."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
+from gearcli.results.analysis import AnalysisMetrics
+from gearcli.results.models import (
+    IsoResonance,
+    MeshSte,
+    MeshStiffness,
+    MeshSummary,
+    Mode,
+)
+from gearcli.results.run import Summary
+from gearcli.results.stress import GearStress
+
+
+def _finite(value) -> bool:
+    """False for a float NaN/inf or a list/tuple holding one."""
+    if isinstance(value, list | tuple):
+        return all(_finite(v) for v in value)
+    return not isinstance(value, float) or math.isfinite(value)
+
+
+#: The documents ``gearcli schema --results KIND`` describes.
+KINDS = ("summary", "analysis", "stress", "modal", "mesh")
+
+
+def json_schema(kind: str = "summary") -> dict:
+    """JSON Schema (draft 2020-12) of a result document: ``summary`` (summary.json),
+    ``analysis`` (analysis.json), ``stress`` (stress.json), ``modal`` (gearcli modal --json)
+    or ``mesh`` (gearcli mesh --json): the typed fields as above, the rest as open objects."""
+    from pydantic import TypeAdapter
+
+    if kind not in KINDS:
+        raise ValueError(f"results schema {kind!r}: expected one of {', '.join(KINDS)}")
+
+    obj = {"type": "object"}
+
+    def typed(cls, drop=()) -> dict:
+        schema = TypeAdapter(cls).json_schema()
+        schema.pop("$defs", None)  # nested documents: described as open objects below
+        for f in dataclasses.fields(cls):
+            nested = f.metadata.get("nested")
+            if nested is not None and f.name in schema["properties"]:
+                many = isinstance(f.default, tuple) or f.name == "resonance_margins"
+                schema["properties"][f.name] = ({"type": "array", "items": obj} if many
+                                                else dict(obj))
+        for name in drop:
+            schema["properties"].pop(name, None)
+        for prop in schema["properties"].values():  # NaN is not JSON: no such defaults
+            if not _finite(prop.get("default", 0.0)):
+                del prop["default"]
+        for f in dataclasses.fields(cls):
+            if f.name in schema["properties"]:
+                unit = f.metadata.get("unit")
+                text = f.metadata.get("label", "")
+                schema["properties"][f.name]["description"] = (
+                    f"{text} [{unit}]" if unit and unit != "–" else text)
+        schema["additionalProperties"] = True
+        return schema
+
+    base = {"$schema": "https://json-schema.org/draft/2020-12/schema", "type": "object"}
+    version = {"const": SCHEMA_VERSION}
+    if kind == "summary":
+        scalars = typed(Summary)
+        props = {"schema_version": version, "case": {"type": "string"},
+                 "status": {"enum": ["ok", "invalid"]}, "invalid_reason": {"type": "string"},
+                 "solver": obj, "rows": {"type": "integer", "minimum": 1},
+                 "slots": {"type": "integer"},
+                 "warnings": {"type": "array", "items": {"type": "string"}},
+                 "scalars": scalars}
+        return {**base, "title": "gearcli summary.json", "properties": props,
+                "required": ["schema_version", "case", "status", "rows", "scalars"]}
+    check = {"type": "object", "required": ["name", "value", "limit", "passed"],
+             "properties": {"name": {"type": "string"}, "limit": {"type": "string"},
+                            "passed": {"type": "boolean"}, "checked": {"type": "boolean"},
+                            "note": {"type": "string"}}}
+    checks = {"type": "array", "items": check}
+    if kind == "analysis":
+        props = {"schema_version": version, "case": {"type": "string"},
+                 "passed": {"type": "boolean"}, "window_s": {"type": "array"},
+                 "window_reason": {"type": "string"}, "metrics": typed(AnalysisMetrics),
+                 "checks": checks, "warnings": {"type": "array"}, "lines": obj}
+        return {**base, "title": "gearcli analysis.json", "properties": props,
+                "required": ["schema_version", "case", "passed", "metrics", "checks"]}
+    if kind == "stress":
+        gear = {"type": "object", "description": "peaks, per-tooth maxima, ratios, safety; "
+                "the typed view: " + ", ".join(f.name for f in dataclasses.fields(GearStress)),
+                "required": ["teeth", "peak_sigma_H", "peak_sigma_F"]}
+        props = {"schema_version": version, "case": {"type": "string"},
+                 "window_s": {"type": "array"}, "static": obj, "pinion": gear, "gear": gear,
+                 "warnings": {"type": "array"}}
+        return {**base, "title": "gearcli stress.json", "properties": props,
+                "required": ["schema_version", "case", "static", "pinion", "gear"]}
+    if kind == "mesh":
+        props = typed(MeshSummary)["properties"]
+        for group in (MeshSte, MeshStiffness, IsoResonance):
+            name = next(f.name for f in dataclasses.fields(MeshSummary)
+                        if f.metadata.get("nested") is group)
+            props[name] = typed(group)
+        props["schema_version"] = version
+        return {**base, "title": "gearcli mesh --json", "properties": props,
+                "required": ["schema_version", "case", "force_N", "ste", "stiffness"]}
+    props = {"schema_version": version, "case": {"type": "string"},
+             "model": {"type": "string"}, "modes": {"type": "array", "items": typed(Mode)},
+             "linearisation": obj, "crossings": {"type": "array"}, "checks": checks,
+             "passed": {"type": "boolean"}}
+    return {**base, "title": "gearcli modal --json", "properties": props,
+            "required": ["schema_version", "case", "modes", "checks", "passed"]}
