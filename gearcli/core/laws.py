@@ -45,7 +45,8 @@ KNOWN_LAWS = (LAW_IMPACT, LAW_TOOTH)
 @jit_noalloc_inline
 def impact_law(prm, derived, pair, shared, acc):
     """Adams IMPACT (docs/theory.md §4.2, §4.3): F = max(0, k p^e + STEP(p, 0, 0, d_max, c_max)
-    p') for p > 0 (with stiffness factors f = k/k_contact both k and c_max are scaled by f), V = k p^(e+1)/(e+1), the whole force along the pair's penetration
+    p') for p > 0 (with stiffness factors f = k/k_contact, k and c_max are both scaled by f),
+    V = k p^(e+1)/(e+1), the whole force along the pair's penetration
     (Q_s1 -= F dp/ds1, Q_s2 -= F dp/ds2), dissipation (F - k p^e) p' >= 0 (also when the max
     clips F to 0). With a position-dependent k (stiffness factors), Q_s1 -= p^(e+1)/(e+1)
     dk/dx1 sigma; skipped when dk/dx1 = 0, so the constant k of the plain law runs the
