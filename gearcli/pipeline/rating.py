@@ -180,19 +180,19 @@ def _gear_input(case: Case, geo: GeometryResult, role: str, limits, f_pb_um: flo
         ball_diameter_mm=rg.ball_diameter)
 
 
-def _iso_kv(iso: dict, speed_rpm: float, k_a: float) -> tuple[float, dict]:
+def _iso_kv(iso: IsoResonance, speed_rpm: float, k_a: float) -> tuple[float, dict]:
     """K_v by ISO 6336-1 Method B at the pinion speed with the line load F_t K_A/b."""
     from gearcli.model.iso_kv import dynamic_factor
-    from gearcli.pipeline.mesh_input import KV_KEYS
+    from gearcli.pipeline.mesh_input import kv_arguments
 
-    args = {k: iso[k] for k in KV_KEYS}
-    args["line_load_N_mm"] = iso["line_load_N_mm"] * k_a
-    ratio = speed_rpm / iso["resonance_speed_rpm"]
+    args = kv_arguments(iso)
+    args["line_load_N_mm"] = iso.line_load_N_mm * k_a
+    ratio = speed_rpm / iso.resonance_speed_rpm
     kv = dynamic_factor(ratio, **args)
-    info = {"resonance_speed_rpm": iso["resonance_speed_rpm"], "resonance_ratio": ratio,
+    info = {"resonance_speed_rpm": iso.resonance_speed_rpm, "resonance_ratio": ratio,
             "speed_range": str(kv.range_name), "line_load_N_mm": args["line_load_N_mm"],
-            "c_prime_N_mm_um": iso["c_prime_N_mm_um"], "f_pb_eff_um": iso["f_pb_eff_um"],
-            "tip_relief_um": iso["tip_relief_um"], "k_v": float(kv.k_v)}
+            "c_prime_N_mm_um": iso.c_prime_N_mm_um, "f_pb_eff_um": iso.f_pb_eff_um,
+            "tip_relief_um": iso.tip_relief_um, "k_v": float(kv.k_v)}
     return float(kv.k_v), info
 
 
@@ -219,7 +219,7 @@ def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
     else:
         k_v, info = _iso_kv(iso, speed_rpm, r.application_factor)
         source = f"ISO 6336-1 Method B ({info['speed_range']}, N = {info['resonance_ratio']:.3g})"
-    gears = [_gear_input(case, geo, role, lim, iso["f_pb_eff_um"])
+    gears = [_gear_input(case, geo, role, lim, iso.f_pb_eff_um)
              for role, lim in zip(_ROLES, limits, strict=True)]
     g, rack = geo.geometry, case.gears.rack
     try:
@@ -233,7 +233,7 @@ def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
             dynamic_factor=k_v, face_load_factor=r.face_load_factor,
             transverse_load_factor=r.transverse_load_factor,
             mesh_stiffness_N_mm_um=(r.mesh_stiffness if r.mesh_stiffness is not None
-                                    else iso["c_gamma_alpha_N_mm_um"]),
+                                    else iso.c_gamma_alpha_N_mm_um),
             shaft_misalignment_um=1e3 * r.shaft_misalignment,
             manufacturing_misalignment_um=1e3 * r.manufacturing_misalignment,
             viscosity_40_mm2_s=r.lubricant.viscosity_40,

@@ -148,8 +148,8 @@ def test_the_energy_balance_closes_with_faults():
     healthy, _, _ = _run(overrides)
     faulty, ki, _ = _run(overrides, faults)
     assert "tooth_stiffness_factor" in ki.arrays
-    base = energy_balance(healthy)["relative_residual"]
-    got = energy_balance(faulty)["relative_residual"]
+    base = energy_balance(healthy).relative_residual
+    got = energy_balance(faulty).relative_residual
     assert got < 1e-5, (got, base)
 
 
@@ -169,7 +169,7 @@ def test_a_case_file_fault_runs_through_the_pipeline():
     np.testing.assert_allclose(table, ki.arrays["tooth_stiffness_factor"], rtol=1e-12, atol=0)
     assert table[0, 2].min() < 0.95 and np.all(np.delete(table, 2, axis=1)[0] == 1.0)
     assert res.status == "ok", res.invalid_reason
-    assert res.summary["energy_balance"]["relative_residual"] < 1e-5
+    assert res.summary.energy_balance.relative_residual < 1e-5
 
 
 def test_given_factors_multiply_the_faults():

@@ -215,7 +215,7 @@ def test_iso_dynamic_factor_is_the_one_gearcli_mesh_prints():
 
     r = rate_case(ISO_PAIR, LIMITS)
     mesh = mesh_document(run_mesh(load_case(ISO_PAIR, LIMITS)))
-    assert r.iso.factor("K_v").value == pytest.approx(mesh["iso6336_method_b"]["k_v"],
+    assert r.iso.factor("K_v").value == pytest.approx(mesh.iso6336_method_b.k_v,
                                                       rel=1e-12)
     assert r.dynamic_factor_source.startswith("ISO 6336-1 Method B")
     assert r.iso.factor("K_v").clause == r.dynamic_factor_source  # the table says where from
