@@ -31,11 +31,11 @@ from gearcli.model.iso6336.common import Edition
 from gearcli.model.iso6336.document import RatingResult
 from gearcli.model.iso6336.inputs import GearInput, RatingInput
 from gearcli.model.iso6336.inspection import InspectionDimensions, inspection_dimensions
-from gearcli.results.models import IsoResonance
 from gearcli.model.iso6336.material import MaterialKind, Quality
 from gearcli.model.iso6336.rate import rate
 from gearcli.model.iso6336.spectrum import DutyCycleDamage, LoadBin, duty_cycle_damage
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
+from gearcli.results.models import IsoResonance
 
 __all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
            "case_inspection", "RPM_PER_RAD_S"]
