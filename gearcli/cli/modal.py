@@ -62,6 +62,8 @@ def modal(
         typer.echo(json.dumps(typed.to_dict(), indent=2))
     elif not quiet:
         _print(typed, res.checks, units)
+        for note in res.notes:
+            typer.echo(f"note: {note}")
         if plot is not None:
             typer.echo(f"wrote {plot}")
     if not res.passed:

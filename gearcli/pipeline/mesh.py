@@ -20,6 +20,7 @@ from gearcli.io.metrics import json_number
 from gearcli.model.gap import slot_layout
 from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh, tooth_law
 from gearcli.model.stiffness import IsoStiffness
+from gearcli.pipeline.capabilities import not_included
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import case_gap_tables
 from gearcli.pipeline.mesh_input import (
@@ -107,14 +108,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         raise (loaded.error(("load", "torque"), f"{exc} at {where}; expected a load the teeth "
                             "can carry") if load_N is None else
                CaseError(f"{where}: {exc}; expected a smaller load")) from None
-    notes = []
-    if case.friction.enabled:
-        notes.append("friction is not included (it shifts the normal force by the friction "
-                     "moments, ~mu of it; simulate includes it)")
-    e = case.errors
-    if e.runout.pinion or e.runout.gear or e.pitch_deviation.pinion or e.pitch_deviation.gear:
-        notes.append("runout and pitch deviations are not included (they vary over whole "
-                     "revolutions; simulate includes them)")
+    notes = not_included("mesh", case)
     notes += bore_notes(case, geo)
     iso = iso_stiffness(case, geo, force)
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))

@@ -68,6 +68,13 @@ class ModalAnalysis:
         return self.loaded.name
 
     @property
+    def notes(self) -> list[str]:
+        """What the linearised model leaves out for this case (pipeline/capabilities.py)."""
+        from gearcli.pipeline.capabilities import not_included
+
+        return not_included("modal", self.loaded.case)
+
+    @property
     def passed(self) -> bool:
         return all(c.passed for c in self.checks)
 

@@ -34,6 +34,7 @@ from gearcli.model.iso6336.inspection import InspectionDimensions, inspection_di
 from gearcli.model.iso6336.material import MaterialKind, Quality
 from gearcli.model.iso6336.rate import rate
 from gearcli.model.iso6336.spectrum import DutyCycleDamage, LoadBin, duty_cycle_damage
+from gearcli.pipeline.capabilities import not_included
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.results.models import IsoResonance
 
@@ -293,7 +294,7 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
                            "simulated", True)
     geo = run_geometry(loaded)
     inp, source_kv, info = rating_input(loaded, geo)
-    notes = []
+    notes = not_included("rate", loaded.case)
     if r.duty_cycle is not None and isinstance(r.dynamic_factor, str):
         notes.append("duty cycle: every bin is rated with the K_v of the case's load")
     bins = _duty_bins(loaded, geo)
