@@ -103,8 +103,8 @@ def _save_order_map(result, path: Path, units: str) -> None:
 def print_checks(doc, units: str = "engineering") -> None:
     """The analysis table (the metrics shown at "analyze", gearcli/results/, in the display
     ``units``) and the checks table of an analysis (gearcli.results.AnalysisDocument)."""
-    from gearcli.io.metrics import rows as metric_rows
     from gearcli.results import shown_values
+    from gearcli.results.metrics import rows as metric_rows
 
     m = doc.metrics
     shown = shown_values(m, "analyze")

@@ -80,8 +80,8 @@ def simulate(
 def _print_summary(doc, out: str, units: str) -> None:
     """The summary table: the metrics shown at "simulate" (gearcli/results/) and the
     solver's counters."""
-    from gearcli.io.metrics import rows as metric_rows
     from gearcli.results import shown_values
+    from gearcli.results.metrics import rows as metric_rows
 
     s, sv = doc.scalars, doc.solver
     w0, w1 = s.window_s

@@ -7,10 +7,7 @@ import platform
 import sys
 from importlib import metadata
 
-#: Version of gearcli's JSON result documents (summary.json, analysis.json, stress.json and the
-#: JSON of modal and mesh): every document carries it as "schema_version"; raised when a key
-#: is renamed or removed (added keys keep it).
-RESULTS_SCHEMA_VERSION = 1
+from gearcli.results.version import RESULTS_SCHEMA_VERSION  # noqa: F401  (the manifest's too)
 
 
 def versions() -> dict[str, str]:

@@ -16,7 +16,6 @@ import numpy as np
 
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import CaseError
-from gearcli.io.metrics import json_number
 from gearcli.model.gap import slot_layout
 from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh, tooth_law
 from gearcli.model.stiffness import IsoStiffness
@@ -30,6 +29,7 @@ from gearcli.pipeline.mesh_input import (
     iso_stiffness,
     tooth_stiffness,
 )
+from gearcli.results.metrics import json_number
 from gearcli.results.models import HarrisMap, IsoResonance, MeshSte, MeshStiffness, MeshSummary
 
 ARCSEC_PER_RAD = 180.0 / math.pi * 3600.0

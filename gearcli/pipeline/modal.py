@@ -16,7 +16,6 @@ from pathlib import Path
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.case.schema import Case
 from gearcli.errors import CaseError
-from gearcli.io.metrics import json_number
 from gearcli.model.mesh import MeshMode
 from gearcli.model.modal import (
     NO_PEAK_DAMPING_RATIO,
@@ -35,6 +34,7 @@ from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import linearised_mesh
 from gearcli.pipeline.structure import build_structure, refuse_unsupported
 from gearcli.results import Check, ModalDocument, Mode, StoredMode
+from gearcli.results.metrics import json_number
 from gearcli.results.models import Crossing as CrossingDoc
 from gearcli.results.models import OrderMargin
 

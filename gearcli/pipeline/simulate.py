@@ -13,7 +13,6 @@ import numpy as np
 
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import SolverError
-from gearcli.io.metrics import json_number
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import (
     HARMONICS_RESOLVED,
@@ -25,6 +24,7 @@ from gearcli.pipeline.spectrum import alias_frequency
 from gearcli.pipeline.structure import refuse_unsupported
 from gearcli.pipeline.window import MIN_MESH_CYCLES, steady_window
 from gearcli.results import EnergyBalance, Summary
+from gearcli.results.metrics import json_number
 
 
 @contextlib.contextmanager

@@ -29,7 +29,6 @@ import numpy as np
 
 from gearcli.case.load import load_case_text
 from gearcli.errors import CaseError, ResultsError
-from gearcli.io.metrics import json_number
 from gearcli.io.results import StoredRun, read_run, window_mask
 from gearcli.model.contact_point import contact_points
 from gearcli.model.geometry import PairGeometry
@@ -42,6 +41,7 @@ from gearcli.model.rating import (
     static_rating,
 )
 from gearcli.pipeline.geometry import run_geometry
+from gearcli.results.metrics import json_number
 from gearcli.results.stress import (
     GearPeaks,
     GearStress,

@@ -5,11 +5,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from gearcli.io.metrics import display
 from gearcli.report import tables as tb
 from gearcli.report.data import ReportData
 from gearcli.report.figures import FigureFile
 from gearcli.results import shown_values
+from gearcli.results.metrics import display
 
 
 @dataclass(frozen=True)

@@ -7,9 +7,9 @@ import shlex
 from dataclasses import dataclass, field
 
 from gearcli.display_units import DEFAULT, convert, unit_and_factor
-from gearcli.io.metrics import display
 from gearcli.report.data import ReportData
 from gearcli.results import shown_values
+from gearcli.results.metrics import display
 from gearcli.results.stress import Safety
 from gearcli.units import split_internal
 

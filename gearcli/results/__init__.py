@@ -4,13 +4,12 @@ stress peaks of a gear and the modes of the linearised model, as frozen dataclas
 Each field's name is its key in the JSON document (summary.json ``scalars``, analysis.json
 ``metrics``, stress.json per gear, the modal JSON's ``modes``) and carries its unit in the name
 or is dimensionless; ``metadata`` holds the label and stored unit from the one metric registry
-(gearcli/io/metrics.py), the registry the command line's and the report's tables print from
-(gearcli/io/metrics.rows, in the chosen display units). :func:`json_schema` derives the
+(gearcli/results/metrics.py), the registry the command line's and the report's tables print from
+(gearcli/results/metrics.rows, in the chosen display units). :func:`json_schema` derives the
 documents' JSON Schemas (``gearcli schema --results``). The documents' version is
 :data:`SCHEMA_VERSION` (raised when a key is renamed or removed).
 """
 
-from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.results.analysis import (
     AnalysisDocument,
     AnalysisMetrics,
@@ -31,6 +30,7 @@ from gearcli.results.run import (
 )
 from gearcli.results.schema import KINDS, json_schema
 from gearcli.results.stress import GearStress, StressDocument
+from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
 __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
            "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin", "Check",

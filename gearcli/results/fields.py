@@ -1,5 +1,5 @@
 """The machinery of the result documents (gearcli/results): a field's metadata (label and
-stored unit from the metric registry gearcli/io/metrics.py, where it is shown, whether a stored
+stored unit from the metric registry gearcli/results/metrics.py, where it is shown, whether a stored
 document must have it), the JSON of a document (``to_dict``, ``from_document``) and the
 queries of what is shown where (:func:`shown`, :func:`shown_values`)."""
 
@@ -10,7 +10,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from gearcli.io.metrics import METRICS
+from gearcli.results.metrics import METRICS
 
 #: Where a metric is shown (field metadata ``show``): the tables of `gearcli simulate`
 #: ("simulate") and `gearcli analyze` ("analyze"), the report's results table ("report"), the
@@ -23,7 +23,7 @@ def metric_field(key: str, default: Any = math.nan, show: str = "", *, required:
            omit_none: bool = False, nested: type | None = None, metric: str | None = None,
            **extra):
     """A field of a document: ``key`` its name, with the label and stored unit of metric
-    ``metric or key`` (gearcli/io/metrics.py); ``show`` the places it is shown
+    ``metric or key`` (gearcli/results/metrics.py); ``show`` the places it is shown
     (:data:`PLACES`, space-separated); ``required``: a stored document without it is refused
     (gearcli/io/results.py); ``omit_none``: left out of the JSON when None; ``nested``: the
     document class of its value (a tuple of them when the default is a tuple); ``extra``

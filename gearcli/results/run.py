@@ -8,8 +8,8 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.results.fields import Document, metric_field, shown
+from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
 
 @dataclasses.dataclass(frozen=True)

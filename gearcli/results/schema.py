@@ -6,7 +6,6 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from gearcli.io.manifest import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 from gearcli.results.analysis import AnalysisMetrics
 from gearcli.results.models import (
     IsoResonance,
@@ -17,6 +16,7 @@ from gearcli.results.models import (
 )
 from gearcli.results.run import Summary
 from gearcli.results.stress import GearStress
+from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
 
 def _finite(value) -> bool:

@@ -170,12 +170,12 @@ def test_documents_carry_the_schema_version_and_the_results_schema_validates_one
 
 
 def test_metric_labels_and_units_come_from_one_registry():
-    """gearcli/io/metrics.py is the one place of a metric's label and display unit: the
+    """gearcli/results/metrics.py is the one place of a metric's label and display unit: the
     typed Summary, the report's results table and the CLI tables read it (issue 17)."""
     import dataclasses
 
-    from gearcli.io.metrics import METRICS
     from gearcli.results import PLACES, AnalysisMetrics, shown
+    from gearcli.results.metrics import METRICS
 
     for f in dataclasses.fields(gearcli.Summary):
         if f.name in METRICS:

@@ -14,18 +14,24 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).resolve().parents[2] / "gearcli"
-LAYERS = ["core", "model", "case", "pipeline", "io", "plotting", "report", "cli"]
-# What each package may import from gearcli (besides itself and top-level modules).
+LAYERS = ["core", "model", "case", "results", "pipeline", "io", "plotting", "report", "cli"]
+# What each package may import from gearcli (besides itself and the base modules below).
 ALLOWED = {
     "core": set(),
     "model": {"core"},
     "case": {"model"},
-    "io": set(),
+    "results": set(),  # the typed documents: a leaf that io (the JSON boundary) reads and writes
+    "io": {"results"},
     "plotting": {"model"},
-    "pipeline": {"core", "model", "case", "io", "plotting", "report"},
-    "report": {"model", "case", "io", "plotting"},
+    "pipeline": {"core", "model", "case", "results", "io", "plotting", "report"},
+    "report": {"model", "case", "results", "io", "plotting"},
     "cli": set(LAYERS),
 }
+# The top-level modules, placed: the base modules every layer may use import no layer package
+# (only each other); the public API sits beside the CLI, over pipeline.
+BASE_MODULES = {"units", "errors", "guards", "display_units", "interrupts", "usercache",
+                "numba_cache", "numba_inline"}
+TOP_MODULES = {"api": set(LAYERS) - {"cli"}, "__main__": {"cli"}, "__init__": set()}
 STDLIB_OK_IN_CORE = {"math", "functools", "numpy", "numba", "__future__", "typing", "gearcli"}
 
 
@@ -53,6 +59,27 @@ def test_layer_imports_point_down(layer):
             target = parts[1]
             if target in LAYERS and target != layer:
                 assert target in ALLOWED[layer], f"{f.relative_to(PKG)} imports {mod}"
+
+
+def test_every_top_level_module_is_placed():
+    """Each gearcli/*.py is a base module or a top module with its allowed layers; a new
+    top-level module must be placed here."""
+    found = {f.stem for f in PKG.glob("*.py")}
+    assert found == BASE_MODULES | set(TOP_MODULES), found ^ (BASE_MODULES | set(TOP_MODULES))
+
+
+@pytest.mark.parametrize("name", sorted(BASE_MODULES | set(TOP_MODULES)))
+def test_top_level_modules_import_within_their_place(name):
+    allowed = TOP_MODULES.get(name, set())
+    for mod in _imports(PKG / f"{name}.py"):
+        parts = mod.split(".")
+        if parts[0] != "gearcli" or len(parts) < 2:
+            continue
+        target = parts[1]
+        if target in LAYERS:
+            assert target in allowed, f"{name}.py imports {mod}"
+        else:
+            assert target in BASE_MODULES or target == "__version__", f"{name}.py imports {mod}"
 
 
 def test_only_the_cli_and_the_package_import_the_public_api():

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from gearcli import results
-from gearcli.io.metrics import METRICS
+from gearcli.results.metrics import METRICS
 
 PKG = Path(results.__file__).resolve().parents[1]
 #: The one place of the metric names: the documents and the label/unit registry.

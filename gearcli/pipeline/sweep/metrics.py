@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import dataclasses
 
-from gearcli.io.metrics import json_number
 from gearcli.model.geometry import mesh_frequencies
 from gearcli.pipeline.spectrum import amplitude_spectrum, measure_line
 from gearcli.results import PointLines, shown_values, sweep_metrics
+from gearcli.results.metrics import json_number
 
 #: The metrics of a sweep point, in column order: those of the summary shown at "sweep", then
 #: the mesh-line amplitudes and the energy residual (gearcli/results/: field metadata).
