@@ -54,8 +54,9 @@ def impact_law(prm, derived, pair, shared, acc):
     pen, pdot, dp1, dp2, k, dk = pair
     q1, q2, pot, pdamp = acc
     c_max = prm[P.c_max]
-    if k != prm[P.k_contact]:  # stiffness factors f (docs/theory.md §4b.2): c_max f, so that
-        c_max *= k / prm[P.k_contact]  # a missing tooth (f = 0) carries no damping force either
+    k_plain = prm[P.k_contact]  # stiffness factors f = k/k_plain (docs/theory.md §4b.2) scale
+    if k != k_plain and k_plain > 0.0:  # c_max too: a missing tooth (f = 0) carries no damping
+        c_max *= k / k_plain
     force, fel = impact_force(pen, pdot, k, prm[P.exponent], c_max, prm[P.d_max])
     pot += fel * pen * derived[D.inv_exponent_plus_1]  # k p^(e+1)/(e+1), contact.impact_potential
     # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0

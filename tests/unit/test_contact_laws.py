@@ -145,3 +145,17 @@ def test_every_known_law_dispatches_to_its_own_function():
     for law in KNOWN_LAWS:
         assert results[law] == own[law](prm, derived, pair, shared, ACC)
     assert len({r[0] for r in results.values()}) == len(KNOWN_LAWS)  # the laws differ here
+
+
+def test_impact_damping_scales_with_the_stiffness_factor():
+    """With stiffness factors the IMPACT law scales c_max by f = k/k_contact as it scales k
+    (docs/theory.md §4b.2): at full damping depth (p >= d_max) the damping force is f c_max p';
+    f = 0 (a missing tooth) carries no force at all; f = 1 is the plain law."""
+    prm, derived = vectors(1.5)
+    prm[P.k_contact], prm[P.c_max], prm[P.d_max] = K_IMPACT, 30.0, 1e-4
+    pen, rate = 2e-3, 50.0  # p > d_max: STEP at its full value c_max
+    elastic = K_IMPACT * pen ** 1.5
+    for f in (1.0, 0.5, 0.0):
+        force = impact_law(prm, derived, (pen, rate, 1.0, -1.0, f * K_IMPACT, 0.0),
+                           (1.0, rate, 0.0), ACC)[0]
+        assert force == pytest.approx(f * (elastic + 30.0 * rate), rel=1e-12, abs=0.0), f
