@@ -110,3 +110,10 @@ def test_numbers_still_load():
     case = load_case(SEED, ["contact.exponent=1", "friction.static_coefficient=0"]).case
     assert case.contact.exponent == 1.0
     assert case.friction.static_coefficient == 0.0
+
+
+def test_speed_curve_study_in_rpm_is_refused(tmp_path):
+    with pytest.raises(CaseError) as info:
+        load_study(write_study(tmp_path, "design: speed_curve\nparameters:\n  mesh_frequency: "
+                               "{linspace: [\"30000 rpm\", \"240000 rpm\"], num: 3}\n"))
+    assert "a frequency, not a speed: write '500 Hz' (30000/min)" in str(info.value)
