@@ -264,6 +264,8 @@ def _refuse_turns(q, text: str, dim: Dim) -> None:
     bare rate ("3000 1/min") to rad/s 2π too small. A frequency counts cycles per time: a unit
     carrying an angle is refused, with the cycles-per-time value it most likely meant (one
     revolution = one cycle); a shaft speed needs its angle (rpm, rev/s, deg/s, rad/s)."""
+    if not q.check("1/[time]"):  # another dimension: the conversion says so
+        return
     root = q.to_root_units()
     has_angle = "radian" in dict(root.unit_items())
     if dim is FREQUENCY or dim.name == FREQUENCY.name:

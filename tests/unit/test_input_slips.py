@@ -117,3 +117,13 @@ def test_speed_curve_study_in_rpm_is_refused(tmp_path):
         load_study(write_study(tmp_path, "design: speed_curve\nparameters:\n  mesh_frequency: "
                                "{linspace: [\"30000 rpm\", \"240000 rpm\"], num: 3}\n"))
     assert "a frequency, not a speed: write '500 Hz' (30000/min)" in str(info.value)
+
+
+@pytest.mark.parametrize(("text", "dim"), [
+    ("0;", units.FREQUENCY), ("5 mm", units.FREQUENCY), ("5 rad", units.FREQUENCY),
+    ("0;", units.ANGULAR_VELOCITY), ("5 mm", units.ANGULAR_VELOCITY)])
+def test_other_dimensions_keep_their_wrong_dimension_error(text, dim):
+    """The angle check looks only at per-time units; anything else is pint's conversion's
+    (the fuzz test found "0;" once raising a raw DimensionalityError here)."""
+    with pytest.raises(units.UnitError, match="wrong dimension"):
+        units.parse_quantity(text, dim)
