@@ -160,7 +160,9 @@ def parse_quantity(value: object, dim: Dim) -> float:
     """
     expected = (f"{article(dim.name)} {dim.name} as a number in {dim.default} or a string "
                 f"with units, e.g. {dim.example}")
-    if isinstance(value, bool) or not isinstance(value, int | float | str):
+    if isinstance(value, bool):  # YAML's true/false/yes/no: never a number
+        raise UnitError(f"a YAML boolean, not a number; expected {expected}")
+    if not isinstance(value, int | float | str):
         raise UnitError(f"expected {expected}")
     if isinstance(value, int | float):
         number = float(value)
@@ -189,6 +191,7 @@ def parse_quantity(value: object, dim: Dim) -> float:
     if not hasattr(q, "units") or isinstance(q.magnitude, complex):
         raise UnitError(f"expected {expected}")
     _refuse_cycles(text, dim)
+    _refuse_turns(q, text, dim)
     try:
         out = float(q.to(dim.internal).magnitude)
     except Exception:
@@ -253,6 +256,28 @@ def _refuse_cycles(text: str, dim: Dim) -> None:
     if dim.angular and any(tok in text for tok in ("Hz", "hertz")):
         raise UnitError(f"'Hz' is ambiguous for {article(dim.name)} {dim.name}; expected rev/s, "
                         "rpm, deg/s or rad/s")
+
+
+def _refuse_turns(q, text: str, dim: Dim) -> None:
+    """pint counts a revolution as 2π rad and an angle as dimensionless, so a frequency given
+    as a speed ("60000 rpm", "100 rev/s") converts to Hz 2π too large, and a speed given as a
+    bare rate ("3000 1/min") to rad/s 2π too small. A frequency counts cycles per time: a unit
+    carrying an angle is refused, with the cycles-per-time value it most likely meant (one
+    revolution = one cycle); a shaft speed needs its angle (rpm, rev/s, deg/s, rad/s)."""
+    if not q.check("1/[time]"):  # another dimension: the conversion says so
+        return
+    root = q.to_root_units()
+    has_angle = "radian" in dict(root.unit_items())
+    if dim is FREQUENCY or dim.name == FREQUENCY.name:
+        if has_angle:
+            hz = float((q / registry().Quantity(2.0 * math.pi, "rad")).to("Hz").magnitude)
+            raise UnitError(f"a frequency, not a speed: write '{hz:.12g} Hz' "
+                            f"({hz * 60.0:.12g}/min)")
+    elif dim.name == ANGULAR_VELOCITY.name and not has_angle:
+        rev_s = float(q.to("1/s").magnitude)  # read as revolutions per second
+        raise UnitError(f"no angle in the unit, which for {article(dim.name)} {dim.name} "
+                        f"is ambiguous (radians or revolutions?); expected e.g. "
+                        f"'{rev_s * 60.0:.12g} rpm' or '{rev_s:.12g} rev/s'")
 
 
 def article(noun: str) -> str:

@@ -63,6 +63,8 @@ class Contact(Section):
         """The ISO 6336-1 stiffness is linear per unit deflection: 'derived' implies e = 1."""
         if isinstance(data, dict) and data.get("stiffness") == "derived":
             exponent = data.get("exponent", 1.0)
+            if isinstance(exponent, bool):  # refused by the field itself (not_boolean)
+                return data
             if exponent != 1 and exponent != 1.0:
                 raise FieldError(("exponent",), "the 'derived' (ISO 6336-1) stiffness is "
                                  "linear", "exponent: 1, or no exponent")

@@ -6,7 +6,7 @@ from __future__ import annotations
 import functools
 from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field, create_model
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, create_model
 
 
 def compose(problem: str = "", expected: str = "") -> str:
@@ -48,7 +48,16 @@ def raise_all(errors: list[FieldError]) -> None:
         raise FieldErrors(errors)
 
 
-Coefficient = Annotated[float, Field(allow_inf_nan=False)]
+def not_boolean(value: object) -> object:
+    """Refuse a YAML boolean (true/false/yes/no/on/off) where a number is expected: pydantic's
+    lax float reads true as 1.0, so ``contact.exponent: true`` would run as e = 1."""
+    if isinstance(value, bool):
+        raise ValueError(compose("a YAML boolean, not a number", "a number"))
+    return value
+
+
+#: A plain number (no unit): finite, and never a YAML boolean.
+Coefficient = Annotated[float, BeforeValidator(not_boolean), Field(allow_inf_nan=False)]
 
 
 class Section(BaseModel):
