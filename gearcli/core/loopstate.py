@@ -1,0 +1,79 @@
+"""The time loop's state between two right-hand-side evaluations, as two named vectors.
+
+:func:`gearcli.core.timeloop.run` keeps everything that survives from one evaluation of the
+right-hand side to the next (times, step sizes, the controller's memory, the phase, the next
+output row) in a float64 vector ``lf`` indexed by :data:`LF` and an int64 vector ``li``
+indexed by :data:`LI`, both allocated with the work arrays (timeloop.new_work). The phases of
+the loop are small functions inlined into it (:mod:`gearcli.core.stepsize`,
+:mod:`gearcli.core.hops`, :mod:`gearcli.core.sampling`) that read and write these vectors by
+name, so each can also be called, and tested, on its own. Flags are 0/1 in ``li``.
+
+The names are written once here, as the layouts of :mod:`gearcli.core.layout`; the indices come
+from them. They are not part of the kernel's inputs or outputs (they never leave a chunk), so
+they are not in layout.LAYOUT_KEY.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+from gearcli.core.dopri5 import N_STAGES
+
+#: Float entries (``lf[LF.xxx]``); times and step sizes in [s].
+LOOP_FLOAT_NAMES = (
+    "t",  # time of the accepted state y
+    "ts",  # time of the next evaluation (stage, sample, hop end, trial)
+    "t_new",  # end of the step being attempted
+    "span",  # t_end - t at the start of the chunk
+    "h",  # next step size
+    "h_step",  # the step being attempted (cut short before a predicted crossing)
+    "h_min",  # smallest step size at t (10 units in the last place of t)
+    "h0",  # starting step size: trial step (HNW II.4)
+    "d1",  # starting step size: scaled norm of f(t, y) [1/s]
+    "factor",  # step-size factor after the last accepted step [-]
+    "err_bound",  # overlap margin of a loaded crossing before the |delta| term [mm] (hops.py)
+    "t_event",  # predicted next loaded table-end crossing
+    "t_recheck",  # predict again before a step ends past this time
+    "hop_limit",  # a crossing closer than this is hopped over
+    "h_cut",  # size of the last step cut short by a crossing
+    "hop",  # length of the hop in progress
+    "t_hop",  # end of the hop in progress
+)
+LoopFloatIndex = NamedTuple("LoopFloatIndex", [(n, int) for n in LOOP_FLOAT_NAMES])
+LF = LoopFloatIndex(*range(len(LOOP_FLOAT_NAMES)))
+N_LOOP_FLOAT = len(LOOP_FLOAT_NAMES)
+
+#: Integer entries (``li[LI.xxx]``); flags are 0 or 1.
+LOOP_INT_NAMES = (
+    "phase",  # what the next evaluation is for (PH_*)
+    "stage",  # stage of the step attempt, 1 .. N_STAGES (dopri5.py)
+    "row",  # row of K the next evaluation writes (ROW_DY: samples and the trial)
+    "full",  # the next evaluation computes the outputs too (aux, slot forces: rhs.py)
+    "i_out",  # next output row
+    "status",  # layout.STATUS_* once the loop stops
+    "first",  # first error-controlled state component (layout.S; s1, or delta in speed mode)
+    "count",  # number of controlled base components, first .. S.deltadot
+    "speed_mode",  # the pinion's motion is prescribed (layout.DRIVE_SPEED)
+    "fresh",  # this chunk starts the run from the initial values in prm
+    "rejected_before",  # the last attempt was rejected (no growth on the next acceptance)
+    "nonfinite_last",  # the last attempt produced NaN or overflow
+    "cut",  # the step being attempted ends just before a predicted crossing
+    "runaway",  # the last accepted step exceeded the penetration limit
+    "predict",  # predict the next crossing before the next step
+)
+LoopIntIndex = NamedTuple("LoopIntIndex", [(n, int) for n in LOOP_INT_NAMES])
+LI = LoopIntIndex(*range(len(LOOP_INT_NAMES)))
+N_LOOP_INT = len(LOOP_INT_NAMES)
+
+#: What the loop's one evaluation of the right-hand side is for (``li[LI.phase]``).
+PH_START = 0  # f(t_start, y): K[0] of the first step
+PH_FIRST_STEP = 1  # the starting step size's trial evaluation (HNW II.4)
+PH_STAGE = 2  # stage s = 1 .. N_STAGES of a step attempt (the last one is FSAL, full)
+PH_SAMPLE = 3  # an output row inside an accepted step (dense output)
+PH_HOP_SAMPLE = 4  # an output row inside a hop over a discontinuity (Euler)
+PH_HOP = 5  # f at the end of a hop: K[0] of the next step
+PH_PLAN = 6  # none: decide the next step or hop
+
+#: The row of K an evaluation writes: the stage's own (0 for f(t, y) at the start and after a
+#: hop, 1 .. N_STAGES for the stages) or this scratch row (samples, the trial evaluation).
+ROW_DY = N_STAGES + 1
