@@ -60,8 +60,7 @@ class Work(NamedTuple):
     K: np.ndarray
     dy: np.ndarray  #: (n_state,) the scratch row of K (samples, the starting step's trial)
     atol: np.ndarray  #: (N_STATE,) absolute tolerance per state
-    lf: np.ndarray  #: (N_LOOP_FLOAT,) float64 loop state of timeloop.run, loopstate.LF
-    li: np.ndarray  #: (N_LOOP_INT,) int64 loop state of timeloop.run, loopstate.LI
+    loop: np.ndarray  #: (1,) loopstate.LOOP_DTYPE: the loop state of timeloop.run
 
 
 class Out(NamedTuple):

@@ -22,7 +22,7 @@ from gearcli.core.layout import (
     P,
     S,
 )
-from gearcli.core.loopstate import LF, LI, PH_HOP, PH_HOP_SAMPLE, PH_PLAN, PH_STAGE
+from gearcli.core.loopstate import PH_HOP, PH_HOP_SAMPLE, PH_PLAN, PH_STAGE
 from gearcli.core.nrt import jit_noalloc_inline
 from gearcli.core.sampling import extrema_at, prescribed, sample_in_hop
 
@@ -41,7 +41,7 @@ EVENT_RESTART = 0.25
 #: past the window or the crossing it found (the slot positions move fast against the DTE, so
 #: the predicted time stays accurate over the window).
 EVENT_LOOKAHEAD = 8.0
-#: A crossing within this many units of the smallest step (loopstate LF.h_min) is hopped over.
+#: A crossing within this many units of the smallest step (loop state h_min) is hopped over.
 EVENT_HOP_MIN_STEPS = 100.0
 #: A hop ends at least this many units of the smallest step past the crossing.
 EVENT_HOP_MIN_OVERSHOOT_STEPS = 4.0
@@ -50,145 +50,145 @@ MIN_STEP_ULPS = 10.0
 
 
 @jit_noalloc_inline
-def plan_limits(lf, li, counters, prm):
+def plan_limits(st, counters, prm):
     """Whether the loop stops before the next step: at ``t_end`` (status unchanged), at
     ``max_steps`` attempts (STATUS_MAX_STEPS), or when the step size ``min(h, max_step,
     t_end - t)`` fell below ``h_min`` (10 units in the last place of t) before the end
     (STATUS_NAN after a non-finite attempt, else STATUS_STEP_TOO_SMALL; status in
-    ``li[LI.status]``). Sets ``lf[LF.h]`` to that step size and ``lf[LF.h_min]``."""
-    t = lf[LF.t]
+    ``st.status``). Sets ``st.h`` to that step size and ``st.h_min``."""
+    t = st.t
     t_end = prm[P.t_end]
     if not t < t_end:
         return True
     if counters[N.accepted_steps] + counters[N.rejected_steps] >= prm[P.max_steps]:
-        li[LI.status] = STATUS_MAX_STEPS
+        st.status = STATUS_MAX_STEPS
         return True
-    h = min(lf[LF.h], prm[P.max_step], t_end - t)
+    h = min(st.h, prm[P.max_step], t_end - t)
     h_min = MIN_STEP_ULPS * (np.nextafter(t, math.inf) - t)
-    lf[LF.h] = h
-    lf[LF.h_min] = h_min
+    st.h = h
+    st.h_min = h_min
     if h < h_min and t + h < t_end:
-        li[LI.status] = STATUS_NAN if li[LI.nonfinite_last] else STATUS_STEP_TOO_SMALL
+        st.status = STATUS_NAN if st.nonfinite_last else STATUS_STEP_TOO_SMALL
         return True
     return False
 
 
 @jit_noalloc_inline
-def crossing_ahead(lf, y, K, model):
-    """Time from ``lf[LF.t]`` to the next loaded table-end crossing [s] (events.next_crossing,
+def crossing_ahead(st, y, K, model):
+    """Time from ``st.t`` to the next loaded table-end crossing [s] (events.next_crossing,
     ``inf`` if none) and the look-ahead window it searched [s]: ``EVENT_LOOKAHEAD`` steps of
-    ``lf[LF.h]``, at least the hop limit. The overlap margin is ``lf[LF.err_bound]`` +
+    ``st.h``, at least the hop limit. The overlap margin is ``st.err_bound`` +
     0.1 |delta| (+ the centres' approach along either line of action in the lateral model)."""
-    margin = lf[LF.err_bound] + 0.1 * abs(y[S.delta])
+    margin = st.err_bound + 0.1 * abs(y[S.delta])
     if model.prm[P.lateral] != 0.0:  # the centres' approach along either line of action
         margin += abs(y[S.x1] - y[S.x2]) + abs(y[S.y1] - y[S.y2])
-    window = max(EVENT_LOOKAHEAD * lf[LF.h], lf[LF.hop_limit])
+    window = max(EVENT_LOOKAHEAD * st.h, st.hop_limit)
     tau = next_crossing(y[S.s1], y[S.v1], K[0, S.v1], y[S.delta], y[S.deltadot],
                         K[0, S.deltadot], model, window, margin)
     return tau, window
 
 
 @jit_noalloc_inline
-def hop_or_step(lf, li, tau, window):
+def hop_or_step(st, tau, window):
     """Record the crossing predicted ``tau`` [s] ahead within ``window`` [s] (``t_event``,
     ``t_recheck``); when it is closer than the hop limit (or ``EVENT_HOP_MIN_STEPS h_min``)
     plan a hop over it: length ``tau + max(EVENT_OVERSHOOT tau, EVENT_MIN_OVERSHOOT,
-    4 h_min)``, end ``lf[LF.t_hop]``, phase PH_HOP_SAMPLE."""
-    t = lf[LF.t]
-    h_min = lf[LF.h_min]
-    lf[LF.t_event] = t + tau
-    lf[LF.t_recheck] = t + min(tau, window)
-    if tau <= max(lf[LF.hop_limit], EVENT_HOP_MIN_STEPS * h_min):
+    4 h_min)``, end ``st.t_hop``, phase PH_HOP_SAMPLE."""
+    t = st.t
+    h_min = st.h_min
+    st.t_event = t + tau
+    st.t_recheck = t + min(tau, window)
+    if tau <= max(st.hop_limit, EVENT_HOP_MIN_STEPS * h_min):
         hop = tau + max(EVENT_OVERSHOOT * tau, EVENT_MIN_OVERSHOOT,
                         EVENT_HOP_MIN_OVERSHOOT_STEPS * h_min)
-        lf[LF.hop] = hop
-        lf[LF.t_hop] = t + hop
-        li[LI.phase] = PH_HOP_SAMPLE
+        st.hop = hop
+        st.t_hop = t + hop
+        st.phase = PH_HOP_SAMPLE
 
 
 @jit_noalloc_inline
-def begin_attempt(lf, li, t_end):
-    """The next step attempt from ``lf[LF.t]``: size ``lf[LF.h]``, or cut short to end a
-    fraction EVENT_LANDING before the predicted crossing ``lf[LF.t_event]`` (``li[LI.cut]``),
+def begin_attempt(st, t_end):
+    """The next step attempt from ``st.t``: size ``st.h``, or cut short to end a
+    fraction EVENT_LANDING before the predicted crossing ``st.t_event`` (``st.cut``),
     stretched to ``t_end`` when it would end within ``h_min`` of it. Sets ``h_step``,
     ``t_new`` and stage 1."""
-    t = lf[LF.t]
-    h = lf[LF.h]
-    t_event = lf[LF.t_event]
-    lf[LF.hop_limit] = 0.0
+    t = st.t
+    h = st.h
+    t_event = st.t_event
+    st.hop_limit = 0.0
     h_step = h
     cut = t + h > t_event
     if cut:  # end the step just before the predicted crossing
         h_step = (t_event - t) * (1.0 - EVENT_LANDING)
     t_new = t + h_step
-    if t_new > t_end - lf[LF.h_min]:
+    if t_new > t_end - st.h_min:
         t_new = t_end
         h_step = t_end - t
-    lf[LF.h_step] = h_step
-    lf[LF.t_new] = t_new
-    li[LI.cut] = cut
-    li[LI.stage] = 1
+    st.h_step = h_step
+    st.t_new = t_new
+    st.cut = cut
+    st.stage = 1
 
 
 @jit_noalloc_inline
-def plan(lf, li, y, K, model, counters):
-    """Decide what follows the accepted state ``(lf[LF.t], y)``: stop (True, plan_limits), or
+def plan(st, y, K, model, counters):
+    """Decide what follows the accepted state ``(st.t, y)``: stop (True, plan_limits), or
     a step attempt (phase PH_STAGE) or a hop (PH_HOP_SAMPLE). The crossing is predicted again
     after an event or when the step would end past ``t_recheck``."""
-    if plan_limits(lf, li, counters, model.prm):
+    if plan_limits(st, counters, model.prm):
         return True
-    li[LI.phase] = PH_STAGE
-    if li[LI.predict] or lf[LF.t] + lf[LF.h] > lf[LF.t_recheck]:
-        li[LI.predict] = 0
-        tau, window = crossing_ahead(lf, y, K, model)
-        hop_or_step(lf, li, tau, window)
-    if li[LI.phase] == PH_STAGE:
-        begin_attempt(lf, li, model.prm[P.t_end])
+    st.phase = PH_STAGE
+    if st.predict or st.t + st.h > st.t_recheck:
+        st.predict = 0
+        tau, window = crossing_ahead(st, y, K, model)
+        hop_or_step(st, tau, window)
+    if st.phase == PH_STAGE:
+        begin_attempt(st, model.prm[P.t_end])
     return False
 
 
 @jit_noalloc_inline
-def size_after_step(lf, li):
+def size_after_step(st):
     """The step size after an accepted step: the controller's ``h_step factor``, or after a
-    step cut short before a crossing the undisturbed ``lf[LF.h]`` kept, the hop limit set to
+    step cut short before a crossing the undisturbed ``st.h`` kept, the hop limit set to
     EVENT_HOP landing gaps and the crossing predicted again (the hop comes next)."""
-    h_step = lf[LF.h_step]
-    if li[LI.cut]:
-        lf[LF.hop_limit] = EVENT_HOP * EVENT_LANDING * h_step / (1.0 - EVENT_LANDING)
-        lf[LF.h_cut] = h_step
-        li[LI.predict] = 1
+    h_step = st.h_step
+    if st.cut:
+        st.hop_limit = EVENT_HOP * EVENT_LANDING * h_step / (1.0 - EVENT_LANDING)
+        st.h_cut = h_step
+        st.predict = 1
     else:
-        lf[LF.h] = h_step * lf[LF.factor]
+        st.h = h_step * st.factor
 
 
 @jit_noalloc_inline
-def hop_next(lf, li, t_out, y, K, ys):
+def hop_next(st, t_out, y, K, ys):
     """The next evaluation inside the hop: an output sample on its Euler line
     (sampling.sample_in_hop), else its end: ``y`` and ``t`` jump to it (phase PH_HOP, the
     evaluation there is the next step's K[0])."""
-    li[LI.full] = 1
-    if sample_in_hop(lf, li, t_out, y, K, ys):
+    st.full = 1
+    if sample_in_hop(st, t_out, y, K, ys):
         return
-    euler(y, K, lf[LF.hop], y)
-    t = lf[LF.t_hop]
-    lf[LF.t] = t
-    lf[LF.ts] = t
+    euler(y, K, st.hop, y)
+    t = st.t_hop
+    st.t = t
+    st.ts = t
     for i in range(y.shape[0]):
         ys[i] = y[i]
-    li[LI.row] = 0
-    li[LI.phase] = PH_HOP
+    st.row = 0
+    st.phase = PH_HOP
 
 
 @jit_noalloc_inline
-def end_hop(lf, li, w, out, prm):
+def end_hop(st, w, out, prm):
     """After the evaluation at the hop's end: a point of the solution (extrema), and a new
     transient starts: the next step is EVENT_RESTART of the smaller of the last step and the
     cut step, and the next crossing is predicted."""
     out.counters[N.rhs_evaluations] += 1
-    prescribed(w.y, w.aux, li)
-    extrema_at(lf[LF.t], w.y, w, out, prm)
-    lf[LF.h] = EVENT_RESTART * min(lf[LF.h], lf[LF.h_cut])
-    lf[LF.hop_limit] = 0.0
-    li[LI.predict] = 1
-    li[LI.rejected_before] = 0
-    li[LI.phase] = PH_PLAN
+    prescribed(w.y, w.aux, st)
+    extrema_at(st.t, w.y, w, out, prm)
+    st.h = EVENT_RESTART * min(st.h, st.h_cut)
+    st.hop_limit = 0.0
+    st.predict = 1
+    st.rejected_before = 0
+    st.phase = PH_PLAN

@@ -1,25 +1,28 @@
-"""The time loop's state between two right-hand-side evaluations, as two named vectors.
+"""The time loop's state between two right-hand-side evaluations, as one named record.
 
 :func:`gearcli.core.timeloop.run` keeps everything that survives from one evaluation of the
 right-hand side to the next (times, step sizes, the controller's memory, the phase, the next
-output row) in a float64 vector ``lf`` indexed by :data:`LF` and an int64 vector ``li``
-indexed by :data:`LI`, both allocated with the work arrays (timeloop.new_work). The phases of
-the loop are small functions inlined into it (:mod:`gearcli.core.stepsize`,
-:mod:`gearcli.core.hops`, :mod:`gearcli.core.sampling`) that read and write these vectors by
-name, so each can also be called, and tested, on its own. Flags are 0/1 in ``li``.
+output row) in one record ``st`` of :data:`LOOP_DTYPE`: float64 fields (:data:`LOOP_FLOAT_NAMES`)
+then int64 fields (:data:`LOOP_INT_NAMES`, flags 0/1), read and written by name (``st.h``,
+``st.phase``). The phases of the loop are small functions inlined into it
+(:mod:`gearcli.core.stepsize`, :mod:`gearcli.core.hops`, :mod:`gearcli.core.sampling`) that
+take the record, so each can also be called, and tested, on its own. The record is the last
+row of the work block (timeloop.new_work: ``w.loop``, a structured array of one element).
 
-The names are written once here, as the layouts of :mod:`gearcli.core.layout`; the indices come
-from them. They are not part of the kernel's inputs or outputs (they never leave a chunk), so
-they are not in layout.LAYOUT_KEY.
+A record, not a float64 and an int64 vector indexed by named constants: numba types and lowers
+a field access as one load or store, an array element as an indexing expression, and the first
+run's compilation of the loop took ~10 % longer CPU time with the vectors (bench/RESULTS.md,
+session 10). The names are written once here; they never leave a chunk, so they are not in
+layout.LAYOUT_KEY.
 """
 
 from __future__ import annotations
 
-from typing import NamedTuple
+import numpy as np
 
 from gearcli.core.dopri5 import N_STAGES
 
-#: Float entries (``lf[LF.xxx]``); times and step sizes in [s].
+#: Float fields; times and step sizes in [s].
 LOOP_FLOAT_NAMES = (
     "t",  # time of the accepted state y
     "ts",  # time of the next evaluation (stage, sample, hop end, trial)
@@ -39,11 +42,8 @@ LOOP_FLOAT_NAMES = (
     "hop",  # length of the hop in progress
     "t_hop",  # end of the hop in progress
 )
-LoopFloatIndex = NamedTuple("LoopFloatIndex", [(n, int) for n in LOOP_FLOAT_NAMES])
-LF = LoopFloatIndex(*range(len(LOOP_FLOAT_NAMES)))
-N_LOOP_FLOAT = len(LOOP_FLOAT_NAMES)
 
-#: Integer entries (``li[LI.xxx]``); flags are 0 or 1.
+#: Integer fields; flags are 0 or 1.
 LOOP_INT_NAMES = (
     "phase",  # what the next evaluation is for (PH_*)
     "stage",  # stage of the step attempt, 1 .. N_STAGES (dopri5.py)
@@ -61,11 +61,12 @@ LOOP_INT_NAMES = (
     "runaway",  # the last accepted step exceeded the penetration limit
     "predict",  # predict the next crossing before the next step
 )
-LoopIntIndex = NamedTuple("LoopIntIndex", [(n, int) for n in LOOP_INT_NAMES])
-LI = LoopIntIndex(*range(len(LOOP_INT_NAMES)))
-N_LOOP_INT = len(LOOP_INT_NAMES)
+#: The record (8 bytes a field, no padding): ``new_work`` views float64 words as it.
+LOOP_DTYPE = np.dtype([(n, np.float64) for n in LOOP_FLOAT_NAMES]
+                      + [(n, np.int64) for n in LOOP_INT_NAMES])
+N_LOOP_WORDS = len(LOOP_DTYPE.names)
 
-#: What the loop's one evaluation of the right-hand side is for (``li[LI.phase]``).
+#: What the loop's one evaluation of the right-hand side is for (``st.phase``).
 PH_START = 0  # f(t_start, y): K[0] of the first step
 PH_FIRST_STEP = 1  # the starting step size's trial evaluation (HNW II.4)
 PH_STAGE = 2  # stage s = 1 .. N_STAGES of a step attempt (the last one is FSAL, full)

@@ -10,56 +10,56 @@ never feeds back into the steps (docs/theory.md §6.8).
 
 from gearcli.core.dopri5 import dense, euler
 from gearcli.core.layout import A, N, P, S
-from gearcli.core.loopstate import LF, LI, ROW_DY
+from gearcli.core.loopstate import ROW_DY
 from gearcli.core.nrt import jit_noalloc_inline
 from gearcli.core.records import update_extrema, write_row
 
 
 @jit_noalloc_inline
-def sample_in_step(lf, li, t_out, y, K, ys):
-    """The next output time inside the accepted step ``lf[LF.t] .. lf[LF.t_new]``, if any.
+def sample_in_step(st, t_out, y, K, ys):
+    """The next output time inside the accepted step ``st.t .. st.t_new``, if any.
 
-    Output row ``li[LI.i_out]`` is due when its time ``t_out[i] <= t_new`` (times are
+    Output row ``st.i_out`` is due when its time ``t_out[i] <= t_new`` (times are
     non-decreasing; a time equal to the step's end is sampled here, before the step is taken).
     Then ``ys`` is the continuous extension at it (``x = (t_out[i] - t) / h_step``), its time
-    ``lf[LF.ts]``, and the next evaluation is full and writes K's scratch row.
+    ``st.ts``, and the next evaluation is full and writes K's scratch row.
 
     Returns
     -------
     bool
         A sample is due (the loop evaluates it, then asks again).
     """
-    i = li[LI.i_out]
-    if i < t_out.shape[0] and t_out[i] <= lf[LF.t_new]:
+    i = st.i_out
+    if i < t_out.shape[0] and t_out[i] <= st.t_new:
         ts = t_out[i]
-        h_step = lf[LF.h_step]
-        lf[LF.ts] = ts
-        dense(y, K, h_step, (ts - lf[LF.t]) / h_step, ys)
-        li[LI.row] = ROW_DY
-        li[LI.full] = 1
+        h_step = st.h_step
+        st.ts = ts
+        dense(y, K, h_step, (ts - st.t) / h_step, ys)
+        st.row = ROW_DY
+        st.full = 1
         return True
     return False
 
 
 @jit_noalloc_inline
-def sample_in_hop(lf, li, t_out, y, K, ys):
-    """The next output time inside the hop ``lf[LF.t] .. lf[LF.t_hop]``, if any: as
+def sample_in_hop(st, t_out, y, K, ys):
+    """The next output time inside the hop ``st.t .. st.t_hop``, if any: as
     :func:`sample_in_step` on the hop's Euler line ``y + (t_out[i] - t) K[0]``."""
-    i = li[LI.i_out]
-    if i < t_out.shape[0] and t_out[i] <= lf[LF.t_hop]:
+    i = st.i_out
+    if i < t_out.shape[0] and t_out[i] <= st.t_hop:
         ts = t_out[i]
-        lf[LF.ts] = ts
-        euler(y, K, ts - lf[LF.t], ys)
-        li[LI.row] = ROW_DY
+        st.ts = ts
+        euler(y, K, ts - st.t, ys)
+        st.row = ROW_DY
         return True
     return False
 
 
 @jit_noalloc_inline
-def prescribed(y, aux, li):
+def prescribed(y, aux, st):
     """Speed mode: the integrated copies of the prescribed s1, v1 set to the exact values of
     the last evaluation (``aux``); they are not error controlled."""
-    if li[LI.speed_mode]:
+    if st.speed_mode:
         y[S.s1] = aux[A.s1]
         y[S.v1] = aux[A.v1]
 
@@ -75,24 +75,24 @@ def extrema_at(t, y, w, out, prm):
 
 
 @jit_noalloc_inline
-def record_sample(lf, li, w, out, prm):
-    """Write output row ``li[LI.i_out]`` from the sample just evaluated at ``(lf[LF.ts],
+def record_sample(st, w, out, prm):
+    """Write output row ``st.i_out`` from the sample just evaluated at ``(st.ts,
     w.ys)``; samples are points of the solution, so they enter the extrema too."""
     out.counters[N.output_evaluations] += 1
-    ts = lf[LF.ts]
-    i = li[LI.i_out]
+    ts = st.ts
+    i = st.i_out
     write_row(out.series, out.slot_series, i, ts, w.ys, w.aux, w.slot_force, prm)
     extrema_at(ts, w.ys, w, out, prm)
-    li[LI.i_out] = i + 1
+    st.i_out = i + 1
 
 
 @jit_noalloc_inline
-def rows_at_start(li, t, w, out, prm):
+def rows_at_start(st, t, w, out, prm):
     """Output rows with times ``<= t`` [s], the chunk's start, from the start state ``w.y``
     (the first chunk's rows at ``t_start``)."""
     t_out = out.t_out
-    i = li[LI.i_out]
+    i = st.i_out
     while i < t_out.shape[0] and t_out[i] <= t:
         write_row(out.series, out.slot_series, i, t_out[i], w.y, w.aux, w.slot_force, prm)
         i += 1
-    li[LI.i_out] = i
+    st.i_out = i

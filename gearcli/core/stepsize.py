@@ -1,7 +1,7 @@
 """Step-size control of the time loop: accept or reject a step attempt, and the starting step.
 
 Both are phases of :func:`gearcli.core.timeloop.run`, inlined into it, over the loop-state
-vectors of :mod:`gearcli.core.loopstate` (``lf``, ``li``); docs/theory.md §6.7.
+record of :mod:`gearcli.core.loopstate` (``st``); docs/theory.md §6.7.
 
 References
 ----------
@@ -15,7 +15,7 @@ import math
 
 from gearcli.core.dopri5 import MIN_FACTOR, euler, scaled_rms, step_factor
 from gearcli.core.layout import N
-from gearcli.core.loopstate import LF, LI, PH_PLAN, PH_SAMPLE
+from gearcli.core.loopstate import PH_PLAN, PH_SAMPLE
 from gearcli.core.nrt import jit_noalloc_inline
 
 #: Starting step size (HNW II.4): norms below this count as zero [-].
@@ -28,15 +28,15 @@ START_GROWTH = 100.0
 
 
 @jit_noalloc_inline
-def control(lf, li, err, finite, counters):
-    """Accept or reject the step attempt of size ``lf[LF.h_step]`` [s] (HNW II.4).
+def control(st, err, finite, counters):
+    """Accept or reject the step attempt of size ``st.h_step`` [s] (HNW II.4).
 
     Parameters
     ----------
-    lf, li : ndarray
-        Loop state (loopstate.py), updated: rejected, ``lf[LF.h]`` is the size of the next
-        attempt and the phase PH_PLAN; accepted, ``lf[LF.factor]`` is the growth factor of the
-        next step and the phase PH_SAMPLE; ``li[LI.rejected_before]``, ``li[LI.nonfinite_last]``.
+    st : loopstate.LOOP_DTYPE record
+        Loop state, updated: rejected, ``st.h`` is the size of the next
+        attempt and the phase PH_PLAN; accepted, ``st.factor`` is the growth factor of the
+        next step and the phase PH_SAMPLE; ``st.rejected_before``, ``st.nonfinite_last``.
     err : float
         Scaled RMS error norm of the attempt (dopri5.error_norm) [-].
     finite : bool
@@ -50,42 +50,42 @@ def control(lf, li, err, finite, counters):
     bool
         Accepted (``err < 1`` and finite).
     """
-    h_step = lf[LF.h_step]
+    h_step = st.h_step
     if not finite:
         counters[N.rejected_steps] += 1
-        lf[LF.h] = h_step * MIN_FACTOR
-        li[LI.rejected_before] = 1
-        li[LI.nonfinite_last] = 1
-        li[LI.phase] = PH_PLAN
+        st.h = h_step * MIN_FACTOR
+        st.rejected_before = 1
+        st.nonfinite_last = 1
+        st.phase = PH_PLAN
         return False
-    li[LI.nonfinite_last] = 0
-    rejected_before = li[LI.rejected_before] != 0
+    st.nonfinite_last = 0
+    rejected_before = st.rejected_before != 0
     if err >= 1.0:
         counters[N.rejected_steps] += 1
-        lf[LF.h] = h_step * step_factor(err, rejected_before)
-        li[LI.rejected_before] = 1
-        li[LI.phase] = PH_PLAN
+        st.h = h_step * step_factor(err, rejected_before)
+        st.rejected_before = 1
+        st.phase = PH_PLAN
         return False
     counters[N.accepted_steps] += 1
-    lf[LF.factor] = step_factor(err, rejected_before)
-    li[LI.rejected_before] = 0
-    li[LI.phase] = PH_SAMPLE
+    st.factor = step_factor(err, rejected_before)
+    st.rejected_before = 0
+    st.phase = PH_SAMPLE
     return True
 
 
 @jit_noalloc_inline
-def start_trial(lf, li, y, K, dy, ys, atol, rtol):
+def start_trial(st, y, K, dy, ys, atol, rtol):
     """Starting step size, first half (HNW II.4 steps a-c): the trial step ``h0``.
 
     ``d0 = ||y||``, ``d1 = ||f(t, y)||`` (``K[0]``) in the scaled RMS norm of the controlled
-    components (dopri5.scaled_rms, ``li[LI.first]``, ``li[LI.count]``); ``h0 = 0.01 d0 / d1``
+    components (dopri5.scaled_rms, ``st.first``, ``st.count``); ``h0 = 0.01 d0 / d1``
     (1e-6 s when either norm is below 1e-5), at most the chunk's span. Writes ``h0`` and ``d1``
     to ``lf``, the Euler trial state ``y + h0 f(t, y)`` to ``ys`` and its time to
-    ``lf[LF.ts]``; ``dy`` keeps ``f(t, y)`` (the trial evaluation overwrites it with
+    ``st.ts``; ``dy`` keeps ``f(t, y)`` (the trial evaluation overwrites it with
     ``f(t + h0, ys)`` before :func:`start_size`).
     """
-    first = li[LI.first]
-    count = li[LI.count]
+    first = st.first
+    count = st.count
     d0 = scaled_rms(y, y, first, count, atol, rtol)
     for i in range(y.shape[0]):
         dy[i] = K[0, i]
@@ -94,16 +94,16 @@ def start_trial(lf, li, y, K, dy, ys, atol, rtol):
         h0 = START_FALLBACK_STEP
     else:
         h0 = 0.01 * d0 / d1
-    h0 = min(h0, lf[LF.span])
-    lf[LF.h0] = h0
-    lf[LF.d1] = d1
-    lf[LF.ts] = lf[LF.t] + h0
+    h0 = min(h0, st.span)
+    st.h0 = h0
+    st.d1 = d1
+    st.ts = st.t + h0
     euler(y, K, h0, ys)
 
 
 @jit_noalloc_inline
-def start_size(lf, li, y, K, dy, atol, rtol):
-    """Starting step size, second half (HNW II.4 steps d-f): ``lf[LF.h]``.
+def start_size(st, y, K, dy, atol, rtol):
+    """Starting step size, second half (HNW II.4 steps d-f): ``st.h``.
 
     ``dy`` holds ``f(t + h0, y + h0 f(t, y))`` on entry (and the difference to ``K[0]`` on
     return). ``d2 = ||f(t + h0, ...) - f(t, y)|| / h0`` estimates the second derivative;
@@ -112,14 +112,14 @@ def start_size(lf, li, y, K, dy, atol, rtol):
     """
     for i in range(y.shape[0]):
         dy[i] -= K[0, i]
-    h0 = lf[LF.h0]
-    d1 = lf[LF.d1]
-    d2 = scaled_rms(dy, y, li[LI.first], li[LI.count], atol, rtol) / h0
+    h0 = st.h0
+    d1 = st.d1
+    d2 = scaled_rms(dy, y, st.first, st.count, atol, rtol) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(START_FALLBACK_STEP, h0 * 1e-3)
     else:
         h1 = (0.01 / max(d1, d2)) ** (1.0 / 5.0)
-    h = min(START_GROWTH * h0, h1, lf[LF.span])
+    h = min(START_GROWTH * h0, h1, st.span)
     if not (math.isfinite(h) and h > 0.0):
         h = START_FALLBACK_STEP
-    lf[LF.h] = h
+    st.h = h

@@ -61,10 +61,8 @@ from gearcli.core.layout import (
     X,
 )
 from gearcli.core.loopstate import (
-    LF,
-    LI,
-    N_LOOP_FLOAT,
-    N_LOOP_INT,
+    LOOP_DTYPE,
+    N_LOOP_WORDS,
     PH_FIRST_STEP,
     PH_HOP,
     PH_HOP_SAMPLE,
@@ -113,16 +111,16 @@ def new_work(prm) -> Work:
     times slower depending on the build (measured on the seed case; cache-line/aliasing
     effects). The rows are longer than the vectors they hold (``vec`` exceeds every length),
     so K and the slot forces are never contiguous: numba sees one array layout for every case
-    and compiles :func:`run` once. The loop-state vectors (loopstate.py: ``lf`` float64,
-    ``li`` int64) are the block's last two rows.
+    and compiles :func:`run` once. The loop state (loopstate.py, a record) is the block's last
+    row.
     """
     n_slots = int(prm[P.n_slots])
     extra = prm[P.lateral] != 0.0 or prm[P.motor_J] > 0.0 or prm[P.load_J] > 0.0
     n_state = N_STATE if extra else N_STATE_BASE  # optional states: all of them or none
-    vec = 16 * (max(N_STATE, N_AUX, n_slots, N_LOOP_FLOAT, N_LOOP_INT) // 16 + 1)
+    vec = 16 * (max(N_STATE, N_AUX, n_slots, N_LOOP_WORDS) // 16 + 1)
     n_vectors = 4 + N_FAMILIES  # y, ys, y_new, aux, one slot-force row per flank family
     k_end = (n_vectors + ROW_DY + 1) * vec
-    size = k_end + 2 * vec
+    size = k_end + vec
     raw = np.zeros(size + 16)
     skip = (-raw.ctypes.data % 128) // 8  # the block starts on a 128-byte boundary
     work = raw[skip:skip + size]
@@ -137,8 +135,7 @@ def new_work(prm) -> Work:
         dy=K[ROW_DY],
         atol=np.zeros(N_STATE),
         scratch=np.zeros((N_SCRATCH, n_slots)),
-        lf=work[k_end:k_end + N_LOOP_FLOAT],
-        li=work[k_end + vec:k_end + vec + N_LOOP_INT].view(np.int64),
+        loop=work[k_end:k_end + N_LOOP_WORDS].view(LOOP_DTYPE),
     )
 
 
@@ -193,70 +190,79 @@ def _angle_offset(model, resume, fresh):
 
 
 @jit_noalloc_inline
-def _start_loop(lf, li, model, fresh, i_first):
-    """Loop state (loopstate.py) at the start of a chunk: at ``t_start``, no step size yet,
-    no crossing predicted, phase PH_START (f(t_start, y) into K[0])."""
+def _start_loop(st, model, fresh, i_first):
+    """Every field of the loop state (loopstate.py) at the start of a chunk: at ``t_start``,
+    no step size yet, no crossing predicted, phase PH_START (f(t_start, y) into K[0])."""
     prm = model.prm
     t = prm[P.t_start]
     speed_mode = int(prm[P.drive_mode]) == DRIVE_SPEED
-    for k in range(lf.shape[0]):
-        lf[k] = 0.0
-    for k in range(li.shape[0]):
-        li[k] = 0
-    lf[LF.t] = t
-    lf[LF.ts] = t
-    lf[LF.t_new] = t
-    lf[LF.t_hop] = t
-    lf[LF.span] = prm[P.t_end] - t
-    lf[LF.factor] = 1.0
-    # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
-    lf[LF.err_bound] = model.derived[D.error_bound] + 10.0 * prm[P.atol_delta]
-    lf[LF.t_event] = math.inf
-    lf[LF.t_recheck] = -math.inf
-    lf[LF.h_cut] = math.inf
-    li[LI.phase] = PH_START
-    li[LI.full] = 1
-    li[LI.i_out] = i_first
-    li[LI.status] = STATUS_OK
     first = S.delta if speed_mode else S.s1  # controlled components: first .. S.deltadot
-    li[LI.first] = first
-    li[LI.count] = S.deltadot + 1 - first
-    li[LI.speed_mode] = speed_mode
-    li[LI.fresh] = fresh
-    li[LI.predict] = 1
+    st.t = t
+    st.ts = t
+    st.t_new = t
+    st.span = prm[P.t_end] - t
+    st.h = 0.0
+    st.h_step = 0.0
+    st.h_min = 0.0
+    st.h0 = 0.0
+    st.d1 = 0.0
+    st.factor = 1.0
+    # overlap margin of a loaded crossing (events.py): errors + 10 atol (+ 10 % of |delta|)
+    st.err_bound = model.derived[D.error_bound] + 10.0 * prm[P.atol_delta]
+    st.t_event = math.inf
+    st.t_recheck = -math.inf
+    st.hop_limit = 0.0
+    st.h_cut = math.inf
+    st.hop = 0.0
+    st.t_hop = t
+    st.phase = PH_START
+    st.stage = 0
+    st.row = 0
+    st.full = 1
+    st.i_out = i_first
+    st.status = STATUS_OK
+    st.first = first
+    st.count = S.deltadot + 1 - first
+    st.speed_mode = speed_mode
+    st.fresh = fresh
+    st.rejected_before = 0
+    st.nonfinite_last = 0
+    st.cut = 0
+    st.runaway = 0
+    st.predict = 1
 
 
 @jit_noalloc_inline
-def _start_chunk(lf, li, w, out, prm):
+def _start_chunk(st, w, out, prm):
     """After f(t, y) at the chunk's start (into K[0]): the initial energy of a fresh start, the
     start's extrema and output rows, the first step size (``first_step``, the last chunk's
     next one, or the starting step size's trial evaluation next). False if not finite."""
     out.counters[N.rhs_evaluations] += 1
     y = w.y
     aux = w.aux
-    t = lf[LF.t]
-    prescribed(y, aux, li)
-    fresh = li[LI.fresh] != 0
+    t = st.t
+    prescribed(y, aux, st)
+    fresh = st.fresh != 0
     if fresh:
         out.extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y) \
             + aux[A.contact_energy] + aux[A.spring_energy]
     out.extrema[X.t_reached_s] = t
-    if not (_all_finite(y) and _row_finite(w.K, li[LI.row]) and _all_finite(aux)):
+    if not (_all_finite(y) and _row_finite(w.K, st.row) and _all_finite(aux)):
         return False
     extrema_at(t, y, w, out, prm)
-    rows_at_start(li, t, w, out, prm)
+    rows_at_start(st, t, w, out, prm)
     h = prm[P.first_step] if fresh else out.resume[R.h]
-    lf[LF.h] = h
-    li[LI.phase] = PH_PLAN
-    if h <= 0.0 and lf[LF.span] > 0.0:
-        start_trial(lf, li, y, w.K, w.dy, w.ys, w.atol, prm[P.rtol])
-        li[LI.row] = ROW_DY
-        li[LI.phase] = PH_FIRST_STEP
+    st.h = h
+    st.phase = PH_PLAN
+    if h <= 0.0 and st.span > 0.0:
+        start_trial(st, y, w.K, w.dy, w.ys, w.atol, prm[P.rtol])
+        st.row = ROW_DY
+        st.phase = PH_FIRST_STEP
     return True
 
 
 @jit_noalloc_inline
-def _finish_attempt(lf, li, w, out, prm):
+def _finish_attempt(st, w, out, prm):
     """The step attempt is complete (``w.ys`` its 5th-order solution, K[N_STAGES] the FSAL
     evaluation there): error norm and the controller's decision (stepsize.control); an
     accepted step's end is a point of the solution (extrema) and is checked against the
@@ -266,66 +272,66 @@ def _finish_attempt(lf, li, w, out, prm):
     K = w.K
     for i in range(y.shape[0]):
         y_new[i] = w.ys[i]
-    err = error_norm(y, y_new, K, lf[LF.h_step], li[LI.first], li[LI.count], w.atol,
+    err = error_norm(y, y_new, K, st.h_step, st.first, st.count, w.atol,
                      prm[P.rtol])
-    finite = math.isfinite(err) and _all_finite(y_new) and _row_finite(K, li[LI.stage])
-    if control(lf, li, err, finite, out.counters):
-        prescribed(y_new, w.aux, li)
-        extrema_at(lf[LF.t_new], y_new, w, out, prm)
-        li[LI.runaway] = w.aux[A.max_penetration] > prm[P.penetration_limit]
+    finite = math.isfinite(err) and _all_finite(y_new) and _row_finite(K, st.stage)
+    if control(st, err, finite, out.counters):
+        prescribed(y_new, w.aux, st)
+        extrema_at(st.t_new, y_new, w, out, prm)
+        st.runaway = w.aux[A.max_penetration] > prm[P.penetration_limit]
 
 
 @jit_noalloc_inline
-def _take_step(lf, li, w):
+def _take_step(st, w):
     """Move to the accepted step's end (t, y, K[0] = its FSAL stage) and size the next step
     (hops.size_after_step). True on a runaway penetration (status set): the loop stops."""
     y = w.y
     K = w.K
-    lf[LF.t] = lf[LF.t_new]
+    st.t = st.t_new
     for i in range(y.shape[0]):
         y[i] = w.y_new[i]
         K[0, i] = K[N_STAGES, i]
-    if li[LI.runaway]:
-        li[LI.status] = STATUS_RUNAWAY_PENETRATION
+    if st.runaway:
+        st.status = STATUS_RUNAWAY_PENETRATION
         return True
-    size_after_step(lf, li)
-    li[LI.phase] = PH_PLAN
+    size_after_step(st)
+    st.phase = PH_PLAN
     return False
 
 
 @jit_noalloc_inline
-def _stage_at(lf, li, y, K, ys):
-    """State and time of stage ``li[LI.stage]`` (1 .. N_STAGES - 1) of the attempt; it
+def _stage_at(st, y, K, ys):
+    """State and time of stage ``st.stage`` (1 .. N_STAGES - 1) of the attempt; it
     writes row ``s`` of K."""
-    s = li[LI.stage]
-    h_step = lf[LF.h_step]
-    stage_state(y, K, s, h_step, ys, li[LI.first])
-    lf[LF.ts] = lf[LF.t] + C_STAGE[s] * h_step
-    li[LI.row] = s
+    s = st.stage
+    h_step = st.h_step
+    stage_state(y, K, s, h_step, ys, st.first)
+    st.ts = st.t + C_STAGE[s] * h_step
+    st.row = s
 
 
 @jit_noalloc_inline
-def _next_stage(lf, li, y, K, ys):
-    """The next evaluation of the attempt: stage ``li[LI.stage]``, or at N_STAGES the
+def _next_stage(st, y, K, ys):
+    """The next evaluation of the attempt: stage ``st.stage``, or at N_STAGES the
     5th-order solution at ``t_new``, whose evaluation is the FSAL stage (full: outputs)."""
-    s = li[LI.stage]
+    s = st.stage
     if s < N_STAGES:
-        _stage_at(lf, li, y, K, ys)
+        _stage_at(st, y, K, ys)
     else:
-        solution(y, K, lf[LF.h_step], ys, li[LI.first])
-        lf[LF.ts] = lf[LF.t_new]
-        li[LI.row] = s
-    li[LI.full] = s == N_STAGES
+        solution(y, K, st.h_step, ys, st.first)
+        st.ts = st.t_new
+        st.row = s
+    st.full = s == N_STAGES
 
 
 @jit_noalloc_inline
-def _finish_chunk(lf, w, out, theta_offset):
+def _finish_chunk(st, w, out, theta_offset):
     """The time reached and the ``resume`` vector for the next chunk (layout.R)."""
-    out.extrema[X.t_reached_s] = lf[LF.t]
+    out.extrema[X.t_reached_s] = st.t
     resume = out.resume
     resume[R.started] = 1.0
     resume[R.theta_offset] = theta_offset
-    resume[R.h] = lf[LF.h]
+    resume[R.h] = st.h
     for i in range(w.y.shape[0]):
         resume[RESUME_Y + i] = w.y[i]
 
@@ -339,7 +345,7 @@ def run(model, w, out, layout_key, i_first):
     depend on how often a progress display looks in.
 
     The loop evaluates the right-hand side at exactly one place, the top of its body; what the
-    evaluation is for is the phase (``li[LI.phase]``, loopstate.PH_*): a stage of a step
+    evaluation is for is the phase (``st.phase``, loopstate.PH_*): a stage of a step
     attempt, an output sample (inside a step or a hop), the end of a hop, the start, the
     starting step size's trial. One call site means one inlined copy of the right-hand side in
     the compiled code: a second copy for the samples, hops and the start (a compiled helper,
@@ -348,7 +354,7 @@ def run(model, w, out, layout_key, i_first):
     attempt as a call per step cost ~14 % more run time on the seed, A/B when the loop was
     written; ``flank`` as a call 63 %, bench/RESULTS.md session 6). The phases themselves are
     small functions inlined here (numba IR, nrt.jit_noalloc_inline) over the named loop-state
-    vectors ``w.lf``, ``w.li`` (loopstate.py).
+    record ``st = w.loop[0]`` (loopstate.py).
     Allocation-free (numba's reference counting off, nrt.jit_noalloc), so the caller allocates
     ``w`` (:func:`new_work`) and this is the entry point itself: a compiled wrapper that
     allocates would re-optimise the whole loop in its own library.
@@ -382,8 +388,7 @@ def run(model, w, out, layout_key, i_first):
     if layout_key != LAYOUT_KEY:
         return STATUS_STALE_CACHE, i_first
     prm = model.prm
-    lf = w.lf
-    li = w.li
+    st = w.loop[0]
     y = w.y
     ys = w.ys
     K = w.K
@@ -391,59 +396,59 @@ def run(model, w, out, layout_key, i_first):
     fresh = out.resume[R.started] == 0.0
     theta_offset = _angle_offset(model, out.resume, fresh)
     _init(model, w, out.resume, fresh)
-    _start_loop(lf, li, model, fresh, i_first)
+    _start_loop(st, model, fresh, i_first)
     for i in range(y.shape[0]):
         ys[i] = y[i]
     while True:
         # the one evaluation of the right-hand side: at (ts, ys) into K[row], aux, slot forces
-        ts = lf[LF.ts]
-        rhs(ts, ys, K[li[LI.row]], w.aux, w.slot_force, w.scratch, model,
-            forcing(ts, mode, theta_offset, model), li[LI.full] != 0)
+        ts = st.ts
+        rhs(ts, ys, K[st.row], w.aux, w.slot_force, w.scratch, model,
+            forcing(ts, mode, theta_offset, model), st.full != 0)
 
         # what it was for
-        phase = li[LI.phase]
+        phase = st.phase
         if phase == PH_STAGE:
             out.counters[N.rhs_evaluations] += 1
             # Stages 2 .. 5 go straight to the next evaluation; stage 6 and the first stage
             # of an attempt are prepared at the end of the loop body. One place for all six
             # is the same arithmetic but ran 4-5 % slower than this (code layout: seed and
             # iso_pair, three A/B rounds each, bench/RESULTS.md session 9).
-            if li[LI.stage] < N_STAGES - 1:
-                li[LI.stage] += 1
-                _stage_at(lf, li, y, K, ys)
+            if st.stage < N_STAGES - 1:
+                st.stage += 1
+                _stage_at(st, y, K, ys)
                 continue
-            if li[LI.stage] < N_STAGES:
-                li[LI.stage] += 1
+            if st.stage < N_STAGES:
+                st.stage += 1
             else:  # the step attempt is complete
-                _finish_attempt(lf, li, w, out, prm)
+                _finish_attempt(st, w, out, prm)
         elif phase == PH_SAMPLE or phase == PH_HOP_SAMPLE:
-            record_sample(lf, li, w, out, prm)
+            record_sample(st, w, out, prm)
         elif phase == PH_HOP:
-            end_hop(lf, li, w, out, prm)
+            end_hop(st, w, out, prm)
         elif phase == PH_START:
-            if not _start_chunk(lf, li, w, out, prm):
+            if not _start_chunk(st, w, out, prm):
                 return STATUS_NAN, i_first
-            if li[LI.phase] == PH_FIRST_STEP:
+            if st.phase == PH_FIRST_STEP:
                 continue
         else:  # PH_FIRST_STEP
             out.counters[N.rhs_evaluations] += 1
-            start_size(lf, li, y, K, w.dy, w.atol, prm[P.rtol])
-            li[LI.phase] = PH_PLAN
+            start_size(st, y, K, w.dy, w.atol, prm[P.rtol])
+            st.phase = PH_PLAN
 
         # the output rows inside an accepted step, then the step is taken
-        if li[LI.phase] == PH_SAMPLE:
-            if sample_in_step(lf, li, out.t_out, y, K, ys):
+        if st.phase == PH_SAMPLE:
+            if sample_in_step(st, out.t_out, y, K, ys):
                 continue
-            if _take_step(lf, li, w):
+            if _take_step(st, w):
                 break
         # the next step, or a hop over a discontinuity
-        if li[LI.phase] == PH_PLAN and plan(lf, li, y, K, model, out.counters):
+        if st.phase == PH_PLAN and plan(st, y, K, model, out.counters):
             break
         # a hop: its output rows (Euler), then the evaluation at its end
-        if li[LI.phase] == PH_HOP_SAMPLE:
-            hop_next(lf, li, out.t_out, y, K, ys)
+        if st.phase == PH_HOP_SAMPLE:
+            hop_next(st, out.t_out, y, K, ys)
             continue
         # the next stage of the step attempt (Dormand-Prince 5(4), dopri5.py)
-        _next_stage(lf, li, y, K, ys)
-    _finish_chunk(lf, w, out, theta_offset)
-    return li[LI.status], li[LI.i_out]
+        _next_stage(st, y, K, ys)
+    _finish_chunk(st, w, out, theta_offset)
+    return st.status, st.i_out
