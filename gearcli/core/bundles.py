@@ -60,7 +60,6 @@ class Work(NamedTuple):
     K: np.ndarray
     dy: np.ndarray  #: (n_state,) the scratch row of K (samples, the starting step's trial)
     atol: np.ndarray  #: (N_STATE,) absolute tolerance per state
-    loop: np.ndarray  #: (1,) loopstate.LOOP_DTYPE: the loop state of timeloop.run
 
 
 class Out(NamedTuple):

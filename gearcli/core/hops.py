@@ -24,7 +24,7 @@ from gearcli.core.layout import (
 )
 from gearcli.core.loopstate import PH_HOP, PH_HOP_SAMPLE, PH_PLAN, PH_STAGE
 from gearcli.core.nrt import jit_noalloc_inline
-from gearcli.core.sampling import extrema_at, prescribed, sample_in_hop
+from gearcli.core.sampling import sample_in_hop, solution_point
 
 #: Landing point of a step cut short by a predicted discontinuity: this fraction of the step
 #: before the predicted crossing (absorbs the error of the quadratic prediction).
@@ -71,21 +71,6 @@ def plan_limits(st, counters, prm):
         st.status = STATUS_NAN if st.nonfinite_last else STATUS_STEP_TOO_SMALL
         return True
     return False
-
-
-@jit_noalloc_inline
-def crossing_ahead(st, y, K, model):
-    """Time from ``st.t`` to the next loaded table-end crossing [s] (events.next_crossing,
-    ``inf`` if none) and the look-ahead window it searched [s]: ``EVENT_LOOKAHEAD`` steps of
-    ``st.h``, at least the hop limit. The overlap margin is ``st.err_bound`` +
-    0.1 |delta| (+ the centres' approach along either line of action in the lateral model)."""
-    margin = st.err_bound + 0.1 * abs(y[S.delta])
-    if model.prm[P.lateral] != 0.0:  # the centres' approach along either line of action
-        margin += abs(y[S.x1] - y[S.x2]) + abs(y[S.y1] - y[S.y2])
-    window = max(EVENT_LOOKAHEAD * st.h, st.hop_limit)
-    tau = next_crossing(y[S.s1], y[S.v1], K[0, S.v1], y[S.delta], y[S.deltadot],
-                        K[0, S.deltadot], model, window, margin)
-    return tau, window
 
 
 @jit_noalloc_inline
@@ -139,8 +124,16 @@ def plan(st, y, K, model, counters):
         return True
     st.phase = PH_STAGE
     if st.predict or st.t + st.h > st.t_recheck:
+        # the next loaded table-end crossing within EVENT_LOOKAHEAD steps (at least the hop
+        # limit): overlap margin err_bound + 0.1 |delta| (+ the centres' approach along either
+        # line of action in the lateral model)
         st.predict = 0
-        tau, window = crossing_ahead(st, y, K, model)
+        margin = st.err_bound + 0.1 * abs(y[S.delta])
+        if model.prm[P.lateral] != 0.0:
+            margin += abs(y[S.x1] - y[S.x2]) + abs(y[S.y1] - y[S.y2])
+        window = max(EVENT_LOOKAHEAD * st.h, st.hop_limit)
+        tau = next_crossing(y[S.s1], y[S.v1], K[0, S.v1], y[S.delta], y[S.deltadot],
+                            K[0, S.deltadot], model, window, margin)
         hop_or_step(st, tau, window)
     if st.phase == PH_STAGE:
         begin_attempt(st, model.prm[P.t_end])
@@ -185,8 +178,7 @@ def end_hop(st, w, out, prm):
     transient starts: the next step is EVENT_RESTART of the smaller of the last step and the
     cut step, and the next crossing is predicted."""
     out.counters[N.rhs_evaluations] += 1
-    prescribed(w.y, w.aux, st)
-    extrema_at(st.t, w.y, w, out, prm)
+    solution_point(st, st.t, w.y, w, out, prm)
     st.h = EVENT_RESTART * min(st.h, st.h_cut)
     st.hop_limit = 0.0
     st.predict = 1

@@ -19,6 +19,9 @@ layout.LAYOUT_KEY.
 from __future__ import annotations
 
 import numpy as np
+from numba import from_dtype
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from gearcli.core.dopri5 import N_STAGES
 
@@ -61,10 +64,11 @@ LOOP_INT_NAMES = (
     "runaway",  # the last accepted step exceeded the penetration limit
     "predict",  # predict the next crossing before the next step
 )
-#: The record (8 bytes a field, no padding): ``new_work`` views float64 words as it.
+#: The record: 8 bytes a field, aligned, no padding.
 LOOP_DTYPE = np.dtype([(n, np.float64) for n in LOOP_FLOAT_NAMES]
-                      + [(n, np.int64) for n in LOOP_INT_NAMES])
-N_LOOP_WORDS = len(LOOP_DTYPE.names)
+                      + [(n, np.int64) for n in LOOP_INT_NAMES], align=True)
+#: Its numba type (a record is passed by reference: a pointer to its bytes).
+LOOP_RECORD = from_dtype(LOOP_DTYPE)
 
 #: What the loop's one evaluation of the right-hand side is for (``st.phase``).
 PH_START = 0  # f(t_start, y): K[0] of the first step
@@ -78,3 +82,24 @@ PH_PLAN = 6  # none: decide the next step or hop
 #: The row of K an evaluation writes: the stage's own (0 for f(t, y) at the start and after a
 #: hop, 1 .. N_STAGES for the stages) or this scratch row (samples, the trial evaluation).
 ROW_DY = N_STAGES + 1
+
+
+@intrinsic
+def loop_state(typingctx):
+    """A loop-state record (zeros) on the stack of the compiled function that calls this.
+
+    Nothing is allocated and the record's address never leaves that function when every
+    function that takes it is inlined (timeloop.run and its phases), so LLVM replaces its
+    fields by registers (scalar replacement of aggregates): the named fields cost what the
+    local variables they replace cost. numba's extension API (an intrinsic: the record's
+    bytes as one stack slot in the entry block, numba.core.cgutils.alloca_once, zero-filled
+    there). Python callers (tests) use ``np.zeros(1, LOOP_DTYPE)[0]`` instead.
+    """
+
+    def codegen(context, builder, signature, args):
+        slot = cgutils.alloca_once(builder, context.get_data_type(LOOP_RECORD),
+                                   name="loop_state")
+        slot.align = 16  # the float64 and int64 fields are loaded as aligned
+        return slot
+
+    return LOOP_RECORD(), codegen

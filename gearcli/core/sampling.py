@@ -56,19 +56,15 @@ def sample_in_hop(st, t_out, y, K, ys):
 
 
 @jit_noalloc_inline
-def prescribed(y, aux, st):
-    """Speed mode: the integrated copies of the prescribed s1, v1 set to the exact values of
-    the last evaluation (``aux``); they are not error controlled."""
-    if st.speed_mode:
-        y[S.s1] = aux[A.s1]
-        y[S.v1] = aux[A.v1]
-
-
-@jit_noalloc_inline
-def extrema_at(t, y, w, out, prm):
-    """Fold the point ``(t, y)`` with the forces of its full evaluation (``w.aux``,
-    ``w.slot_force``) into the true extrema when ``t`` is in the steady window
+def solution_point(st, t, y, w, out, prm):
+    """``(t, y)`` is a point of the solution with the full evaluation there in ``w.aux``,
+    ``w.slot_force`` (an accepted step's end, a hop's end): in speed mode the integrated
+    copies of the prescribed s1, v1 (not error controlled) take the exact values of the
+    evaluation; the point enters the true extrema when ``t`` is in the steady window
     (records.update_extrema, docs/theory.md §7.4)."""
+    if st.speed_mode:
+        y[S.s1] = w.aux[A.s1]
+        y[S.v1] = w.aux[A.v1]
     if t >= prm[P.extrema_t_start]:
         update_extrema(out.extrema, out.slot_extrema, t, y, w.aux, w.slot_force,
                        prm[P.lateral] != 0.0)
@@ -76,23 +72,13 @@ def extrema_at(t, y, w, out, prm):
 
 @jit_noalloc_inline
 def record_sample(st, w, out, prm):
-    """Write output row ``st.i_out`` from the sample just evaluated at ``(st.ts,
-    w.ys)``; samples are points of the solution, so they enter the extrema too."""
+    """Write output row ``st.i_out`` from the sample just evaluated at ``(st.ts, w.ys)``;
+    samples are points of the solution, so they enter the extrema too."""
     out.counters[N.output_evaluations] += 1
     ts = st.ts
     i = st.i_out
     write_row(out.series, out.slot_series, i, ts, w.ys, w.aux, w.slot_force, prm)
-    extrema_at(ts, w.ys, w, out, prm)
+    if ts >= prm[P.extrema_t_start]:
+        update_extrema(out.extrema, out.slot_extrema, ts, w.ys, w.aux, w.slot_force,
+                       prm[P.lateral] != 0.0)
     st.i_out = i + 1
-
-
-@jit_noalloc_inline
-def rows_at_start(st, t, w, out, prm):
-    """Output rows with times ``<= t`` [s], the chunk's start, from the start state ``w.y``
-    (the first chunk's rows at ``t_start``)."""
-    t_out = out.t_out
-    i = st.i_out
-    while i < t_out.shape[0] and t_out[i] <= t:
-        write_row(out.series, out.slot_series, i, t_out[i], w.y, w.aux, w.slot_force, prm)
-        i += 1
-    st.i_out = i

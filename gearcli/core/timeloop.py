@@ -61,8 +61,6 @@ from gearcli.core.layout import (
     X,
 )
 from gearcli.core.loopstate import (
-    LOOP_DTYPE,
-    N_LOOP_WORDS,
     PH_FIRST_STEP,
     PH_HOP,
     PH_HOP_SAMPLE,
@@ -71,17 +69,12 @@ from gearcli.core.loopstate import (
     PH_STAGE,
     PH_START,
     ROW_DY,
+    loop_state,
 )
 from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
-from gearcli.core.records import kinetic_energy
+from gearcli.core.records import kinetic_energy, update_extrema, write_row
 from gearcli.core.rhs import rhs
-from gearcli.core.sampling import (
-    extrema_at,
-    prescribed,
-    record_sample,
-    rows_at_start,
-    sample_in_step,
-)
+from gearcli.core.sampling import record_sample, sample_in_step, solution_point
 from gearcli.core.stepsize import control, start_size, start_trial
 from gearcli.core.timefunc import pp_eval
 
@@ -111,20 +104,18 @@ def new_work(prm) -> Work:
     times slower depending on the build (measured on the seed case; cache-line/aliasing
     effects). The rows are longer than the vectors they hold (``vec`` exceeds every length),
     so K and the slot forces are never contiguous: numba sees one array layout for every case
-    and compiles :func:`run` once. The loop state (loopstate.py, a record) is the block's last
-    row.
+    and compiles :func:`run` once.
     """
     n_slots = int(prm[P.n_slots])
     extra = prm[P.lateral] != 0.0 or prm[P.motor_J] > 0.0 or prm[P.load_J] > 0.0
     n_state = N_STATE if extra else N_STATE_BASE  # optional states: all of them or none
-    vec = 16 * (max(N_STATE, N_AUX, n_slots, N_LOOP_WORDS) // 16 + 1)
+    vec = 16 * (max(N_STATE, N_AUX, n_slots) // 16 + 1)
     n_vectors = 4 + N_FAMILIES  # y, ys, y_new, aux, one slot-force row per flank family
-    k_end = (n_vectors + ROW_DY + 1) * vec
-    size = k_end + vec
+    size = (n_vectors + ROW_DY + 1) * vec
     raw = np.zeros(size + 16)
     skip = (-raw.ctypes.data % 128) // 8  # the block starts on a 128-byte boundary
     work = raw[skip:skip + size]
-    K = work[n_vectors * vec:k_end].reshape((ROW_DY + 1, vec))[:, :n_state]  # K[0] = f(t, y)
+    K = work[n_vectors * vec:].reshape((ROW_DY + 1, vec))[:, :n_state]  # K[0] = f(t, y)
     return Work(
         y=work[0:n_state],
         ys=work[vec:vec + n_state],
@@ -135,7 +126,6 @@ def new_work(prm) -> Work:
         dy=K[ROW_DY],
         atol=np.zeros(N_STATE),
         scratch=np.zeros((N_SCRATCH, n_slots)),
-        loop=work[k_end:k_end + N_LOOP_WORDS].view(LOOP_DTYPE),
     )
 
 
@@ -176,23 +166,13 @@ def _init(model, w, resume, fresh):
 
 
 @jit_noalloc_inline
-def _angle_offset(model, resume, fresh):
-    """Offset [rad] of the prescribed pinion (or motor) angle from the antiderivative of the
-    drive: ``theta1_init - angle(t_start)`` on a fresh start, else the last chunk's."""
-    if not fresh:
-        return resume[R.theta_offset]
-    prm = model.prm
-    theta_offset = prm[P.theta1_init]
-    if int(prm[P.drive_mode]) != DRIVE_TORQUE:
-        angle_pp = model.angle_pp
-        theta_offset -= pp_eval(angle_pp[0], angle_pp[1], angle_pp[2], prm[P.t_start])
-    return theta_offset
-
-
-@jit_noalloc_inline
-def _start_loop(st, model, fresh, i_first):
+def _start_loop(st, model, resume, fresh, i_first):
     """Every field of the loop state (loopstate.py) at the start of a chunk: at ``t_start``,
-    no step size yet, no crossing predicted, phase PH_START (f(t_start, y) into K[0])."""
+    no step size yet, no crossing predicted, phase PH_START (f(t_start, y) into K[0]).
+
+    Returns the offset [rad] of the prescribed pinion (or motor) angle from the drive's
+    antiderivative: ``theta1_init - Theta(t_start)`` on a fresh start, else the last chunk's.
+    """
     prm = model.prm
     t = prm[P.t_start]
     speed_mode = int(prm[P.drive_mode]) == DRIVE_SPEED
@@ -230,6 +210,13 @@ def _start_loop(st, model, fresh, i_first):
     st.cut = 0
     st.runaway = 0
     st.predict = 1
+    if not fresh:
+        return resume[R.theta_offset]
+    theta_offset = prm[P.theta1_init]
+    if int(prm[P.drive_mode]) != DRIVE_TORQUE:
+        angle_pp = model.angle_pp
+        theta_offset -= pp_eval(angle_pp[0], angle_pp[1], angle_pp[2], t)
+    return theta_offset
 
 
 @jit_noalloc_inline
@@ -241,7 +228,9 @@ def _start_chunk(st, w, out, prm):
     y = w.y
     aux = w.aux
     t = st.t
-    prescribed(y, aux, st)
+    if st.speed_mode:  # prescribed: keep the (uncontrolled) integrated copies exact
+        y[S.s1] = aux[A.s1]
+        y[S.v1] = aux[A.v1]
     fresh = st.fresh != 0
     if fresh:
         out.extrema[X.energy_initial_mJ] = kinetic_energy(prm, aux[A.v1], y) \
@@ -249,8 +238,15 @@ def _start_chunk(st, w, out, prm):
     out.extrema[X.t_reached_s] = t
     if not (_all_finite(y) and _row_finite(w.K, st.row) and _all_finite(aux)):
         return False
-    extrema_at(t, y, w, out, prm)
-    rows_at_start(st, t, w, out, prm)
+    if t >= prm[P.extrema_t_start]:
+        update_extrema(out.extrema, out.slot_extrema, t, y, aux, w.slot_force,
+                       prm[P.lateral] != 0.0)
+    t_out = out.t_out
+    i_out = st.i_out
+    while i_out < t_out.shape[0] and t_out[i_out] <= t:
+        write_row(out.series, out.slot_series, i_out, t_out[i_out], y, aux, w.slot_force, prm)
+        i_out += 1
+    st.i_out = i_out
     h = prm[P.first_step] if fresh else out.resume[R.h]
     st.h = h
     st.phase = PH_PLAN
@@ -276,8 +272,7 @@ def _finish_attempt(st, w, out, prm):
                      prm[P.rtol])
     finite = math.isfinite(err) and _all_finite(y_new) and _row_finite(K, st.stage)
     if control(st, err, finite, out.counters):
-        prescribed(y_new, w.aux, st)
-        extrema_at(st.t_new, y_new, w, out, prm)
+        solution_point(st, st.t_new, y_new, w, out, prm)
         st.runaway = w.aux[A.max_penetration] > prm[P.penetration_limit]
 
 
@@ -300,40 +295,19 @@ def _take_step(st, w):
 
 
 @jit_noalloc_inline
-def _stage_at(st, y, K, ys):
-    """State and time of stage ``st.stage`` (1 .. N_STAGES - 1) of the attempt; it
-    writes row ``s`` of K."""
-    s = st.stage
-    h_step = st.h_step
-    stage_state(y, K, s, h_step, ys, st.first)
-    st.ts = st.t + C_STAGE[s] * h_step
-    st.row = s
-
-
-@jit_noalloc_inline
 def _next_stage(st, y, K, ys):
-    """The next evaluation of the attempt: stage ``st.stage``, or at N_STAGES the
-    5th-order solution at ``t_new``, whose evaluation is the FSAL stage (full: outputs)."""
+    """The next evaluation of the attempt: stage ``st.stage`` (1 .. N_STAGES - 1, writes
+    row ``s`` of K), or at N_STAGES the 5th-order solution at ``t_new``, whose evaluation is
+    the FSAL stage (full: outputs)."""
     s = st.stage
     if s < N_STAGES:
-        _stage_at(st, y, K, ys)
+        stage_state(y, K, s, st.h_step, ys, st.first)
+        st.ts = st.t + C_STAGE[s] * st.h_step
     else:
         solution(y, K, st.h_step, ys, st.first)
         st.ts = st.t_new
-        st.row = s
+    st.row = s
     st.full = s == N_STAGES
-
-
-@jit_noalloc_inline
-def _finish_chunk(st, w, out, theta_offset):
-    """The time reached and the ``resume`` vector for the next chunk (layout.R)."""
-    out.extrema[X.t_reached_s] = st.t
-    resume = out.resume
-    resume[R.started] = 1.0
-    resume[R.theta_offset] = theta_offset
-    resume[R.h] = st.h
-    for i in range(w.y.shape[0]):
-        resume[RESUME_Y + i] = w.y[i]
 
 
 @jit_noalloc
@@ -354,7 +328,7 @@ def run(model, w, out, layout_key, i_first):
     attempt as a call per step cost ~14 % more run time on the seed, A/B when the loop was
     written; ``flank`` as a call 63 %, bench/RESULTS.md session 6). The phases themselves are
     small functions inlined here (numba IR, nrt.jit_noalloc_inline) over the named loop-state
-    record ``st = w.loop[0]`` (loopstate.py).
+    record ``st`` (loopstate.py) on the stack of this function.
     Allocation-free (numba's reference counting off, nrt.jit_noalloc), so the caller allocates
     ``w`` (:func:`new_work`) and this is the entry point itself: a compiled wrapper that
     allocates would re-optimise the whole loop in its own library.
@@ -388,15 +362,14 @@ def run(model, w, out, layout_key, i_first):
     if layout_key != LAYOUT_KEY:
         return STATUS_STALE_CACHE, i_first
     prm = model.prm
-    st = w.loop[0]
+    st = loop_state()
     y = w.y
     ys = w.ys
     K = w.K
     mode = int(prm[P.drive_mode])
     fresh = out.resume[R.started] == 0.0
-    theta_offset = _angle_offset(model, out.resume, fresh)
     _init(model, w, out.resume, fresh)
-    _start_loop(st, model, fresh, i_first)
+    theta_offset = _start_loop(st, model, out.resume, fresh, i_first)
     for i in range(y.shape[0]):
         ys[i] = y[i]
     while True:
@@ -414,8 +387,11 @@ def run(model, w, out, layout_key, i_first):
             # is the same arithmetic but ran 4-5 % slower than this (code layout: seed and
             # iso_pair, three A/B rounds each, bench/RESULTS.md session 9).
             if st.stage < N_STAGES - 1:
-                st.stage += 1
-                _stage_at(st, y, K, ys)
+                s = st.stage + 1
+                stage_state(y, K, s, st.h_step, ys, st.first)
+                st.ts = st.t + C_STAGE[s] * st.h_step
+                st.stage = s
+                st.row = s
                 continue
             if st.stage < N_STAGES:
                 st.stage += 1
@@ -450,5 +426,11 @@ def run(model, w, out, layout_key, i_first):
             continue
         # the next stage of the step attempt (Dormand-Prince 5(4), dopri5.py)
         _next_stage(st, y, K, ys)
-    _finish_chunk(st, w, out, theta_offset)
+    out.extrema[X.t_reached_s] = st.t
+    resume = out.resume
+    resume[R.started] = 1.0
+    resume[R.theta_offset] = theta_offset
+    resume[R.h] = st.h
+    for i in range(y.shape[0]):
+        resume[RESUME_Y + i] = y[i]
     return st.status, st.i_out
