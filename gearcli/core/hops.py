@@ -5,7 +5,7 @@ ends the step a fraction EVENT_LANDING before the predicted crossing and then ho
 one explicit Euler step ending just past it, restarting with a fraction of the last step size
 (docs/theory.md §6.8; Hairer, Norsett & Wanner, "Solving ODEs I", 2nd ed. 1993, §II.6,
 discontinuous right-hand sides). Phases of :func:`gearcli.core.timeloop.run`, inlined into
-it, over the loop-state vectors of :mod:`gearcli.core.loopstate`; times in [s].
+it, over the loop-state record of :mod:`gearcli.core.loopstate`; times in [s].
 """
 
 import math

@@ -1,6 +1,6 @@
 """Output placement of the time loop: which output time comes next, its state, its row.
 
-Phases of :func:`gearcli.core.timeloop.run`, inlined into it, over the loop-state vectors of
+Phases of :func:`gearcli.core.timeloop.run`, inlined into it, over the loop-state record of
 :mod:`gearcli.core.loopstate`. An output time inside an accepted step is sampled on the
 continuous extension of the step (dopri5.dense, Shampine 1986), one inside a hop over a
 discontinuity on the hop's Euler line, one at the start of a chunk from the start state. A

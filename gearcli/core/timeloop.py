@@ -14,7 +14,7 @@ small relative coordinate; s1 and v1 grow large and are effectively controlled r
 energy quadratures are integrated with the same stages but not error controlled.
 
 The loop's phases are small functions inlined into :func:`run`, each over the named loop-state
-vectors of :mod:`gearcli.core.loopstate`: step-size control and the starting step
+record of :mod:`gearcli.core.loopstate`: step-size control and the starting step
 (:mod:`gearcli.core.stepsize`), the next step or hop (:mod:`gearcli.core.hops`), output
 placement (:mod:`gearcli.core.sampling`), and here the start of a chunk, the end of a step
 attempt, taking a step and preparing a stage.
