@@ -21,11 +21,8 @@ are written once here; they never leave a chunk, so they are not in layout.LAYOU
 from __future__ import annotations
 
 import numpy as np
-from numba import from_dtype
-from numba.core import cgutils
-from numba.extending import intrinsic
 
-from gearcli.core.dopri5 import N_STAGES
+from gearcli.core.dopri5 import N_STAGES  # imports gearcli.core.jit: numba's cache folder
 
 #: Float fields; times and step sizes in [s].
 LOOP_FLOAT_NAMES = (
@@ -69,6 +66,12 @@ LOOP_INT_NAMES = (
 #: The record: 8 bytes a field, aligned, no padding.
 LOOP_DTYPE = np.dtype([(n, np.float64) for n in LOOP_FLOAT_NAMES]
                       + [(n, np.int64) for n in LOOP_INT_NAMES], align=True)
+
+# numba itself only now: gearcli.core.jit (imported above) sets its cache folder first
+from numba import from_dtype  # noqa: E402
+from numba.core import cgutils  # noqa: E402
+from numba.extending import intrinsic  # noqa: E402
+
 #: Its numba type (a record is passed by reference: a pointer to its bytes).
 LOOP_RECORD = from_dtype(LOOP_DTYPE)
 
