@@ -99,6 +99,14 @@ def error_norm(y, y_new, K, h, first, count, atol, rtol):
     return math.sqrt(acc / (count + max(0, y.shape[0] - N_STATE_BASE)))
 
 
+@jit_noalloc_inline
+def euler(y, K, dt, out):
+    """Explicit Euler ``out = y + dt K[0]`` (``out`` may be ``y``): the time loop's hops over a
+    discontinuity and the starting step size's trial state (HNW II.4, II.6)."""
+    for i in range(y.shape[0]):
+        out[i] = y[i] + dt * K[0, i]
+
+
 @jit_noalloc
 def dense(y, K, h, x, out):
     """Continuous extension at ``t_old + x h``, ``0 <= x <= 1`` (Shampine 1986):
