@@ -7,11 +7,11 @@ import math
 from pathlib import Path
 
 import pytest
-from gearcli.pipeline.sweep_study import load_study
 
 from gearcli import units
 from gearcli.case.load import load_case
 from gearcli.errors import CaseError
+from gearcli.pipeline.sweep.study import load_study
 from tests.unit.sweep_helpers import write_study
 
 SEED = Path(__file__).resolve().parents[2] / "cases" / "seed.yaml"
