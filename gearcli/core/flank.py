@@ -181,7 +181,8 @@ def _gather(f, sigma, kin, app, model, scratch):
     zhi1 = fam[f, F.zero_hi1]
     zlo2 = fam[f, F.zero_lo2]
     zhi2 = fam[f, F.zero_hi2]
-    isig = 1 if sigma > 0.0 else -1
+    # +1 / -1 typed int64, not a literal: one compiled _previous_tooth for both families
+    isig = int(math.copysign(1.0, sigma))
     z1 = int(prm[P.z1])
     z2 = int(prm[P.z2])
     i1 = 0
