@@ -299,7 +299,7 @@ def test_iso_6336_method_b_anchors(z1, z2, x1, x2, m, b):
 @pytest.mark.parametrize("geo, b", [(SEED, 100.0), (SHIFTED, 50.0), (FINE, 20.0)])
 def test_double_single_ratio_and_soft_path_ends(geo, b):
     """Unmodified pairs: double/single below 2 (1.6 … 1.9 for the seed, ε_α = 1.56; measured
-    1.75, 1.76, 1.78, where model.md §4b expects about 1.75); the pair stiffness at A and E is
+    1.75, 1.76, 1.78, where docs/theory.md §4b expects about 1.75); the pair stiffness at A and E is
     well below its maximum (measured 0.71, 0.72 of it for the seed, about 0.7 expected; bound
     0.8)."""
     mesh = mesh_stiffness(geo, face_width_mm=b, **MAT)

@@ -1,5 +1,5 @@
 """Finite-element check of the tooth compliance (docs/theory.md, "Finite-element check of the
-tooth compliance"; model.md §13): a 2-D plane-strain/plane-stress model of each gear body from
+tooth compliance"): a 2-D plane-strain/plane-stress model of each gear body from
 gearcli's generated profile, clamped at the bore, with Weber's local contact term.
 
 Needs the optional extra ``fe`` (scikit-fem, triangle): ``pip install 'gearcli[fe]'``. The
