@@ -101,7 +101,8 @@ def resample_to_angle(signal, shaft_angle_rad, samples_per_rev: int,
     The grid starts at the first angle θ_s = θ_ref + 2π j (j integer) at or after the record's
     first angle and holds the N whole revolutions that fit in the record, so sample k of every
     revolution is at the same shaft angle θ_ref + 2π k/n (mod 2π): the TSA's index is the
-    shaft's angular position, and index 0 is the reference angle (tooth indexing: docs/theory.md, "Tooth faults").
+    shaft's angular position, and index 0 is the reference angle (tooth indexing:
+    docs/theory.md, "Tooth faults").
     x(θ) is the not-a-knot cubic spline through (θ_i, x_i) (the abscissa θ_i is strictly
     monotone, so x is a function of θ); its error for a sinusoid of φ rad per time sample is
     about (5/384) φ⁴ of the amplitude (docs/theory.md, §1), e.g. 1.3·10⁻⁴ at 20 samples per
