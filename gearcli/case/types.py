@@ -64,6 +64,24 @@ def _quantity_validator(dim: Dim):
     return validate
 
 
+def field_dim(section: Any, name: str) -> Dim | None:
+    """The dimension (:class:`gearcli.units.Dim`) of quantity field ``name`` of a case section
+    (a model or its class), from the validator its :func:`quantity` type records; None for a
+    plain number, a word or a sub-section. A name the section does not have is a KeyError."""
+    cls = section if isinstance(section, type) else type(section)
+    info = cls.model_fields[name]
+    metas, args = list(info.metadata), list(getattr(info.annotation, "__args__", ()))
+    while args:  # Length | None, list[Length] | None
+        arg = args.pop()
+        metas += list(getattr(arg, "__metadata__", ()))
+        args += list(getattr(arg, "__args__", ()))
+    for meta in metas:
+        dim = getattr(getattr(meta, "func", None), "dim", None)
+        if dim is not None:
+            return dim
+    return None
+
+
 @functools.cache
 def quantity(dim: Dim):
     """The annotated float type of a quantity of dimension ``dim``."""

@@ -42,13 +42,8 @@ class ReportData:
 
     @property
     def folder(self) -> Path:
+        """The results folder."""
         return self.run.folder
-
-    @property
-    def case_data(self) -> dict:
-        """The stored case as written (values as "number unit" texts): for the tables that
-        print its settings as given."""
-        return self.run.manifest["resolved_case"]
 
     @property
     def metrics(self) -> AnalysisMetrics:

@@ -6,12 +6,16 @@ import math
 import shlex
 from dataclasses import dataclass, field
 
+from pydantic import BaseModel
+
+from gearcli.case.schema import Case
+from gearcli.case.schema_gears import Gear
+from gearcli.case.types import TimeFunction, field_dim
 from gearcli.display_units import DEFAULT, convert, unit_and_factor
 from gearcli.report.data import ReportData
 from gearcli.results import shown_values
 from gearcli.results.metrics import display
 from gearcli.results.stress import Safety
-from gearcli.units import split_internal
 
 
 @dataclass(frozen=True)
@@ -47,61 +51,87 @@ def fmt(value, digits: int = 4) -> str:
     return str(value)
 
 
-def _cells(value, system: str, unit: str | None = None) -> tuple[str, str]:
-    """(value, unit) cells in the display units ``system`` (gearcli/display_units.py) of a
-    stored "number unit" string (internal units), or of the number ``value`` in ``unit``."""
-    x, u = (value, unit) if unit is not None else split_internal(value)
-    shown, shown_unit = convert(x, u, system)
+def _cells(value, system: str, unit: str) -> tuple[str, str]:
+    """(value, unit) cells in the display units ``system`` (gearcli/display_units.py) of the
+    number (or numbers) ``value`` in the internal ``unit``."""
+    shown, shown_unit = convert(value, unit, system)
     return fmt(shown), shown_unit
 
 
-def qty(value, system: str = DEFAULT, unit: str | None = None) -> str:
-    """:func:`_cells` as one 'number unit' text ("104.7 rad/s" -> "1000 rpm"); None as "–"."""
+def qty(value, system: str = DEFAULT, unit: str = "") -> str:
+    """:func:`_cells` as one 'number unit' text (104.7 rad/s -> "1000 rpm"); None as "–"."""
     return "–" if value is None else " ".join(_cells(value, system, unit)).strip()
 
 
-def _unit(text: str) -> str:
-    """The unit of a stored "number unit" text; "" for a word ("derived", "linear")."""
-    try:
-        return split_internal(text)[1]
-    except ValueError:
-        return ""
-
-
-def _is_number(value) -> bool:
-    """Whether a stored case value is a number (or "number unit"), not a word like "derived"."""
-    try:
-        return math.isfinite(split_internal(value)[0])
-    except (TypeError, ValueError):
-        return False
-
-
 def _deg(value) -> str:
-    return "–" if value is None else f"{math.degrees(split_internal(value)[0]):.4g} deg"
+    return "–" if value is None else f"{math.degrees(value):.4g} deg"
+
+
+def _setting(section, name: str, u: str) -> str:
+    """Field ``name`` of a typed case section (read as an attribute: a renamed schema field is
+    an AttributeError, not an empty cell) for a table: a quantity in the display units ``u``
+    with the unit its schema field records (angles in degrees, as the case takes them), a
+    sub-section as "name value unit" pairs, numbers with 4 significant digits."""
+    value = getattr(section, name)
+    if isinstance(value, BaseModel):
+        return _section(value, u)
+    if isinstance(value, TimeFunction):
+        return _function(value)
+    dim = field_dim(section, name)
+    if dim is None or value is None:
+        return fmt(value)
+    if isinstance(value, list | tuple):  # each with its unit ("0.001 mm, -0.002 mm")
+        return ", ".join(_deg(v) if dim.internal == "rad" else qty(v, u, dim.internal)
+                         for v in value)
+    if dim.internal == "rad":
+        return _deg(value)
+    return qty(value, u, dim.internal)
+
+
+def _section(section: BaseModel, u: str, skip: tuple[str, ...] = (), sep: str = "; ",
+             eq: str = " ", drop_none: bool = False) -> str:
+    """Every field of a typed case section as "name value" pairs (:func:`_setting`)."""
+    return sep.join(f"{name.replace('_', ' ') if not drop_none else name}{eq}"
+                    f"{_setting(section, name, u)}" for name in type(section).model_fields
+                    if name not in skip and not (drop_none and getattr(section, name) is None))
+
+
+def _setting_cells(section, name: str, u: str) -> tuple[str, str]:
+    """(value, unit) cells of quantity field ``name`` of a typed case section."""
+    dim = field_dim(section, name)
+    return _cells(getattr(section, name), u, dim.internal if dim is not None else "")
 
 
 # --- the case ---------------------------------------------------------------------------------
+def _case(data: ReportData) -> Case:
+    if data.case is None:
+        raise ValueError(f"{data.folder}: the report's case tables need the typed case")
+    return data.case
+
+
 def gears_table(data: ReportData) -> Table:
     """Table 1-style: teeth, module, pressure angle, face width, diameters, material."""
-    case, geo, u = data.case_data, data.geometry, data.units
-    g = case["gears"]
-    p, w = g["pinion"], g["gear"]
-    mat = case.get("material") or {}
+    case, geo, u = _case(data), data.geometry, data.units
+    g = case.gears
+    p, w = g.pinion, g.gear
     rows = [
-        ("number of teeth z", str(p["teeth"]), str(w["teeth"])),
-        ("module m", qty(g["module"], u), qty(g["module"], u)),
-        ("pressure angle α", _deg(g["pressure_angle"]), _deg(g["pressure_angle"])),
-        ("face width b", qty(p.get("face_width") or g["face_width"], u),
-         qty(w.get("face_width") or g["face_width"], u)),
-        ("profile shift x", fmt(p.get("profile_shift", 0.0)), fmt(w.get("profile_shift", 0.0))),
+        ("number of teeth z", str(p.teeth), str(w.teeth)),
+        ("module m", _setting(g, "module", u), _setting(g, "module", u)),
+        ("pressure angle α", _setting(g, "pressure_angle", u),
+         _setting(g, "pressure_angle", u)),
+        *[("face width b", *(_setting(gear if gear.face_width is not None else g, "face_width",
+                                      u) for gear in (p, w)))],
+        ("profile shift x", fmt(p.profile_shift), fmt(w.profile_shift)),
     ]
     # the tooth-form and body settings a case may give (shown when either gear sets one)
     for label, key in (("thickness allowance", "thickness_allowance"),
                        ("tip shortening", "tip_shortening"), ("tip rounding", "tip_rounding"),
                        ("bore diameter", "bore_diameter")):
-        values = [gear.get(key) for gear in (p, w)]
-        if any(v is not None and _setting(v, u) not in ("0", "0 mm", "0 m") for v in values):
-            rows.append((label, *(_setting(v, u) if v is not None else "–" for v in values)))
+        values = [getattr(gear, key) for gear in (p, w)]
+        if any(v is not None and _setting(gear, key, u) not in ("0", "0 mm", "0 m")
+               for gear, v in zip((p, w), values, strict=True)):
+            rows.append((label, *(_setting(gear, key, u) if v is not None else "–"
+                                  for gear, v in zip((p, w), values, strict=True))))
     if geo is not None:
         for label, attr in (("reference diameter d", "d_mm"), ("tip diameter d_a", "d_a_mm"),
                             ("base diameter d_b", "d_b_mm"), ("root diameter d_f", "d_f_mm")):
@@ -109,25 +139,20 @@ def gears_table(data: ReportData) -> Table:
                          qty(getattr(geo.gear, attr), u, "mm")))
     for label, key in (("density ρ", "density"), ("Young's modulus E", "youngs_modulus"),
                        ("Poisson ratio ν", "poisson_ratio")):
-        cells = []
-        for gear in (p, w):
-            m = gear.get("material") or mat
-            cells.append(qty(m.get(key), u) if m.get(key) is not None else "–")
-        rows.append((label, *cells))
+        rows.append((label, *(_setting(gear.material or case.material, key, u)
+                              for gear in (p, w))))
     rows.append(("inertia model", *(_inertia(gear, u) for gear in (p, w))))
     return Table("Gears and material", ("quantity", "pinion", "gear"), rows)
 
 
-def _inertia(gear: dict, u: str) -> str:
-    i = gear.get("inertia") or {}
-    model = i.get("model", "disc")
-    if model == "disc":
-        d = i.get("diameter")
-        text = "solid disc, " + ("pitch diameter" if d is None else qty(d, u))
+def _inertia(gear: Gear, u: str) -> str:
+    i = gear.inertia
+    if i.model == "disc":
+        text = "solid disc, " + ("pitch diameter" if i.diameter is None
+                                 else _setting(i, "diameter", u))
     else:
-        text = f"given J = {qty(i.get('value'), u)}"
-    extra = split_internal(i.get("extra"))[0] if i.get("extra") is not None else 0.0
-    return text + (f" + {qty(i.get('extra'), u)}" if extra else "")
+        text = f"given J = {_setting(i, 'value', u)}"
+    return text + (f" + {_setting(i, 'extra', u)}" if i.extra else "")
 
 
 def geometry_table(data: ReportData) -> Table | None:
@@ -151,105 +176,89 @@ def geometry_table(data: ReportData) -> Table | None:
 
 def contact_table(data: ReportData) -> Table:
     """Table 3-style: contact law and friction parameters."""
-    c = data.case_data.get("contact") or {}
-    f = data.case_data.get("friction") or {}
-    rows = [("contact law", str(c.get("law", "")), ""),
-            ("engagement model", str(c.get("engagement", "")), "")]
-    if c.get("law") == "tooth":  # docs/theory.md §4b, §4c: no IMPACT parameters
-        rows.append(("mesh damping ratio ζ", fmt(c.get("damping_ratio")), "–"))
-        for gear in ("pinion", "gear"):
-            bore = ((data.case_data.get("gears") or {}).get(gear) or {}).get("bore_diameter")
-            rows.append((f"{gear} bore (gear-body compliance)",
-                         *(_cells(bore, data.units) if bore is not None
+    case, u = _case(data), data.units
+    c, f = case.contact, case.friction
+    rows = [("contact law", str(c.law), ""), ("engagement model", str(c.engagement), "")]
+    if c.law == "tooth":  # docs/theory.md §4b, §4c: no IMPACT parameters
+        rows.append(("mesh damping ratio ζ", fmt(c.damping_ratio), "–"))
+        for name in ("pinion", "gear"):
+            gear = getattr(case.gears, name)
+            rows.append((f"{name} bore (gear-body compliance)",
+                         *(_setting_cells(gear, "bore_diameter", u)
+                           if gear.bore_diameter is not None
                            else ("default (docs/theory.md §4b)", ""))))
         k = data.scalars.mesh_stiffness_N_mm
         if isinstance(k, int | float):
             rows.append(("mesh stiffness, linearised at the static load",
-                         *_cells(k, data.units, "N/mm")))
+                         *_cells(k, u, "N/mm")))
     else:
-        e = split_internal(c.get("exponent", 1.0))[0]
-        stiffness = c.get("stiffness")
+        e = c.exponent
         rows += [
-            ("stiffness K", fmt(split_internal(stiffness)[0]) if _is_number(stiffness)
-             else str(stiffness), f"N/mm^{e:g}"),
+            ("stiffness K", fmt(c.stiffness), f"N/mm^{e:g}"),
             ("force exponent e", fmt(e), "–"),
-            ("maximum damping c_max", *_cells(c.get("max_damping"), data.units)),
-            ("damping ramp depth d_max", *_cells(c.get("penetration_depth"), data.units)),
+            ("maximum damping c_max", *_setting_cells(c, "max_damping", u)),
+            ("damping ramp depth d_max", *_setting_cells(c, "penetration_depth", u)),
         ]
-    rows.append(("friction", "on" if f.get("enabled") else "off", ""))
-    if f.get("enabled"):
+    rows.append(("friction", "on" if f.enabled else "off", ""))
+    if f.enabled:
         rows += [
-            ("static coefficient μ_s", fmt(f.get("static_coefficient")), "–"),
-            ("dynamic coefficient μ_d", fmt(f.get("dynamic_coefficient")), "–"),
-            ("stiction velocity v_s", *_cells(f.get("stiction_velocity"), data.units)),
-            ("transition velocity v_d", *_cells(f.get("transition_velocity"), data.units)),
+            ("static coefficient μ_s", fmt(f.static_coefficient), "–"),
+            ("dynamic coefficient μ_d", fmt(f.dynamic_coefficient), "–"),
+            ("stiction velocity v_s", *_setting_cells(f, "stiction_velocity", u)),
+            ("transition velocity v_d", *_setting_cells(f, "transition_velocity", u)),
         ]
     return Table("Contact and friction", ("parameter", "value", "unit"), rows)
 
 
-def _function(spec: dict | None) -> str:
-    if not spec:
-        return "–"
-    return f"{spec.get('function', '')} [{spec.get('unit', '')}]"
+def _function(spec: TimeFunction | None) -> str:
+    return "–" if spec is None else f"{spec.expression} [{spec.unit}]"
 
 
 def drive_table(data: ReportData) -> Table:
     """Drive and load functions, bearing losses and run settings."""
-    case = data.case_data
-    d, ld = case.get("drive") or {}, case.get("load") or {}
-    b, r = case.get("bearings") or {}, case.get("run") or {}
-    kind, u = d.get("type", ""), data.units
+    case, u = _case(data), data.units
+    d, ld, b, r = case.drive, case.load, case.bearings, case.run
     rows = [
-        ("drive (pinion)", f"{kind}: {_function(d.get(kind) if kind else None)}"),
-        ("initial pinion speed", qty(d.get("initial_speed"), u)),
-        (f"load torque (on the {ld.get('applied_to', 'gear')})", _function(ld.get("torque"))),
+        ("model", str(case.model)),
+        # a speed or shaft drive prescribes drive.speed (the shaft is a row below)
+        ("drive (pinion)", f"{d.type}: {_function(d.torque if d.type == 'torque' else d.speed)}"),
+        ("initial pinion speed", _setting(d, "initial_speed", u)),
+        (f"load torque (on the {ld.applied_to})", _function(ld.torque)),
         ("load: viscous / quadratic",
-         f"{qty(ld.get('viscous'), u)} / {qty(ld.get('quadratic'), u)}"),
-        ("bearing damping pinion / gear", f"{qty((b.get('pinion') or {}).get('damping'), u)} / "
-                                          f"{qty((b.get('gear') or {}).get('damping'), u)}"),
-        ("end time", qty(r.get("end_time"), u)),
+         f"{_setting(ld, 'viscous', u)} / {_setting(ld, 'quadratic', u)}"),
+        ("bearing damping pinion / gear",
+         f"{_setting(b.pinion, 'damping', u)} / {_setting(b.gear, 'damping', u)}"),
+        ("end time", _setting(r, "end_time", u)),
         ("output", f"{fmt(data.scalars.output_rate_Hz)} Hz "
                    f"({data.run.summary.rows} rows)"),
-        ("tolerances rtol / atol", f"{fmt(r.get('rtol'))} / " + (
-            qty(r.get("atol"), u) if r.get("atol") is not None
+        ("tolerances rtol / atol", f"{fmt(r.rtol)} / " + (
+            _setting(r, "atol", u) if r.atol is not None
             else "default (1e-5 of the static deflection, at most 1 µm)")),
     ]
     for key in ("shaft", "motor_curve", "motor_inertia", "reference_speed"):
-        if d.get(key) is not None:
-            rows.append((f"drive {key.replace('_', ' ')}", _setting(d[key], u)))
+        if getattr(d, key) is not None:
+            rows.append((f"drive {key.replace('_', ' ')}", _setting(d, key, u)))
     for key in ("shaft", "inertia"):
-        if ld.get(key) is not None:
-            rows.append((f"load {key}", _setting(ld[key], u)))
-    rows.insert(0, ("model", str(case.get("model", "torsional"))))
+        if getattr(ld, key) is not None:
+            rows.append((f"load {key}", _setting(ld, key, u)))
     for gear in ("pinion", "gear"):  # the lateral model's bearings (beyond the damping above)
-        lateral = {k: v for k, v in (b.get(gear) or {}).items() if k != "damping"}
-        if lateral:
-            rows.append((f"bearings {gear}", _setting(lateral, u)))
+        rows.append((f"bearings {gear}", _section(getattr(b, gear), u, skip=("damping",))))
     return Table("Model, drive, load and run", ("item", "setting"), rows)
-
-
-def _setting(value, u: str) -> str:
-    """A resolved case value for a table: a mapping as "name value unit" pairs in the display
-    units ``u``, numbers with 4 significant digits (never Python's repr)."""
-    if isinstance(value, dict):
-        return "; ".join(f"{k.replace('_', ' ')} {_setting(v, u)}" for k, v in value.items())
-    if isinstance(value, str) and _unit(value) == "rad":  # angles as the case takes them
-        return _deg(value)
-    if isinstance(value, str) and _unit(value):
-        return qty(value, u)
-    return fmt(value)
 
 
 def modifications_table(data: ReportData) -> Table | None:
     """Profile reliefs and manufacturing errors that are set (None when there are none)."""
     rows = []
-    for group in ("modifications", "errors"):
-        for kind, pair in (data.case_data.get(group) or {}).items():
-            for gear, spec in (pair or {}).items():
+    case = _case(data)
+    for group in (case.modifications, case.errors):
+        for kind in type(group).model_fields:
+            pair = getattr(group, kind)
+            for gear in type(pair).model_fields:
+                spec = getattr(pair, gear)
                 if spec is not None:
-                    text = ", ".join(f"{k} = {_setting(v, data.units)}"
-                                     for k, v in spec.items() if v is not None)
-                    rows.append((f"{gear} {kind.replace('_', ' ')}", text))
+                    rows.append((f"{gear} {kind.replace('_', ' ')}",
+                                 _section(spec, data.units, sep=", ", eq=" = ",
+                                          drop_none=True)))
     return Table("Profile modifications and errors", ("item", "setting"), rows) if rows else None
 
 
