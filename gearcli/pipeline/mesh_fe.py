@@ -16,12 +16,15 @@ import numpy as np
 
 from gearcli.results.models import FeCheck, PeFe
 
-#: What the comparison shows (docs/theory.md, "PE law against FE").
-FE_NOTE = ("FE vs PE: the teeth and body agree within about 5 % at the pitch point; the contact "
-           "term differs (the law's linear Hertz term 2/(π b E*), Yang & Sun 1985, is stiffer "
-           "than Weber's flattening at the load in the FE model), so the FE pair is softer, most "
-           "at light load; both columns rigid engagement without profile modifications "
-           "(docs/theory.md, 'Finite-element check of the tooth compliance')")
+
+def _note(teeth: PeFe, contact: PeFe) -> str:
+    """What differs, from this pair's numbers (docs/theory.md, "PE law against FE")."""
+    return (f"FE vs PE at the pitch point: teeth + body {100 * teeth.fe_over_pe_minus_1:+.1f} %, "
+            f"contact term {100 * contact.fe_over_pe_minus_1:+.1f} % (the law's linear Hertz "
+            "term 2/(π b E*), Yang & Sun 1985, against Weber's flattening at the load in the FE "
+            "model, which softens with less load); both columns rigid engagement without "
+            "profile modifications (docs/theory.md, 'Finite-element check of the tooth "
+            "compliance')")
 
 
 def _pe_fe(pe: float, fe: float) -> PeFe:
@@ -52,13 +55,13 @@ def fe_check(case, geo, force_N: float, store=None) -> FeCheck:
     pe_ste_um = 1e3 * force_N / pe_mesh.k_mesh_N_mm
     fe_teeth = float(np.interp(x_c, fe.x_mm, fe.tooth1_mm_N + fe.tooth2_mm_N))
     fe_local = float(np.interp(x_c, fe.x_mm, fe.local_mm_N))
+    teeth = _pe_fe(1.0 / (pe.pinion.total_mm_N[0] + pe.gear.total_mm_N[0]), 1.0 / fe_teeth)
+    contact = _pe_fe(1.0 / pe.hertz_mm_N, 1.0 / fe_local)
     return FeCheck(
         line_load_N_mm=force_N / b, plane_strain=fe.plane_strain,
         pitch_pair_stiffness_N_mm=_pe_fe(pe.k_N_mm[0], fe.pitch_pair_N_mm),
         mesh_mean_stiffness_N_mm=_pe_fe(pe_mesh.mean_N_mm, fe.mean_N_mm),
         ste_peak_to_peak_um=_pe_fe(np.ptp(pe_ste_um), np.ptp(fe.ste_um)),
-        teeth_at_pitch_N_mm=_pe_fe(1.0 / (pe.pinion.total_mm_N[0] + pe.gear.total_mm_N[0]),
-                                   1.0 / fe_teeth),
-        contact_at_pitch_N_mm=_pe_fe(1.0 / pe.hertz_mm_N, 1.0 / fe_local),
+        teeth_at_pitch_N_mm=teeth, contact_at_pitch_N_mm=contact,
         fe_dofs=tuple(int(n) for n in fe.n_dofs), cache_hits=cache.hits,
-        cache_misses=cache.misses, seconds=fe.seconds, note=FE_NOTE)
+        cache_misses=cache.misses, seconds=fe.seconds, note=_note(teeth, contact))
