@@ -312,7 +312,7 @@ def modal(case, set=None,  # noqa: A002
 
 
 def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # noqa: A002
-         **options):
+         method: str = "pe", **options):
     """Quasi-static loaded tooth contact: static transmission error, load sharing, mesh
     stiffness against ISO 6336-1 (`gearcli mesh`).
 
@@ -325,6 +325,9 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
         torque / r_b2.
     harris : bool
         Also the Harris map (STE peak-to-peak against 0.1 .. 2 x the load).
+    method : {"pe", "fe"}
+        "fe": also the tooth law against the finite-element model (``.summary.fe_check``;
+        needs the optional extra ``fe``).
     options
         ``cycles``, ``points_per_cycle`` of :func:`gearcli.pipeline.mesh.run_mesh`.
 
@@ -341,7 +344,8 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
         (load_N,) = _quantities(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
     if not isinstance(harris, bool):
         raise CaseError(f"harris={harris!r:.60}: expected True or False")
-    return run_mesh(load_case(case, set), load_N=load_N, harris=harris, **options)
+    return run_mesh(load_case(case, set), load_N=load_N, harris=harris, method=method,
+                    **options)
 
 
 def stress(run, window: tuple[float, float] | None = None, require_limits: bool = False):

@@ -27,12 +27,20 @@ def mesh(
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
+    method: str = typer.Option("pe", "--method", help="pe: the tooth law (default); fe: also "
+                               "the finite-element model of the pair beside it (needs the "
+                               "extra 'fe': pip install 'gearcli[fe]')."),
 ) -> None:
     """Loaded tooth contact of the pair without dynamics: at each roll position over two mesh
     cycles the static equilibrium with the case's load (all gaps: profile modifications,
     extended contact), so the number of pairs in contact emerges. Reports the loaded static
     transmission error (µm and arcsec, peak-to-peak, first three mesh harmonics), load sharing
     and mesh stiffness beside ISO 6336-1 c′b and c_γα b.
+
+    With --method fe, the pair's finite-element model (docs/theory.md, "Finite-element check
+    of the tooth compliance") beside the tooth law: pair stiffness at the pitch point, mean
+    mesh stiffness, loaded STE and FE/PE - 1; its influence coefficients are cached per
+    geometry in the user cache folder.
 
     Example: gearcli mesh cases/seed.yaml --harris --plot mesh.png
 
@@ -44,6 +52,8 @@ def mesh(
     from gearcli.errors import CaseError
     from gearcli.pipeline.mesh import save_mesh_plot, write_mesh
 
+    if method not in ("pe", "fe"):
+        raise CaseError(f"--method {method!r:.40}: expected pe or fe")
     if load is not None and not load > 0.0:
         raise CaseError(f"--load must be a force > 0 N, got {load}")
     from gearcli.io.outdir import check_target
@@ -51,7 +61,7 @@ def mesh(
     check_figure_path("--plot", plot, force)
     if out is not None:
         check_target(out, force)  # before the work, not after
-    analysis = api.mesh(case, set_, load_N=load, harris=harris)
+    analysis = api.mesh(case, set_, load_N=load, harris=harris, method=method)
     res, typed, units = analysis, analysis.summary, display_units()
     doc = typed.to_dict()
     if out is not None:
@@ -132,5 +142,33 @@ def _print(doc, units: str) -> None:
         for f, p in zip(doc.harris.force_N, ptp, strict=True):
             h.add_row(format_value(f), format_value(p))
         console.print(h)
+    if doc.fe_check is not None:
+        console.print(_fe_table(doc.fe_check, units))
     for note in doc.notes:
         console.print(f"note: {note}")
+
+
+def _fe_table(fe, units: str):
+    """The tooth law (PE) and the FE model side by side, with FE/PE − 1."""
+    from rich.markup import escape
+    from rich.table import Table
+
+    from gearcli.display_units import convert
+
+    state = "plane strain" if fe.plane_strain else "plane stress"
+    t = Table(title=f"Tooth law (PE) against finite elements (FE), {state}, "
+                    f"{format_value(fe.line_load_N_mm)} N/mm", title_justify="left",
+              caption=f"note: {fe.note}", caption_justify="left")
+    for col in ("quantity", "PE", "FE", "unit", "FE/PE − 1"):
+        t.add_column(col)
+    for label, q, unit in (("single-pair stiffness at the pitch point",
+                            fe.pitch_pair_stiffness_N_mm, "N/mm"),
+                           ("mean mesh stiffness", fe.mesh_mean_stiffness_N_mm, "N/mm"),
+                           ("loaded STE peak-to-peak", fe.ste_peak_to_peak_um, "µm"),
+                           ("  teeth + body at the pitch point", fe.teeth_at_pitch_N_mm, "N/mm"),
+                           ("  contact term at the pitch point", fe.contact_at_pitch_N_mm,
+                            "N/mm")):
+        (pe, fe_value), shown_unit = convert([q.pe, q.fe], unit, units)
+        t.add_row(label, format_value(pe), format_value(fe_value), escape(shown_unit),
+                  f"{100.0 * q.fe_over_pe_minus_1:+.1f} %")
+    return t

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.case.load import LoadedCase, load_case
-from gearcli.errors import CaseError
+from gearcli.errors import CaseError, GearcliError
 from gearcli.model.gap import slot_layout
 from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh, tooth_law
 from gearcli.model.stiffness import IsoStiffness
@@ -30,7 +30,14 @@ from gearcli.pipeline.mesh_input import (
     tooth_stiffness,
 )
 from gearcli.results.metrics import json_number
-from gearcli.results.models import HarrisMap, IsoResonance, MeshSte, MeshStiffness, MeshSummary
+from gearcli.results.models import (
+    FeCheck,
+    HarrisMap,
+    IsoResonance,
+    MeshSte,
+    MeshStiffness,
+    MeshSummary,
+)
 
 ARCSEC_PER_RAD = 180.0 / math.pi * 3600.0
 
@@ -49,6 +56,7 @@ class MeshAnalysis:
     iso: IsoStiffness
     harris: tuple[np.ndarray, np.ndarray] | None  #: loads [N], STE peak-to-peak [mm]
     notes: tuple[str, ...]  #: what the quasi-static model leaves out for this case
+    fe: FeCheck | None = None  #: the tooth law against the FE model (``method="fe"``)
 
     @property
     def summary(self) -> MeshSummary:
@@ -75,10 +83,13 @@ class MeshAnalysis:
 
 def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None,
              load_N: float | None = None, harris: bool = False, *, cycles: int = 2,
-             points_per_cycle: int = 200) -> MeshAnalysis:
+             points_per_cycle: int = 200, method: str = "pe") -> MeshAnalysis:
     """Loaded tooth contact of a case at its static normal force (or ``load_N`` [N]) over
     ``cycles`` mesh cycles; the Harris map (``harris``) at 20 loads from 0.1 to 2 times it,
-    one mesh cycle each on the same roll grid (``points_per_cycle``)."""
+    one mesh cycle each on the same roll grid (``points_per_cycle``); ``method`` "fe" adds
+    the tooth law against the finite-element model at that force (pipeline/mesh_fe.py)."""
+    if method not in ("pe", "fe"):
+        raise CaseError(f"method {method!r:.40}: expected 'pe' or 'fe'")
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
     case = loaded.case
     geo = run_geometry(loaded)
@@ -111,7 +122,19 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     notes = not_included("mesh", case)
     notes += bore_notes(case, geo)
     iso = iso_stiffness(case, geo, force)
-    return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes))
+    return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes),
+                        _fe_check(case, geo, force) if method == "fe" else None)
+
+
+def _fe_check(case, geo, force: float) -> FeCheck:
+    """pipeline.mesh_fe.fe_check; without the optional extra one line naming it (exit 1)."""
+    from gearcli.model.fe import FEUnavailableError
+    from gearcli.pipeline.mesh_fe import fe_check
+
+    try:
+        return fe_check(case, geo, force)
+    except FEUnavailableError as exc:
+        raise GearcliError(str(exc)) from None
 
 
 def _iso_resonance(res: MeshAnalysis) -> IsoResonance:
@@ -159,7 +182,7 @@ def mesh_document(res: MeshAnalysis) -> MeshSummary:
             iso6336_single_pair_c_prime_b_N_mm=res.iso.pair_stiffness_N_mm,
             iso6336_mean_c_gamma_alpha_b_N_mm=res.iso.mesh_stiffness_N_mm),
         iso6336_method_b=_iso_resonance(res),
-        notes=tuple(res.notes), harris=harris)
+        notes=tuple(res.notes), harris=harris, fe_check=res.fe)
 
 
 def mesh_table(res: MeshAnalysis):

@@ -135,6 +135,39 @@ class HarrisMap(Document):
 
 
 @dataclasses.dataclass(frozen=True)
+class PeFe(Document):
+    """One quantity by the tooth law (potential energy, PE) and by the FE model, and
+    FE/PE − 1."""
+
+    pe: float = metric_field("pe")
+    fe: float = metric_field("fe")
+    fe_over_pe_minus_1: float = metric_field("fe_over_pe_minus_1")
+
+
+@dataclasses.dataclass(frozen=True)
+class FeCheck(Document):
+    """`gearcli mesh --method fe`: the tooth law against the finite-element model of the pair
+    (docs/theory.md, "Finite-element check of the tooth compliance"), both with rigid-engagement
+    load sharing and no profile modifications, at the case's line load and the FE's plane
+    state."""
+
+    line_load_N_mm: float = metric_field("line_load_N_mm")
+    plane_strain: bool = metric_field("plane_strain", True)
+    pitch_pair_stiffness_N_mm: PeFe = metric_field("pitch_pair_stiffness_N_mm", PeFe(),
+                                                   nested=PeFe)
+    mesh_mean_stiffness_N_mm: PeFe = metric_field("mesh_mean_stiffness_N_mm", PeFe(),
+                                                  nested=PeFe)
+    ste_peak_to_peak_um: PeFe = metric_field("ste_peak_to_peak_um", PeFe(), nested=PeFe)
+    teeth_at_pitch_N_mm: PeFe = metric_field("teeth_at_pitch_N_mm", PeFe(), nested=PeFe)
+    contact_at_pitch_N_mm: PeFe = metric_field("contact_at_pitch_N_mm", PeFe(), nested=PeFe)
+    fe_dofs: tuple[int, ...] = metric_field("fe_dofs", ())  #: model sizes (pinion, gear)
+    cache_hits: int = metric_field("cache_hits", 0)  #: gear models read from the cache
+    cache_misses: int = metric_field("cache_misses", 0)  #: gear models solved
+    seconds: float = metric_field("seconds")  #: wall time of the FE part (reported only)
+    note: str = metric_field("note", "")
+
+
+@dataclasses.dataclass(frozen=True)
 class MeshSummary(Document):
     """A quasi-static loaded contact analysis (`gearcli mesh --json`): the static normal force,
     the STE, the mesh stiffness against ISO 6336-1 and the ISO 6336-1 Method B data."""
@@ -150,3 +183,4 @@ class MeshSummary(Document):
                                                   nested=IsoResonance)
     notes: tuple[str, ...] = metric_field("notes", ())
     harris: HarrisMap | None = metric_field("harris", None, omit_none=True, nested=HarrisMap)
+    fe_check: FeCheck | None = metric_field("fe_check", None, omit_none=True, nested=FeCheck)
