@@ -66,11 +66,11 @@ def _records(signal: dict, shaft: str, col: str, n: int | None, what: str):
         pitch = 2.0 * np.pi / int(signal[shaft])
         first = math.ceil(float(theta[0]) / pitch - 1e-9)  # the first tooth at the pitch point
         return resample_to_angle(signal["te"], theta, n, first * pitch), n
-    except ValueError as exc:
+    except ValueError:
         turns = abs(float(theta[-1] - theta[0])) / (2.0 * np.pi) if theta.size else 0.0
         raise ResultsError(f"{what}: the {shaft} turns {turns:.3g} revolutions in the steady "
-                           f"window; monitoring needs at least one whole revolution ({exc}); "
-                           "simulate longer (run.end_time)") from None
+                           "window; monitoring needs one whole revolution from the first tooth "
+                           "at the pitch point; simulate longer (run.end_time)") from None
 
 
 def _revolutions(angle) -> list[SynchronousAverage]:

@@ -1,0 +1,84 @@
+"""gearcli.monitor on a short iso_pair run, healthy and with a pinion root crack
+(docs/theory.md, "Condition-monitoring signals" and "Tooth faults")."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import gearcli
+from gearcli.errors import ResultsError
+
+ROOT = Path(__file__).resolve().parents[2]
+CASE = ROOT / "cases" / "iso_pair.yaml"
+RUN = {"run.end_time": 0.3}
+CRACK = [{"kind": "root_crack", "gear": "pinion", "tooth": 2, "depth": "4 mm",
+          "angle": "45 deg"}]
+
+
+@pytest.fixture(scope="module")
+def runs():
+    healthy = gearcli.simulate(CASE, set=RUN)
+    cracked = gearcli.simulate(CASE, set={**RUN, "faults": CRACK})
+    return healthy, cracked
+
+
+def _pinion(doc):
+    (shaft,) = [s for s in doc.shafts if s.shaft == "pinion"]
+    return shaft
+
+
+def test_crack_raises_fm4_and_na4(runs):
+    """Measured (session 10): pinion FM4 6.29 healthy, 16.2 cracked; NA4 against the healthy
+    run's revolutions 0.09 healthy, 6.1e5 cracked (the simulated healthy residual is tiny, so
+    NA4's normaliser is too). The bounds (FM4 x 2, NA4 x 100) are far below the measured
+    ratios (2.6, 7e6) and far above what an unwired fault (ratio 1) gives."""
+    healthy, cracked = runs
+    h_self, c_self = gearcli.monitor(healthy), gearcli.monitor(cracked)
+    assert _pinion(c_self).value("fm4") > 2.0 * _pinion(h_self).value("fm4")
+    h_base = gearcli.monitor(healthy, baseline=healthy)
+    c_base = gearcli.monitor(cracked, baseline=healthy)
+    assert _pinion(c_base).value("na4") > 100.0 * _pinion(h_base).value("na4")
+    # without a baseline NA4/NB4 are normalised by the run's own revolutions, and say so
+    assert "own" in _pinion(c_self).normalisation
+    assert "baseline" in _pinion(c_base).normalisation and c_base.baseline is not None
+    assert _pinion(c_self).metrics.n_baseline_records == _pinion(c_self).n_revolutions
+
+
+def test_whole_revolutions_from_the_shaft_angles(runs):
+    """N is the number of whole revolutions from the first tooth at the pitch point in the
+    steady window, counted independently here from the stored shaft angles."""
+    healthy, _ = runs
+    doc = gearcli.monitor(healthy)
+    s = healthy.series
+    t0, t1 = doc.window_s
+    w = (s.index >= t0) & (s.index <= t1)
+    for shaft, col in (("pinion", "theta1_rad"), ("gear", "theta2_rad")):
+        (m,) = [x for x in doc.shafts if x.shaft == shaft]
+        theta = s[col][w].to_numpy()
+        pitch = 2 * math.pi / m.teeth
+        first = math.ceil(theta[0] / pitch - 1e-9)
+        assert m.n_revolutions == math.floor((theta[-1] - first * pitch) / (2 * math.pi))
+        assert m.first_tooth == first % m.teeth
+        assert m.n_revolutions >= 1 and m.samples_per_revolution >= 2 * (m.teeth + 1)
+        d = m.to_dict()
+        assert d["metrics"]["mesh_order"] == m.teeth
+        assert np.isfinite(d["metrics"]["fm4"]) and d["metrics"]["na4"] is not None
+    assert doc.signal_unit == "mm" and "θ" in doc.signal
+
+
+def test_less_than_a_revolution_is_refused(runs, tmp_path):
+    healthy, _ = runs
+    folder = healthy.save(tmp_path / "run")
+    summary = (folder / "summary.json").read_text()
+    import json
+
+    doc = json.loads(summary)
+    t0 = doc["scalars"]["window_s"][0]
+    doc["scalars"]["window_s"] = [t0, t0 + 0.02]  # 0.5 pinion revolution at 25 rev/s
+    (folder / "summary.json").write_text(json.dumps(doc))
+    with pytest.raises(ResultsError, match="whole revolution"):
+        gearcli.monitor(folder)
