@@ -38,8 +38,9 @@ SIGNAL_UNIT = "mm"
 SHAFTS = (("pinion", "theta1_rad"), ("gear", "theta2_rad"))
 
 
-def _steady(run: StoredRun) -> tuple[dict[str, np.ndarray], tuple[float, float]]:
-    """The steady window's θ1, θ2 and TE [rad, rad, mm] and the window [s]."""
+def steady_signal(run: StoredRun) -> tuple[dict[str, np.ndarray], tuple[float, float]]:
+    """The steady window's shaft angles and TE: {"theta1_rad", "theta2_rad" [rad], "te" [mm],
+    "pinion", "gear" (teeth)}, and the window (T0, T1) [s]."""
     import json
 
     for col in ("theta1_rad", "theta2_rad"):
@@ -57,9 +58,13 @@ def _steady(run: StoredRun) -> tuple[dict[str, np.ndarray], tuple[float, float]]
             "pinion": geo.pinion.teeth, "gear": geo.gear.teeth}, (t0, t1)
 
 
-def _records(signal: dict, shaft: str, col: str, n: int | None, what: str):
-    """(angle signal, n) of one shaft; a window shorter than one revolution is refused."""
-    theta = signal[col]
+def angle_record(signal: dict, shaft: str, n: int | None = None, what: str = "the run"):
+    """(TE on the ``shaft``'s angle grid, n): whole revolutions from the first tooth at the
+    pitch point (:class:`gearcli.model.monitoring.AngleSignal`, start θ_s = 2π k/z: tooth k mod z
+    at the pitch point) and the samples per revolution (``n``, or the rule of
+    :func:`gearcli.model.monitoring.samples_per_revolution`); a window shorter than one such
+    revolution is a one-line ResultsError."""
+    theta = signal[dict(SHAFTS)[shaft]]
     try:
         if n is None:
             n = samples_per_revolution(theta, highest_order=int(signal[shaft]) + 2)
@@ -82,21 +87,21 @@ def _revolutions(angle) -> list[SynchronousAverage]:
 def monitor(folder: str | Path, baseline: str | Path | None = None) -> MonitorDocument:
     """Monitoring metrics of a results folder (optionally against a healthy baseline run)."""
     run = read_run(folder)
-    signal, window = _steady(run)
+    signal, window = steady_signal(run)
     base = None
     if baseline is not None:
-        base, _ = _steady(read_run(baseline))
+        base, _ = steady_signal(read_run(baseline))
         for shaft, _col in SHAFTS:
             if base[shaft] != signal[shaft]:
                 raise ResultsError(f"--baseline {baseline}: the {shaft} has {base[shaft]} "
                                    f"teeth, the run {signal[shaft]}; expected the same pair")
     shafts = []
-    for shaft, col in SHAFTS:
-        angle, n = _records(signal, shaft, col, None, str(folder))
+    for shaft, _col in SHAFTS:
+        angle, n = angle_record(signal, shaft, what=str(folder))
         if base is None:
             records, how = _revolutions(angle), "the run's own revolutions"
         else:
-            records = _revolutions(_records(base, shaft, col, n, f"--baseline {baseline}")[0])
+            records = _revolutions(angle_record(base, shaft, n, f"--baseline {baseline}")[0])
             how = f"the baseline run's revolutions ({baseline})"
         metrics = gear_metrics(time_synchronous_average(angle), int(signal[shaft]),
                                signal_unit=SIGNAL_UNIT, baseline=records)

@@ -82,3 +82,28 @@ def test_less_than_a_revolution_is_refused(runs, tmp_path):
     (folder / "summary.json").write_text(json.dumps(doc))
     with pytest.raises(ResultsError, match="whole revolution"):
         gearcli.monitor(folder)
+
+
+def test_the_crack_shows_at_its_tooth_in_the_pinion_average(runs, tmp_path):
+    """The difference signal of the cracked run's pinion TSA peaks while tooth 2 carries the
+    load alone: tooth 2 between B and D (its single-contact zone, −0.04 … 0.39 pitch past the
+    pitch point C on iso_pair), with 0.15 pitch margin (the difference signal lacks the mesh
+    harmonics, which spreads a local event over a fraction of a pitch). Measured: 0.25 pitch
+    past C. A tooth index off by one (±1 pitch) or a reversed angle (−0.25) fails: this checks
+    the TSA's tooth indexing (first_tooth) against the fault's tooth."""
+    from gearcli.io.results import read_run
+    from gearcli.model.monitoring import time_synchronous_average
+    from gearcli.model.monitoring.orders import difference_signal
+    from gearcli.pipeline.monitor import angle_record, steady_signal
+
+    _, cracked = runs
+    signal, _ = steady_signal(read_run(cracked.save(tmp_path / "crack")))
+    angle, n = angle_record(signal, "pinion")
+    z = signal["pinion"]
+    first = round(angle.start_angle_rad * z / (2 * math.pi)) % z
+    d = difference_signal(time_synchronous_average(angle).values, [z])
+    at = (first + int(np.argmax(np.abs(d))) * z / n) % z  # pitches from tooth 0 at C
+    past = (at - CRACK[0]["tooth"] + z / 2) % z - z / 2  # tooth 2's roll past C [pitches]
+    g = gearcli.geometry(CASE).geometry
+    b, d_ = ((g.B_mm - g.C_mm) / g.pinion.p_b_mm, (g.D_mm - g.C_mm) / g.pinion.p_b_mm)
+    assert b - 0.15 < past < d_ + 0.15, (past, b, d_)
