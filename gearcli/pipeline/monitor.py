@@ -1,16 +1,15 @@
 """`gearcli monitor RUN`: condition-monitoring metrics of a finished run, per shaft.
 
-docs/theory.md, "Condition-monitoring signals". The signal is the transmission error the two
-shaft encoders would measure, TE = r_b1 θ1 − r_b2 θ2 [mm] along the line of action (model.md §1:
-the same quantity as the mesh deflection δ up to its constant), from the stored shaft angles
+docs/theory.md, "Condition-monitoring signals" (§8 for this command). The signal is the
+transmission error the two shaft encoders would measure, TE = r_b1 θ1 − r_b2 θ2 [mm] along the
+line of action (docs/theory.md §1: the mesh deflection δ = s1 − s2), from the stored shaft angles
 θ1, θ2 of the steady window (summary.json's ``window_s``). For each shaft it is resampled onto
 that shaft's exact simulated angle, index 0 at the first θ = 2π k/z in the window (tooth k mod z
 at the pitch point, docs/theory.md "Tooth faults": tooth indexing), so the TSA's sample j·n/z is
-tooth k + j's pitch-point passage; it is
-averaged over the whole revolutions in the window (TSA) and measured by
-:func:`gearcli.model.monitoring.gear_metrics`. NA4 and NB4 are normalised by the records
-(single revolutions) of the baseline run's same shaft when a baseline is given, else by the
-run's own revolutions (Zakrajsek et al. 1993 normalise by the run's records so far).
+tooth k + j's pitch-point passage; it is averaged over the whole revolutions in the window (TSA)
+and measured by :func:`gearcli.model.monitoring.gear_metrics`. NA4 and NB4 are normalised by
+the records (single revolutions) of the baseline run's same shaft when a baseline is given, else
+by the run's own revolutions (Zakrajsek et al. 1993 normalise by the run's records so far).
 """
 
 from __future__ import annotations
