@@ -281,6 +281,34 @@ def spectra_frame(analysis):
     return analysis.spectra
 
 
+def monitor(run, baseline=None):
+    """Condition-monitoring metrics of a run per shaft (`gearcli monitor`): the transmission
+    error from the shaft angles, its time-synchronous average over the steady window's whole
+    revolutions and the metrics of docs/theory.md, "Condition-monitoring signals".
+
+    Parameters
+    ----------
+    run : Simulation or str or Path
+        A simulation, or a results folder of `gearcli simulate`.
+    baseline : Simulation or str or Path, optional
+        A healthy run of the same pair: NA4 and NB4 are normalised by its revolutions (default:
+        the run's own).
+
+    Returns
+    -------
+    gearcli.results.MonitorDocument
+        ``.shafts`` (pinion, gear: :class:`~gearcli.results.ShaftMonitor`, each with its
+        ``.metrics``, a :class:`gearcli.model.monitoring.GearMetrics`), ``.to_dict()``.
+    """
+    import contextlib
+
+    from gearcli.pipeline.monitor import monitor as run_monitor
+
+    with contextlib.ExitStack() as stack:
+        base = None if baseline is None else _folder_of(baseline, stack)
+        return run_monitor(_folder_of(run, stack), base)
+
+
 def modal(case, set=None,  # noqa: A002
           speed_range_deg_s: tuple[float, float] | None = None):
     """Natural frequencies, damping ratios and mode shapes of the linearised model

@@ -19,6 +19,7 @@ from gearcli.results.analysis import (
 )
 from gearcli.results.fields import PLACES, Document, shown, shown_values
 from gearcli.results.models import MeshSummary, ModalDocument, Mode
+from gearcli.results.monitor import MonitorDocument, ShaftMonitor
 from gearcli.results.run import (
     EnergyBalance,
     PointLines,
@@ -35,5 +36,5 @@ from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
            "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin", "Check",
            "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
-           "SpeedLevel", "Document", "PLACES", "shown", "shown_values", "sweep_metrics",
-           "json_schema", "KINDS"]
+           "SpeedLevel", "MonitorDocument", "ShaftMonitor", "Document", "PLACES", "shown",
+           "shown_values", "sweep_metrics", "json_schema", "KINDS"]
