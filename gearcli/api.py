@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     )
 
 __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
-           "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
+           "stress", "rate", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
            "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
 
 #: The typed documents live in gearcli/results/, the result classes (one per command, with
@@ -372,6 +372,55 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
         window = _quantities(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
         return compute_stress(_folder_of(run, stack), window, require_limits=require_limits)
+
+
+def rate(case_or_run, set=None):  # noqa: A002
+    """ISO 6336 Method B rating of the pair (`gearcli rate`), and with a run the "simulated"
+    column beside it.
+
+    Parameters
+    ----------
+    case_or_run : str, Path, mapping, LoadedCase, Simulation
+        A case (as :func:`load_case` takes it), a simulation, or a results folder of `gearcli
+        simulate` (a folder holding summary.json; its manifest's resolved case is rated).
+    set : overrides as in :func:`load_case`, applied to the case rated.
+
+    Returns
+    -------
+    gearcli.pipeline.rating.CaseRating
+        ``.iso`` (the ISO column), ``.simulated`` (with a run: K_v = the run's
+        F_max/F_static, docs/theory.md "ISO 6336 rating"), ``.duty_cycle``, ``.ok``,
+        ``.to_dict()`` (what ``gearcli rate --json`` prints).
+        With a run only its dynamic factor is passed (:class:`~gearcli.pipeline.rating.
+        SimulatedLoad` without stress peaks: those need `gearcli stress`).
+    """
+    from gearcli.pipeline.rating import SimulatedLoad, rate_case
+    from gearcli.pipeline.simulation import SimulationResult
+
+    run = None
+    if isinstance(case_or_run, SimulationResult):
+        loaded, scalars = case_or_run.loaded, case_or_run.summary
+        run = (scalars.force_max_N, scalars.force_static_N)
+    elif (isinstance(case_or_run, str | os.PathLike) and Path(case_or_run).is_dir()):
+        from gearcli.case.load import load_case_text
+        from gearcli.io.results import read_run
+
+        stored = read_run(case_or_run)
+        loaded = load_case_text(json.dumps(stored.manifest["resolved_case"]),
+                                str(Path(case_or_run) / "manifest.json"))
+        scalars = stored.summary.scalars
+        run = (scalars.force_max_N, scalars.force_static_N)
+    else:
+        loaded = case_or_run
+    loaded = load_case(loaded, set)
+    simulated = None
+    if run is not None:
+        f_max, f_static = (float(v) for v in run)
+        if not (f_static > 0.0 and f_max > 0.0):
+            raise CaseError(f"rate: the run's F_max {f_max:g} N / F_static {f_static:g} N is no "
+                            "dynamic factor; expected a loaded run (both > 0)")
+        simulated = SimulatedLoad(dynamic_factor=f_max / f_static)
+    return rate_case(loaded, simulated=simulated)
 
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,
