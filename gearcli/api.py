@@ -40,8 +40,8 @@ if TYPE_CHECKING:
     )
 
 __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
-           "stress", "rate", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
-           "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
+           "stress", "rate", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh",
+           "Summary", "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
 
 #: The typed documents live in gearcli/results/, the result classes (one per command, with
 #: the methods to_pandas, save, plot, document) in the pipeline; both imported on first use
