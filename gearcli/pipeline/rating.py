@@ -30,12 +30,16 @@ from gearcli.errors import CaseError
 from gearcli.model.iso6336.common import Edition
 from gearcli.model.iso6336.document import RatingResult
 from gearcli.model.iso6336.inputs import GearInput, RatingInput
-from gearcli.model.iso6336.inspection import InspectionDimensions, inspection_dimensions
 from gearcli.model.iso6336.material import MaterialKind, Quality
 from gearcli.model.iso6336.rate import rate
 from gearcli.model.iso6336.spectrum import DutyCycleDamage, LoadBin, duty_cycle_damage
 from gearcli.pipeline.capabilities import not_included
-from gearcli.pipeline.geometry import GeometryResult, run_geometry
+from gearcli.pipeline.geometry import (
+    GeometryResult,
+    PairInspection,
+    pair_inspection,
+    run_geometry,
+)
 from gearcli.results.models import IsoResonance
 
 __all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
@@ -314,38 +318,11 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
 
 
-@dataclass(frozen=True)
-class PairInspection:
-    """Inspection dimensions of both gears (tuples: nominal, upper, lower allowance) [mm]."""
-
-    pinion: InspectionDimensions
-    gear: InspectionDimensions
-    allowances_mm: tuple[tuple[float, float], tuple[float, float]]  #: (upper, lower) per gear
-
-    def to_dict(self) -> dict:
-        return {"pinion": {**self.pinion.to_dict(),
-                           "thickness_allowances_mm": list(self.allowances_mm[0])},
-                "gear": {**self.gear.to_dict(),
-                         "thickness_allowances_mm": list(self.allowances_mm[1])}}
-
-
 def case_inspection(source: str | Path | LoadedCase, geo: GeometryResult | None = None,
                     overrides: list[str] | None = None) -> PairInspection:
-    """Span W_k, balls (theoretical, next standard or rating.<gear>.ball_diameter), M_dK and
-    chordal tooth thickness/height of both gears at the nominal thickness and at the
-    allowances rating.<gear>.thickness_allowances (default: both −gears.<gear>.
-    thickness_allowance); docs/theory.md, "ISO 6336 rating" §6."""
+    """The inspection dimensions of both gears (pipeline.geometry.pair_inspection: span W_k,
+    balls, M_dK, chordal tooth thickness/height at the nominal thickness and the allowances);
+    docs/theory.md, "ISO 6336 rating" §6."""
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
-    case = loaded.case
     geo = geo or run_geometry(loaded)
-    g = geo.geometry
-    out, allowances = [], []
-    for role in _ROLES:
-        spec, rg, gg = getattr(case.gears, role), getattr(case.rating, role), getattr(g, role)
-        allow = rg.thickness_allowances or (-spec.thickness_allowance, -spec.thickness_allowance)
-        allow = (float(allow[0]), float(allow[1]))
-        allowances.append(allow)
-        out.append(inspection_dimensions(spec.teeth, spec.profile_shift, g.module_mm,
-                                         g.pressure_angle_rad, gg.d_a_mm, allow,
-                                         rg.ball_diameter))
-    return PairInspection(out[0], out[1], (allowances[0], allowances[1]))
+    return pair_inspection(loaded.case, geo.geometry)
