@@ -382,45 +382,57 @@ def rate(case_or_run, set=None):  # noqa: A002
     ----------
     case_or_run : str, Path, mapping, LoadedCase, Simulation
         A case (as :func:`load_case` takes it), a simulation, or a results folder of `gearcli
-        simulate` (a folder holding summary.json; its manifest's resolved case is rated).
+        simulate` (its manifest's resolved case is rated).
     set : overrides as in :func:`load_case`, applied to the case rated.
 
     Returns
     -------
     gearcli.pipeline.rating.CaseRating
         ``.iso`` (the ISO column), ``.simulated`` (with a run: K_v = the run's
-        F_max/F_static, docs/theory.md "ISO 6336 rating"), ``.duty_cycle``, ``.ok``,
-        ``.to_dict()`` (what ``gearcli rate --json`` prints).
-        With a run only its dynamic factor is passed (:class:`~gearcli.pipeline.rating.
-        SimulatedLoad` without stress peaks: those need `gearcli stress`).
+        F_max/F_static; its ``simulated_peaks`` the safeties of the peak contact and root
+        stresses of :func:`stress` in the steady window against σ_HG, σ_FG),
+        ``.duty_cycle``, ``.ok``, ``.to_dict()`` (what ``gearcli rate --json`` prints);
+        docs/theory.md, "ISO 6336 rating".
     """
-    from gearcli.pipeline.rating import SimulatedLoad, rate_case
+    import contextlib
+
+    from gearcli.pipeline.rating import rate_case
     from gearcli.pipeline.simulation import SimulationResult
 
-    run = None
+    is_folder = isinstance(case_or_run, str | os.PathLike) and Path(case_or_run).is_dir()
+    if not (is_folder or isinstance(case_or_run, SimulationResult)):
+        return rate_case(load_case(case_or_run, set))
+    with contextlib.ExitStack() as stack:
+        simulated, loaded = _simulated_load(_folder_of(case_or_run, stack))
     if isinstance(case_or_run, SimulationResult):
-        loaded, scalars = case_or_run.loaded, case_or_run.summary
-        run = (scalars.force_max_N, scalars.force_static_N)
-    elif (isinstance(case_or_run, str | os.PathLike) and Path(case_or_run).is_dir()):
-        from gearcli.case.load import load_case_text
-        from gearcli.io.results import read_run
+        loaded = case_or_run.loaded
+    return rate_case(load_case(loaded, set), simulated=simulated)
 
-        stored = read_run(case_or_run)
-        loaded = load_case_text(json.dumps(stored.manifest["resolved_case"]),
-                                str(Path(case_or_run) / "manifest.json"))
-        scalars = stored.summary.scalars
-        run = (scalars.force_max_N, scalars.force_static_N)
-    else:
-        loaded = case_or_run
-    loaded = load_case(loaded, set)
-    simulated = None
-    if run is not None:
-        f_max, f_static = (float(v) for v in run)
-        if not (f_static > 0.0 and f_max > 0.0):
-            raise CaseError(f"rate: the run's F_max {f_max:g} N / F_static {f_static:g} N is no "
-                            "dynamic factor; expected a loaded run (both > 0)")
-        simulated = SimulatedLoad(dynamic_factor=f_max / f_static)
-    return rate_case(loaded, simulated=simulated)
+
+def _simulated_load(folder: Path):
+    """(SimulatedLoad, the run's case) of a results folder: K_v = summary F_max/F_static, the
+    peak σ_H, σ_F per gear of `gearcli stress` in the steady window (when it has them)."""
+    from gearcli.case.load import load_case_text
+    from gearcli.io.results import read_run
+    from gearcli.pipeline.rating import SimulatedLoad
+    from gearcli.pipeline.stress import compute_stress
+
+    stored = read_run(folder)
+    scalars = stored.summary.scalars
+    f_max, f_static = float(scalars.force_max_N), float(scalars.force_static_N)
+    if not (f_static > 0.0 and f_max > 0.0):
+        raise CaseError(f"rate: the run's F_max {f_max:g} N / F_static {f_static:g} N is no "
+                        "dynamic factor; expected a loaded run (both > 0)")
+    res = compute_stress(folder, None)
+    gears = (res.pinion, res.gear)
+    h = tuple(g.sigma_H_peak_MPa for g in gears)
+    f = tuple(g.sigma_F_peak_MPa for g in gears)
+    simulated = SimulatedLoad(dynamic_factor=f_max / f_static,
+                              sigma_H_peak_MPa=None if None in h else h,
+                              sigma_F_peak_MPa=None if None in f else f)
+    loaded = load_case_text(json.dumps(stored.manifest["resolved_case"]),
+                            str(Path(folder) / "manifest.json"))
+    return simulated, loaded
 
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,

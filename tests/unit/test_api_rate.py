@@ -1,5 +1,6 @@
 """gearcli.rate (gearcli/api.py): the library's rating equals `gearcli rate --json`, and with
-a run the "simulated" column takes K_v = the run's F_max/F_static (issue 28)."""
+a run the "simulated" column takes K_v = the run's F_max/F_static and the peak stresses of
+`gearcli stress` (issue 28)."""
 
 from __future__ import annotations
 
@@ -88,3 +89,18 @@ def test_simulated_rating_responds_to_kv(run):
 def test_rate_refuses_a_bad_argument():
     with pytest.raises(CaseError, match="load_case"):
         gearcli.rate(42)
+
+
+def test_simulated_peaks_are_the_stress_peaks(run):
+    """The simulated column's peak safeties: S = σ_G/σ_peak with the peaks of gearcli.stress
+    in the steady window (pipeline.rating.SimulatedLoad)."""
+    rated = gearcli.rate(run)
+    stress = gearcli.stress(run)
+    peaks = rated.simulated_peaks
+    for which, g in (("pinion", rated.simulated.pinion), ("gear", rated.simulated.gear)):
+        ref = getattr(stress, which)
+        row = peaks[g.name]
+        assert row["sigma_H_peak_MPa"] == pytest.approx(ref.sigma_H_peak_MPa, rel=1e-12)
+        assert row["sigma_F_peak_MPa"] == pytest.approx(ref.sigma_F_peak_MPa, rel=1e-12)
+        assert row["S_H"] == pytest.approx(g.sigma_HG_MPa / ref.sigma_H_peak_MPa, rel=1e-12)
+        assert row["S_F"] == pytest.approx(g.sigma_FG_MPa / ref.sigma_F_peak_MPa, rel=1e-12)
