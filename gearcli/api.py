@@ -396,43 +396,17 @@ def rate(case_or_run, set=None):  # noqa: A002
     """
     import contextlib
 
-    from gearcli.pipeline.rating import rate_case
+    from gearcli.pipeline.rating import rate_case, simulated_load
     from gearcli.pipeline.simulation import SimulationResult
 
     is_folder = isinstance(case_or_run, str | os.PathLike) and Path(case_or_run).is_dir()
     if not (is_folder or isinstance(case_or_run, SimulationResult)):
         return rate_case(load_case(case_or_run, set))
     with contextlib.ExitStack() as stack:
-        simulated, loaded = _simulated_load(_folder_of(case_or_run, stack))
+        simulated, loaded = simulated_load(_folder_of(case_or_run, stack))
     if isinstance(case_or_run, SimulationResult):
         loaded = case_or_run.loaded
     return rate_case(load_case(loaded, set), simulated=simulated)
-
-
-def _simulated_load(folder: Path):
-    """(SimulatedLoad, the run's case) of a results folder: K_v = summary F_max/F_static, the
-    peak σ_H, σ_F per gear of `gearcli stress` in the steady window (when it has them)."""
-    from gearcli.case.load import load_case_text
-    from gearcli.io.results import read_run
-    from gearcli.pipeline.rating import SimulatedLoad
-    from gearcli.pipeline.stress import compute_stress
-
-    stored = read_run(folder)
-    scalars = stored.summary.scalars
-    f_max, f_static = float(scalars.force_max_N), float(scalars.force_static_N)
-    if not (f_static > 0.0 and f_max > 0.0):
-        raise CaseError(f"rate: the run's F_max {f_max:g} N / F_static {f_static:g} N is no "
-                        "dynamic factor; expected a loaded run (both > 0)")
-    res = compute_stress(folder, None)
-    gears = (res.pinion, res.gear)
-    h = tuple(g.sigma_H_peak_MPa for g in gears)
-    f = tuple(g.sigma_F_peak_MPa for g in gears)
-    simulated = SimulatedLoad(dynamic_factor=f_max / f_static,
-                              sigma_H_peak_MPa=None if None in h else h,
-                              sigma_F_peak_MPa=None if None in f else f)
-    loaded = load_case_text(json.dumps(stored.manifest["resolved_case"]),
-                            str(Path(folder) / "manifest.json"))
-    return simulated, loaded
 
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,
