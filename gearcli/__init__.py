@@ -13,7 +13,7 @@ __version__ = "0.1.0"
 #: The public API (gearcli/api.py), imported on first use so that ``import gearcli`` stays
 #: light (no numpy, numba, pandas) and changes nothing in the calling process.
 _API = ("load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
-        "stress", "sweep", "monitor",
+        "stress", "rate", "sweep", "monitor",
         "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
         "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION")
 __all__ = ["__version__", *_API]

@@ -40,8 +40,8 @@ if TYPE_CHECKING:
     )
 
 __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
-           "stress", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh", "Summary",
-           "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
+           "stress", "rate", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh",
+           "Summary", "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
 
 #: The typed documents live in gearcli/results/, the result classes (one per command, with
 #: the methods to_pandas, save, plot, document) in the pipeline; both imported on first use
@@ -404,6 +404,41 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
         window = _quantities(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
         return compute_stress(_folder_of(run, stack), window, require_limits=require_limits)
+
+
+def rate(case_or_run, set=None):  # noqa: A002
+    """ISO 6336 Method B rating of the pair (`gearcli rate`), and with a run the "simulated"
+    column beside it.
+
+    Parameters
+    ----------
+    case_or_run : str, Path, mapping, LoadedCase, Simulation
+        A case (as :func:`load_case` takes it), a simulation, or a results folder of `gearcli
+        simulate` (its manifest's resolved case is rated).
+    set : overrides as in :func:`load_case`, applied to the case rated.
+
+    Returns
+    -------
+    gearcli.pipeline.rating.CaseRating
+        ``.iso`` (the ISO column), ``.simulated`` (with a run: K_v = the run's
+        F_max/F_static; its ``simulated_peaks`` the safeties of the peak contact and root
+        stresses of :func:`stress` in the steady window against σ_HG, σ_FG),
+        ``.duty_cycle``, ``.ok``, ``.to_dict()`` (what ``gearcli rate --json`` prints);
+        docs/theory.md, "ISO 6336 rating".
+    """
+    import contextlib
+
+    from gearcli.pipeline.rating import rate_case, simulated_load
+    from gearcli.pipeline.simulation import SimulationResult
+
+    is_folder = isinstance(case_or_run, str | os.PathLike) and Path(case_or_run).is_dir()
+    if not (is_folder or isinstance(case_or_run, SimulationResult)):
+        return rate_case(load_case(case_or_run, set))
+    with contextlib.ExitStack() as stack:
+        simulated, loaded = simulated_load(_folder_of(case_or_run, stack))
+    if isinstance(case_or_run, SimulationResult):
+        loaded = case_or_run.loaded
+    return rate_case(load_case(loaded, set), simulated=simulated)
 
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,

@@ -56,6 +56,20 @@ PAIR_ROWS = [
     ("gear shaft frequency n2", "gear_shaft_frequency_Hz", "Hz"),
 ]
 
+# (label, json key of data["inspection"][gear], index into its (nominal, upper, lower) list or
+# None for a single value, unit) rows of the inspection table.
+_AT = (("nominal", 0), ("at A_sne", 1), ("at A_sni", 2))  # upper, lower allowance
+INSPECTION_ROWS = [
+    ("thickness allowances A_sne / A_sni", "thickness_allowances_mm", "both", "mm"),
+    ("span measurement teeth k", "span_teeth", None, ""),
+    *[(f"span W_k, {at}", "span_mm", i, "mm") for at, i in _AT],
+    ("ball diameter D_M, theoretical", "ball_theoretical_mm", None, "mm"),
+    ("ball diameter D_M, used", "ball_mm", None, "mm"),
+    *[(f"over balls M_dK, {at}", "over_balls_mm", i, "mm") for at, i in _AT],
+    *[(f"chordal thickness s_c, {at}", "chordal_thickness_mm", i, "mm") for at, i in _AT],
+    *[(f"chordal height h_c, {at}", "chordal_height_mm", i, "mm") for at, i in _AT],
+]
+
 
 @app.command()
 @handle_errors
@@ -121,3 +135,33 @@ def _print_tables(data: dict, units: str) -> None:
             value, shown = convert(data["pair"][key], unit, units)
             p.add_row(label, format_value(value), shown)
     console.print(p)
+    if data.get("inspection") is not None:
+        console.print(_inspection_table(data["inspection"], units))
+
+
+def _inspection_table(inspection: dict, units: str):
+    """Span, balls, M_dK and chordal dimensions of both gears (pipeline.geometry.
+    pair_inspection), at the nominal thickness and at the allowances."""
+    from rich.table import Table
+
+    from gearcli.display_units import convert
+
+    t = Table(title="Inspection dimensions", title_justify="left")
+    t.add_column("quantity")
+    t.add_column("pinion", justify="right")
+    t.add_column("gear", justify="right")
+    t.add_column("unit")
+    for label, key, index, unit in INSPECTION_ROWS:
+        values = [inspection[g][key] for g in ("pinion", "gear")]
+        if index == "both":
+            cells, shown = [], unit
+            for pair in values:
+                converted, shown = convert(list(pair), unit, units)
+                cells.append(" / ".join(format_value(v) for v in converted))
+            t.add_row(label, *cells, shown)
+            continue
+        if index is not None:
+            values = [v[index] for v in values]
+        (pinion, gear), shown = convert(values, unit, units)
+        t.add_row(label, format_value(pinion), format_value(gear), shown)
+    return t

@@ -85,7 +85,7 @@ def print_tables(doc) -> None:
         per_h = [v for v in g.sigma_H_max_per_tooth_MPa if v is not None]
         per_f = [v for v in g.sigma_F_max_per_tooth_MPa if v is not None]
         rows = [
-            (f"ISO static σ_H ({z_name} σ_H0, single contact at {point})",
+            (f"ISO static σ_H ({z_name} Z_ε σ_H0, single contact at {point})",
              _f(s.sigma_H_iso_MPa), "MPa"),
             ("ISO Y_F / Y_S (Method B, outer single contact)", f"{s.Y_F:.4f} / {s.Y_S:.4f}", ""),
             ("ISO static σ_F0 = F_t/(b m) Y_F Y_S", _f(s.sigma_F0_MPa), "MPa"),

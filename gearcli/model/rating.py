@@ -314,6 +314,8 @@ class GearStatic:
     Z_single: float  #: Z_B (pinion) or Z_D (gear), ISO (>= 1)
     M_single: float  #: M1 (pinion) or M2 (gear) = √(ρ_red,C/ρ_red at its single-contact point)
     sigma_H_single_MPa: float  #: Hertz at its inner point of single contact (B / D), full load
+    #: ISO 6336-2 σ_H with K factors 1: Z_B (Z_D) σ_H0, σ_H0 = Z_H Z_E Z_ε √(F_t (u+1)/(d1 b u))
+    sigma_H_iso_MPa: float
 
 
 @dataclass(frozen=True)
@@ -336,7 +338,7 @@ class StaticRating:
 
 
 def _gear_static(geo: PairGeometry, which: str, f_t: float, y_eps: float, m_single: float,
-                 sigma_h_single: float) -> GearStatic:
+                 sigma_h0: float, z_eps: float) -> GearStatic:
     """Method B bending at the outer point of single contact (pinion D, gear B) and at the tip.
 
     Outer point of single contact of the pinion: |T1D| = |T1A| + p_b; of the gear:
@@ -356,7 +358,8 @@ def _gear_static(geo: PairGeometry, which: str, f_t: float, y_eps: float, m_sing
     yfa, ysa, _ = (float(v) for v in form_factors(g, sec, y_la, a_fena))
     nominal = f_t / (b * g.module_mm)
     return GearStatic(b, sec, yf, ys, h, float(a_fen), nominal * yf * ys, yfa, ysa,
-                      nominal * yfa * ysa * y_eps, max(m_single, 1.0), m_single, sigma_h_single)
+                      nominal * yfa * ysa * y_eps, max(m_single, 1.0), m_single,
+                      m_single * sigma_h0, max(m_single, 1.0) * z_eps * sigma_h0)
 
 
 def static_rating(geo: PairGeometry, force_normal_N: float, youngs_mpa: tuple[float, float],
@@ -371,9 +374,12 @@ def static_rating(geo: PairGeometry, force_normal_N: float, youngs_mpa: tuple[fl
 
     Notes
     -----
-    σ_H0 = Z_H Z_E √(F_t (u + 1)/(d1 b u)) (ISO 6336-2:2019 σ_H0 with Z_ε = Z_β = 1) is exactly
-    the Hertz stress at the pitch point under the full load; σ_H at the inner points of single
-    contact = M1 σ_H0 (pinion, B) and M2 σ_H0 (gear, D), the exact Hertz values there.
+    ``sigma_H0_MPa`` = Z_H Z_E √(F_t (u + 1)/(d1 b u)) is exactly the Hertz stress at the pitch
+    point under the full load, and M1 σ_H0 (pinion, B), M2 σ_H0 (gear, D) the exact Hertz values
+    at the inner points of single contact (``sigma_H_single_MPa``). The ISO 6336-2:2019 nominal
+    value (eq. 4, spur: Z_β = 1) has the contact ratio factor Z_ε = √((4 − ε_α)/3) (cl. 8):
+    σ_H0,ISO = Z_ε σ_H0 [N/mm²] (``sigma_H0_iso_MPa``), and the ISO static σ_H of each gear
+    (``sigma_H_iso_MPa``, K factors 1) = Z_B σ_H0,ISO (pinion), Z_D σ_H0,ISO (gear) (eq. 2, 3).
     Bending: σ_F0 = F_t/(b m) Y_F Y_S, Y_β = Y_B = Y_DT = 1 (ISO 6336-3:2019 Method B); the
     tip-load variant uses Y_Fa Y_Sa Y_ε, Y_ε = 0.25 + 0.75/ε_α (ISO 6336-3:2006, Method C).
     All K factors (K_A, K_v, K_Hα, K_Hβ, ...) are 1: the dynamic run supplies the real loads.
@@ -391,6 +397,6 @@ def static_rating(geo: PairGeometry, force_normal_N: float, youngs_mpa: tuple[fl
     m1, m2, _, _ = single_pair_contact_factors(geo)
     return StaticRating(
         force_normal_N, f_t, u, e_star, z_h, z_e, z_eps, y_eps, b_h, s_h0, z_eps * s_h0,
-        _gear_static(geo, "pinion", f_t, y_eps, m1, m1 * s_h0),
-        _gear_static(geo, "gear", f_t, y_eps, m2, m2 * s_h0),
+        _gear_static(geo, "pinion", f_t, y_eps, m1, s_h0, z_eps),
+        _gear_static(geo, "gear", f_t, y_eps, m2, s_h0, z_eps),
     )

@@ -8,8 +8,42 @@ from pathlib import Path
 
 from gearcli.case.build import mass_inputs, nominal_pinion_speed, pair_spec
 from gearcli.case.load import LoadedCase, load_case
+from gearcli.case.schema import Case
 from gearcli.model.geometry import Finding, PairGeometry, compute_pair_geometry, mesh_frequencies
+from gearcli.model.iso6336.inspection import InspectionDimensions, inspection_dimensions
 from gearcli.model.params import MassProperties, gear_mass_properties
+
+
+@dataclass(frozen=True)
+class PairInspection:
+    """Inspection dimensions of both gears (tuples: nominal, upper, lower allowance) [mm]."""
+
+    pinion: InspectionDimensions
+    gear: InspectionDimensions
+    allowances_mm: tuple[tuple[float, float], tuple[float, float]]  #: (upper, lower) per gear
+
+    def to_dict(self) -> dict:
+        return {"pinion": {**self.pinion.to_dict(),
+                           "thickness_allowances_mm": list(self.allowances_mm[0])},
+                "gear": {**self.gear.to_dict(),
+                         "thickness_allowances_mm": list(self.allowances_mm[1])}}
+
+
+def pair_inspection(case: Case, g: PairGeometry) -> PairInspection:
+    """Span W_k, balls (theoretical, next standard or rating.<gear>.ball_diameter), M_dK and
+    chordal tooth thickness/height of both gears at the nominal thickness and at the
+    allowances rating.<gear>.thickness_allowances (default: both −gears.<gear>.
+    thickness_allowance); docs/theory.md, "ISO 6336 rating" §6."""
+    out, allowances = [], []
+    for role in ("pinion", "gear"):
+        spec, rg, gg = getattr(case.gears, role), getattr(case.rating, role), getattr(g, role)
+        allow = rg.thickness_allowances or (-spec.thickness_allowance, -spec.thickness_allowance)
+        allow = (float(allow[0]) + 0.0, float(allow[1]) + 0.0)  # -0.0 as 0.0
+        allowances.append(allow)
+        out.append(inspection_dimensions(spec.teeth, spec.profile_shift, g.module_mm,
+                                         g.pressure_angle_rad, gg.d_a_mm, allow,
+                                         rg.ball_diameter))
+    return PairInspection(out[0], out[1], (allowances[0], allowances[1]))
 
 
 @dataclass(frozen=True)
@@ -21,6 +55,8 @@ class GeometryResult:
     mass: tuple[MassProperties, MassProperties]  #: (pinion, gear)
     pinion_speed_rad_s: float | None
     warnings: tuple[Finding, ...]
+    #: span, balls, M_dK, chordal thickness/height (None where the closed forms do not apply)
+    inspection: PairInspection | None = None
 
     def to_dict(self) -> dict:
         """What ``gearcli geometry --json`` prints (:func:`geometry_dict`; key names carry
@@ -134,7 +170,12 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
         for m, gg in ((pinion_in, geo.pinion), (gear_in, geo.gear))
     )
     warnings = tuple(f for f in geo.findings if f.severity == "warning")
-    return GeometryResult(loaded.name, geo, mass, nominal_pinion_speed(case), warnings)
+    try:
+        inspection = pair_inspection(case, geo)
+    except ValueError:  # e.g. no ball that touches within the tooth: no inspection section
+        inspection = None
+    return GeometryResult(loaded.name, geo, mass, nominal_pinion_speed(case), warnings,
+                          inspection)
 
 
 def check_relief_extents(loaded: LoadedCase, geo: PairGeometry) -> None:
@@ -280,6 +321,7 @@ def geometry_dict(result: GeometryResult) -> dict:
         "pinion": gear(g.pinion, result.mass[0]),
         "gear": gear(g.gear, result.mass[1]),
         "pair": pair,
+        "inspection": None if result.inspection is None else result.inspection.to_dict(),
         "warnings": [
             {"code": f.code, "subject": f.subject, "message": f.message} for f in result.warnings
         ],

@@ -24,22 +24,26 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from gearcli.case.load import LoadedCase, load_case
+from gearcli.case.load import LoadedCase, load_case, load_case_text
 from gearcli.case.schema import Case
 from gearcli.errors import CaseError
 from gearcli.model.iso6336.common import Edition
 from gearcli.model.iso6336.document import RatingResult
 from gearcli.model.iso6336.inputs import GearInput, RatingInput
-from gearcli.model.iso6336.inspection import InspectionDimensions, inspection_dimensions
 from gearcli.model.iso6336.material import MaterialKind, Quality
 from gearcli.model.iso6336.rate import rate
 from gearcli.model.iso6336.spectrum import DutyCycleDamage, LoadBin, duty_cycle_damage
 from gearcli.pipeline.capabilities import not_included
-from gearcli.pipeline.geometry import GeometryResult, run_geometry
+from gearcli.pipeline.geometry import (
+    GeometryResult,
+    PairInspection,
+    pair_inspection,
+    run_geometry,
+)
 from gearcli.results.models import IsoResonance
 
 __all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
-           "case_inspection", "RPM_PER_RAD_S"]
+           "case_inspection", "simulated_load", "RPM_PER_RAD_S"]
 
 RPM_PER_RAD_S = 30.0 / math.pi
 _ROLES = ("pinion", "gear")
@@ -273,6 +277,33 @@ def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
     return out
 
 
+def simulated_load(folder: str | Path) -> tuple[SimulatedLoad, LoadedCase]:
+    """(SimulatedLoad, the run's case) of a results folder of `gearcli simulate`: K_v = the
+    summary's F_max/F_static, the peak σ_H, σ_F per gear of `gearcli stress` in the steady
+    window (pipeline.stress.compute_stress; None where a gear has no loaded sample)."""
+    import json
+
+    from gearcli.io.results import read_run
+    from gearcli.pipeline.stress import compute_stress
+
+    stored = read_run(folder)
+    scalars = stored.summary.scalars
+    f_max, f_static = float(scalars.force_max_N), float(scalars.force_static_N)
+    if not (f_static > 0.0 and f_max > 0.0):
+        raise CaseError(f"rate: the run's F_max {f_max:g} N / F_static {f_static:g} N is no "
+                        "dynamic factor; expected a loaded run (both > 0)")
+    res = compute_stress(folder, None)
+    gears = (res.pinion, res.gear)
+    h = tuple(g.sigma_H_peak_MPa for g in gears)
+    f = tuple(g.sigma_F_peak_MPa for g in gears)
+    simulated = SimulatedLoad(dynamic_factor=f_max / f_static,
+                              sigma_H_peak_MPa=None if None in h else h,
+                              sigma_F_peak_MPa=None if None in f else f)
+    loaded = load_case_text(json.dumps(stored.manifest["resolved_case"]),
+                            str(Path(folder) / "manifest.json"))
+    return simulated, loaded
+
+
 def _with_kv_clause(result: RatingResult, source: str) -> RatingResult:
     """The document with the K_v row's clause saying where K_v came from (the model writes
     "given" for every K it is handed)."""
@@ -314,38 +345,11 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
 
 
-@dataclass(frozen=True)
-class PairInspection:
-    """Inspection dimensions of both gears (tuples: nominal, upper, lower allowance) [mm]."""
-
-    pinion: InspectionDimensions
-    gear: InspectionDimensions
-    allowances_mm: tuple[tuple[float, float], tuple[float, float]]  #: (upper, lower) per gear
-
-    def to_dict(self) -> dict:
-        return {"pinion": {**self.pinion.to_dict(),
-                           "thickness_allowances_mm": list(self.allowances_mm[0])},
-                "gear": {**self.gear.to_dict(),
-                         "thickness_allowances_mm": list(self.allowances_mm[1])}}
-
-
 def case_inspection(source: str | Path | LoadedCase, geo: GeometryResult | None = None,
                     overrides: list[str] | None = None) -> PairInspection:
-    """Span W_k, balls (theoretical, next standard or rating.<gear>.ball_diameter), M_dK and
-    chordal tooth thickness/height of both gears at the nominal thickness and at the
-    allowances rating.<gear>.thickness_allowances (default: both −gears.<gear>.
-    thickness_allowance); docs/theory.md, "ISO 6336 rating" §6."""
+    """The inspection dimensions of both gears (pipeline.geometry.pair_inspection: span W_k,
+    balls, M_dK, chordal tooth thickness/height at the nominal thickness and the allowances);
+    docs/theory.md, "ISO 6336 rating" §6."""
     loaded = source if isinstance(source, LoadedCase) else load_case(source, overrides)
-    case = loaded.case
     geo = geo or run_geometry(loaded)
-    g = geo.geometry
-    out, allowances = [], []
-    for role in _ROLES:
-        spec, rg, gg = getattr(case.gears, role), getattr(case.rating, role), getattr(g, role)
-        allow = rg.thickness_allowances or (-spec.thickness_allowance, -spec.thickness_allowance)
-        allow = (float(allow[0]), float(allow[1]))
-        allowances.append(allow)
-        out.append(inspection_dimensions(spec.teeth, spec.profile_shift, g.module_mm,
-                                         g.pressure_angle_rad, gg.d_a_mm, allow,
-                                         rg.ball_diameter))
-    return PairInspection(out[0], out[1], (allowances[0], allowances[1]))
+    return pair_inspection(loaded.case, geo.geometry)

@@ -294,7 +294,7 @@ def _ratio(num, den):
 def _static_doc(st: StaticRating) -> StaticRatingDoc:
     def gear(g, **at_point) -> StaticGear:
         return StaticGear(
-            **at_point, sigma_H_iso_MPa=g.Z_single * st.sigma_H0_MPa,
+            **at_point, sigma_H_iso_MPa=g.sigma_H_iso_MPa,
             face_width_bending_mm=g.face_width_mm, s_Fn_mm=g.section.s_Fn_mm,
             rho_F_mm=g.section.rho_F_mm, h_Fe_mm=g.h_Fe_mm,
             alpha_Fen_deg=math.degrees(g.alpha_Fen_rad), Y_F=g.Y_F, Y_S=g.Y_S,
@@ -338,7 +338,7 @@ def stress_document(res: StressResult) -> StressDocument:
     for which, sig_f in (("pinion", res.sigma_F_pinion), ("gear", res.sigma_F_gear)):
         g = getattr(res.geometry, which)
         gs = getattr(st, which)
-        iso_h = gs.Z_single * st.sigma_H0_MPa
+        iso_h = gs.sigma_H_iso_MPa  # Z_B (Z_D) Z_ε σ_H0 (ISO 6336-2 eq. 2-4)
         peak_h = _peak(res, res.sigma_H, sel, g.teeth)
         peak_f = _peak(res, sig_f, sel, g.teeth)
         h_max, f_max = peak_h.MPa, peak_f.MPa
@@ -358,7 +358,8 @@ def stress_document(res: StressResult) -> StressDocument:
         units={"stress": "MPa", "force": "N", "length": "mm"}, static=_static_doc(st),
         **gears,
         ratio_definition=("peak dynamic stress in the window / ISO static value of that gear: "
-                          "sigma_H vs Z_B sigma_H0 (pinion), Z_D sigma_H0 (gear); sigma_F vs "
+                          "sigma_H vs Z_B Z_eps sigma_H0 (pinion), Z_D Z_eps sigma_H0 (gear), "
+                          "ISO 6336-2; sigma_F vs "
                           "sigma_F0 (Method B, outer point of single contact)"),
         run_max_MPa={"sigma_H": float(res.sigma_H.max(initial=0.0)),
                      "sigma_F_pinion": float(res.sigma_F_pinion.max(initial=0.0)),

@@ -66,7 +66,7 @@ METRICS: dict[str, Metric] = {
     # stress.json, per gear (gearcli stress)
     "sigma_H_peak_MPa": Metric("contact stress σ_H, dynamic peak", "MPa"),
     "sigma_F_peak_MPa": Metric("root stress σ_F, dynamic peak", "MPa"),
-    "sigma_H_iso_MPa": Metric("ISO static σ_H (Z_B or Z_D σ_H0, single contact)", "MPa"),
+    "sigma_H_iso_MPa": Metric("ISO static σ_H (Z_B or Z_D Z_ε σ_H0, single contact)", "MPa"),
     "sigma_F0_MPa": Metric("ISO static σ_F0 = F_t/(b m) Y_F Y_S", "MPa"),
     "ratio_sigma_H_to_static": Metric("dynamic / static σ_H", "–"),
     "ratio_sigma_F_to_static": Metric("dynamic / static σ_F", "–"),
