@@ -22,6 +22,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from gearcli.case.overrides import overrides_from_set, quantity_arguments
 from gearcli.errors import CaseError
 
 if TYPE_CHECKING:
@@ -40,8 +41,9 @@ if TYPE_CHECKING:
     )
 
 __all__ = ["load_case", "geometry", "simulate", "analyze", "spectra_frame", "modal", "mesh",
-           "stress", "rate", "sweep", "Simulation", "Analysis", "Stress", "Modal", "Mesh",
-           "Summary", "AnalysisMetrics", "GearStress", "Mode", "MeshSummary", "SCHEMA_VERSION"]
+           "stress", "rate", "monitor", "sweep", "Simulation", "Analysis", "Stress", "Modal",
+           "Mesh", "Summary", "AnalysisMetrics", "GearStress", "Mode", "MeshSummary",
+           "SCHEMA_VERSION"]
 
 #: The typed documents live in gearcli/results/, the result classes (one per command, with
 #: the methods to_pandas, save, plot, document) in the pipeline; both imported on first use
@@ -64,54 +66,6 @@ def __getattr__(name: str):
         module, cls = _CLASSES[name]
         return getattr(importlib.import_module(f"gearcli.pipeline.{module}"), cls)
     raise AttributeError(f"module 'gearcli.api' has no attribute {name!r}")
-
-
-def _overrides(set_) -> list[str]:
-    """``{"key.path": value}`` as the command line's ``--set key.path=value`` texts (values
-    as JSON, which the override parser reads as YAML: numbers, strings with units, lists);
-    a sequence of such texts (the command line's) as it is."""
-    if isinstance(set_, str):  # one "key.path=value" text, not a sequence of characters
-        return [set_]
-    if set_ is not None and not isinstance(set_, Mapping):
-        if isinstance(set_, bytes) or not hasattr(set_, "__iter__"):
-            raise CaseError(f"set={set_!r:.60}: expected a mapping {{'key.path': value}}, a "
-                            "'key.path=value' text or a sequence of such texts")
-        return [str(item) for item in set_]
-    out = []
-    for key, value in (set_ or {}).items():
-        try:
-            text = value if isinstance(value, str) else json.dumps(
-                value, allow_nan=False, default=_plain)
-        except (TypeError, ValueError):
-            raise CaseError(f"set[{key!r}]: got {value!r:.60}; expected a number, a text "
-                            "(with units) or a list of them") from None
-        out.append(f"{key}={text}")
-    return out
-
-
-def _plain(value):
-    """numpy scalars (np.int64(18), np.float32(2.0)) as the Python numbers they hold."""
-    if hasattr(value, "item") and getattr(value, "shape", None) == ():
-        return value.item()
-    raise TypeError(type(value).__name__)
-
-
-def _quantities(values, dim, what: str, count: int) -> tuple[float, ...]:
-    """``count`` values given as numbers (in ``dim``'s case-file unit) or texts with units, in
-    internal units, as the command line's options take them; anything else a CaseError."""
-    from gearcli import units
-
-    items = (values,) if count == 1 else values
-    if count > 1 and (isinstance(values, str | bytes) or not hasattr(values, "__len__")):
-        items = None
-    if items is None or len(items) != count or any(isinstance(v, bool) for v in items):
-        shape = "a value" if count == 1 else f"{count} values"
-        raise CaseError(f"{what}={values!r:.60}: expected {shape}, each a number in "
-                        f"{dim.default} or a text with units")
-    try:
-        return units.parse_quantities(items, dim)
-    except (units.UnitError, TypeError, ValueError) as exc:
-        raise CaseError(f"{what} {exc}") from None
 
 
 def _callable_or_none(value, what: str):
@@ -154,7 +108,7 @@ def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the
     from gearcli.case.schema import Case
     from gearcli.case.yamlsrc import parse_source
 
-    overrides = _overrides(set)
+    overrides = overrides_from_set(set)
     if isinstance(source, LoadedCase):
         if not overrides:
             return source
@@ -229,7 +183,7 @@ def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
     if _callable_or_none(status, "status"):
         status("loading the case")
     sim = run_simulation(load_case(case, set), progress=progress, zoom=zoom, status=status)
-    sim.overrides = _overrides(set)
+    sim.overrides = overrides_from_set(set)
     return sim
 
 
@@ -271,7 +225,7 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
     from gearcli.pipeline.analyze import analyze as run_analysis
 
     if window is not None:
-        window = _quantities(window, units.TIME, "window", 2)
+        window = quantity_arguments(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
         return run_analysis(_folder_of(run, stack), window, strict)
 
@@ -334,7 +288,7 @@ def modal(case, set=None,  # noqa: A002
     from gearcli.pipeline.modal import run_modal
 
     if speed_range_deg_s is not None:
-        speed_range_deg_s = tuple(math.degrees(v) for v in _quantities(
+        speed_range_deg_s = tuple(math.degrees(v) for v in quantity_arguments(
             speed_range_deg_s, units.ANGULAR_VELOCITY, "speed_range_deg_s", 2))
     return run_modal(load_case(case, set), speed_range_deg_s=speed_range_deg_s)
 
@@ -369,7 +323,7 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
     from gearcli.pipeline.mesh import run_mesh
 
     if load_N is not None:
-        (load_N,) = _quantities(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
+        (load_N,) = quantity_arguments(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
     if not isinstance(harris, bool):
         raise CaseError(f"harris={harris!r:.60}: expected True or False")
     return run_mesh(load_case(case, set), load_N=load_N, harris=harris, method=method,
@@ -401,7 +355,7 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
     from gearcli.pipeline.stress import compute_stress
 
     if window is not None:
-        window = _quantities(window, units.TIME, "window", 2)
+        window = quantity_arguments(window, units.TIME, "window", 2)
     with contextlib.ExitStack() as stack:
         return compute_stress(_folder_of(run, stack), window, require_limits=require_limits)
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import copy
 import difflib
+import json
+from collections.abc import Mapping
 
 import yaml
 
@@ -65,3 +67,53 @@ def check_path(path: tuple[str, ...], schema, text: str) -> None:
                 f"--set {text}: unknown key '{part}' in {where}{hint}; expected one of: {allowed}"
             )
         model = model_in(fields[part].annotation)
+
+
+def overrides_from_set(set_) -> list[str]:
+    """The Python API's ``set=`` (gearcli/api.py): ``{"key.path": value}`` as the command
+    line's ``--set key.path=value`` texts (values as JSON, which the override parser reads as
+    YAML: numbers, strings with units, lists); a sequence of such texts (the command line's)
+    as it is."""
+    if isinstance(set_, str):  # one "key.path=value" text, not a sequence of characters
+        return [set_]
+    if set_ is not None and not isinstance(set_, Mapping):
+        if isinstance(set_, bytes) or not hasattr(set_, "__iter__"):
+            raise CaseError(f"set={set_!r:.60}: expected a mapping {{'key.path': value}}, a "
+                            "'key.path=value' text or a sequence of such texts")
+        return [str(item) for item in set_]
+    out = []
+    for key, value in (set_ or {}).items():
+        try:
+            text = value if isinstance(value, str) else json.dumps(
+                value, allow_nan=False, default=_plain)
+        except (TypeError, ValueError):
+            raise CaseError(f"set[{key!r}]: got {value!r:.60}; expected a number, a text "
+                            "(with units) or a list of them") from None
+        out.append(f"{key}={text}")
+    return out
+
+
+def _plain(value):
+    """numpy scalars (np.int64(18), np.float32(2.0)) as the Python numbers they hold."""
+    if hasattr(value, "item") and getattr(value, "shape", None) == ():
+        return value.item()
+    raise TypeError(type(value).__name__)
+
+
+def quantity_arguments(values, dim, what: str, count: int) -> tuple[float, ...]:
+    """The Python API's quantity arguments (gearcli/api.py): ``count`` values given as
+    numbers (in ``dim``'s case-file unit) or texts with units, in internal units, as the
+    command line's options take them; anything else a CaseError."""
+    from gearcli import units
+
+    items = (values,) if count == 1 else values
+    if count > 1 and (isinstance(values, str | bytes) or not hasattr(values, "__len__")):
+        items = None
+    if items is None or len(items) != count or any(isinstance(v, bool) for v in items):
+        shape = "a value" if count == 1 else f"{count} values"
+        raise CaseError(f"{what}={values!r:.60}: expected {shape}, each a number in "
+                        f"{dim.default} or a text with units")
+    try:
+        return units.parse_quantities(items, dim)
+    except (units.UnitError, TypeError, ValueError) as exc:
+        raise CaseError(f"{what} {exc}") from None

@@ -56,7 +56,7 @@ def plot_stress(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, wi
         ax_f.plot(ms, np.asarray(sigma_F_gear)[zoom, j], color=colour, lw=1.0, ls="--",
                   label=f"gear, slot {j}")
     ax_h.axhline(static_MPa["sigma_H_B"], color=_STATIC, lw=0.9, ls="-.",
-                 label="ISO static at B (Z_B σ_H0)")
+                 label="ISO static (Z_B Z_ε σ_H0)")
     ax_f.axhline(static_MPa["sigma_F0_pinion"], color=_PINION, lw=0.9, ls="-.",
                  label="ISO σ_F0 pinion")
     ax_f.axhline(static_MPa["sigma_F0_gear"], color=_GEAR, lw=0.9, ls=":",
