@@ -98,9 +98,13 @@ def load_side(prm, derived, y, omega2, m2, t_load):
 
 
 @jit_noalloc_inline
-def drive_side(prm, derived, y, mode, a1, omega1, theta1, m1, c1w, drive_angle, drive_value):
+def drive_side(prm, derived, y, mode, a1, omega1, theta1, m1, c1w, forcing):
     """The pinion's drive. ``a1`` [mm/s^2] is the prescribed roll acceleration in speed mode
-    (else unused); ``m1`` the mesh torque on the pinion and ``c1w = c1 omega1`` [N*mm]."""
+    (else unused); ``m1`` the mesh torque on the pinion and ``c1w = c1 omega1`` [N*mm];
+    ``forcing`` the drive inputs at t (:class:`gearcli.core.drive.Forcing`: the prescribed
+    motor angle [rad] and the speed [rad/s] or torque [N*mm] value)."""
+    drive_angle = forcing.angle
+    drive_value = forcing.value
     r_b1 = prm[P.r_b1]
     inv_r_b1 = derived[D.inv_r_b1]
     if mode == DRIVE_SPEED:

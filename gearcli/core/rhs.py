@@ -167,8 +167,7 @@ def rhs(t, y, dy, aux, slot_force, scratch, model, forcing, full):
     ld = load_side(prm, derived, y, omega2, m2, forcing.load)
     loss += ld.loss
     spring += ld.spring
-    dr = drive_side(prm, derived, y, mode, a1, omega1, theta1, m1, c1w, forcing.angle,
-                    forcing.value)
+    dr = drive_side(prm, derived, y, mode, a1, omega1, theta1, m1, c1w, forcing)
     loss += dr.loss
     spring += dr.spring
     a1 = dr.a1

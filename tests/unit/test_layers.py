@@ -301,3 +301,15 @@ def test_no_private_names_across_modules():
     found = [u for m in MODULES for u in _private_uses(m)]
     assert not found, "gearcli modules using another module's private names (make the helper " \
         "public in the lower module):\n" + "\n".join(found)
+
+
+def test_no_compiled_function_takes_more_than_ten_parameters():
+    """Narrow kernel interfaces (architecture habit 11): a numba function takes named bundles,
+    not long positional lists; more than 10 parameters means a bundle is missing."""
+    long = []
+    for f in _files("core"):
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.FunctionDef) and node.decorator_list \
+                    and len(node.args.args) > 10:
+                long.append(f"{f.relative_to(PKG)}:{node.name} ({len(node.args.args)})")
+    assert long == []
