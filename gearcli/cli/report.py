@@ -23,7 +23,8 @@ def report(
                              "slower: the PNGs alone make the report)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Print nothing but errors."),
 ) -> None:
-    """Figures (PNG; SVG too with --svg) and a report: case tables, geometry, results, checks, manifest.
+    """Figures (PNG; SVG too with --svg) and a report: case tables, geometry, results, checks,
+    manifest.
 
     Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError

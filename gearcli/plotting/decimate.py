@@ -37,8 +37,9 @@ def minmax_decimate(t, y, n_columns: int = DRAW_COLUMNS) -> tuple[np.ndarray, np
     Returns
     -------
     (t, y) subsets of the inputs (copies), at most 4·n_columns samples (5 in columns with a
-    NaN), containing every column's minimum and maximum, hence the global minimum and maximum. Inputs with no more
-    than 4·n_columns samples, or a zero time span, are returned whole.
+    NaN), containing every column's minimum and maximum, hence the global minimum and
+    maximum. Inputs with no more than 4·n_columns samples, or a zero time span, are returned
+    whole.
     """
     t = np.asarray(t, float)
     y = np.asarray(y, float)
