@@ -7,7 +7,7 @@ CASE   ?= cases/seed.yaml
 OUT    ?= out/seed
 JOBS   ?= auto
 
-.PHONY: install warm demo test test-fast bench bench-ab lint clean browser
+.PHONY: install warm demo test test-fast bench bench-report bench-ab lint clean browser
 
 install: $(STAMP)
 
@@ -68,6 +68,10 @@ test-fast: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python bench/run.py
+
+# gearcli report of the seed run over `python -c "import matplotlib.pyplot"` (issue 29) alone
+bench-report: $(STAMP)
+	$(BIN)/python bench/run.py --report-only
 
 # Kernel A/B against another revision, alternating rounds (bench/ab.py): make bench-ab BASE=HEAD~3
 BASE ?= HEAD

@@ -15,7 +15,11 @@ Sections (issue 3, speed):
    one (``NUMBA_CACHE_DIR`` a fresh folder); the cache with the package folder read-only.
 5. Peak RSS of a 60 s simulation (``/usr/bin/time -v``).
 6. ``analyze`` + ``report`` of a written seed run (in process), target < 5 s (issue 12 moved
-   this check out of the test suite: wall-clock times belong here, never in tests).
+   this check out of the test suite: wall-clock times belong here, never in tests); and
+   ``gearcli report`` of the seed run (warm) over ``python -c "import matplotlib.pyplot"``,
+   alternating ``--rounds`` rounds, medians and their ratio, with and without ``--svg``
+   (issue 29: target <= 3 s on a quiet 2-core machine; ``--report-only``, and
+   ``--report-base DIR`` to time another checkout's gearcli in the same rounds).
 7. Start-up as ratios (issue 16), so the targets hold on any machine: ``--rounds`` rounds, each
    running every command once in turn, so that a noisy neighbour slows all of them alike;
    medians and minima, ratio of the medians. ``simulate`` warm over ``python -c "import
@@ -397,6 +401,40 @@ def fe_mesh(args) -> None:
         f"{first.seconds / warm_fe:.0f}x)")
 
 
+def report_timing(args) -> None:
+    """`gearcli report` of the seed run (warm caches) against ``python -c "import
+    matplotlib.pyplot"`` (the floor of any process that draws), alternating rounds, medians."""
+    print(f"gearcli report of the seed run: {args.rounds} rounds, each command once per round")
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp) / "seed"
+        subprocess.run(GEARCLI + ["simulate", str(SEED), "-o", str(folder), "--quiet"],
+                       check=True, capture_output=True)
+        # exit 4: the seed fails its checks, the analysis is written all the same
+        subprocess.run(GEARCLI + ["analyze", str(folder), "--quiet"], capture_output=True)
+        report = GEARCLI + ["report", str(folder), "--force", "--quiet"]
+        cmds = {"import matplotlib.pyplot": [sys.executable, "-c", "import matplotlib.pyplot"],
+                "report": report, "report --svg": report + ["--svg"]}
+        envs: dict[str, dict | None] = dict.fromkeys(cmds)
+        if args.report_base:  # the same command from another checkout's gearcli package
+            cmds["report (base)"] = report
+            envs["report (base)"] = {**os.environ, "PYTHONPATH": str(Path(args.report_base))}
+        for name, cmd in cmds.items():  # warm: bytecode, font cache, numba cache
+            wall(cmd, 1, envs[name])
+        times: dict[str, list[float]] = {k: [] for k in cmds}
+        for _ in range(args.rounds):
+            for name, cmd in cmds.items():
+                times[name] += wall(cmd, 1, envs[name])
+    med = {k: statistics.median(v) for k, v in times.items()}
+    floor = med["import matplotlib.pyplot"]
+    row('python -c "import matplotlib.pyplot"', f"median {floor:.2f} s, min "
+        f"{min(times['import matplotlib.pyplot']):.2f} s")
+    for name in cmds:
+        if name.startswith("report"):
+            row(f"gearcli {name} seed, warm (import matplotlib.pyplot = 1)",
+                f"median {med[name]:.2f} s, min {min(times[name]):.2f} s; "
+                f"{med[name] / floor:.1f}x", "<= 3 s quiet")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=9, help="timed solver runs (median), >= 7")
@@ -409,6 +447,10 @@ def main() -> None:
                     help="skip the python -X importtime profiles")
     ap.add_argument("--startup-only", action="store_true",
                     help="only the start-up section (ratios, import profile)")
+    ap.add_argument("--report-only", action="store_true",
+                    help="only the report timing (gearcli report vs import matplotlib.pyplot)")
+    ap.add_argument("--report-base", metavar="DIR",
+                    help="also time `gearcli report` with DIR's gearcli (PYTHONPATH=DIR)")
     ap.add_argument("--quick", action="store_true",
                     help="start-up and solver only (no scipy, end-to-end, memory)")
     ap.add_argument("--fe-only", action="store_true",
@@ -421,6 +463,8 @@ def main() -> None:
           f"{platform.processor() or platform.machine()}")
     if args.fe_only:
         fe_mesh(args)
+    elif args.report_only:
+        report_timing(args)
     else:
         _sections(args)
     print("\n| what | measured | target | |\n|---|---|---|---|")
@@ -439,6 +483,7 @@ def _sections(args) -> None:
         formats(args)
         post_processing(args)
         fe_mesh(args)
+        report_timing(args)
 
 
 if __name__ == "__main__":

@@ -19,9 +19,12 @@ def report(
         None, "-o", "--out", help="Report file (default DIR/report.*)."
     ),
     force: bool = typer.Option(False, "--force", help="Replace an earlier report."),
+    svg: bool = typer.Option(False, "--svg", help="Also write every figure as SVG (vector; "
+                             "slower: the PNGs alone make the report)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Print nothing but errors."),
 ) -> None:
-    """Figures (PNG + SVG) and a report: case tables, geometry, results, checks, manifest.
+    """Figures (PNG; SVG too with --svg) and a report: case tables, geometry, results, checks,
+    manifest.
 
     Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError
@@ -34,7 +37,7 @@ def report(
     check_new_file(target, force, "-o" if out is not None else "the report")
     if out is None:
         check_no_earlier(folder, ("figures",), force, "report's figures")
-    path = build_report(folder, fmt, out, display_units())
+    path = build_report(folder, fmt, out, display_units(), svg)
     if not quiet:
         typer.echo(f"report written to {path}")
 
@@ -48,6 +51,8 @@ def run(
     force: bool = typer.Option(False, "--force", help="Replace an earlier results folder "
                                "(files gearcli did not write stay)."),
     fmt: str = typer.Option("html", "--format", help="Report format: html or md."),
+    svg: bool = typer.Option(False, "--svg", help="Also write every figure as SVG (vector; "
+                             "slower: the PNGs alone make the report)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors and the report path."),
 ) -> None:
     """simulate + analyze + report in one go; the exit code is analyze's (4: a check failed).
@@ -84,7 +89,7 @@ def run(
             write_simulation_files(result, tmp, set_)
             analysis = api.analyze(tmp)
             doc = write_analysis(analysis)
-            name = build_report(tmp, fmt, None, units).name
+            name = build_report(tmp, fmt, None, units, svg).name
     path = out / name
     if not quiet:
         from gearcli.results import AnalysisDocument

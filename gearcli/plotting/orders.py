@@ -14,21 +14,28 @@ __all__ = ["order_map", "plot_order_map"]
 
 
 def order_map(t_s, signal, omega1_rad_s, segment_s: float):
-    """Short-time amplitude spectra (Hann, 50 % overlap, scipy.signal.stft scaled so that a
-    sinusoid of amplitude A reads A) of ``signal`` [its unit] sampled at ``t_s`` [s] in
-    segments of ``segment_s`` [s]; returns (segment times [s], pinion speed at each [rpm],
-    frequencies [Hz], amplitudes (frequency x segment))."""
-    from scipy.signal import stft
+    """Short-time amplitude spectra (periodic Hann window, 50 % overlap, scaled so that a
+    sinusoid of amplitude A on a bin reads A: Harris, "On the use of windows for harmonic
+    analysis with the discrete Fourier transform", Proc. IEEE 66(1), 1978) of ``signal`` [its
+    unit] sampled at ``t_s`` [s] in segments of ``segment_s`` [s]; returns (segment times [s],
+    pinion speed at each [rpm], frequencies [Hz], amplitudes (frequency x segment)).
 
+    The same numbers as ``scipy.signal.stft(..., window="hann", boundary=None, padded=False,
+    scaling="spectrum")`` doubled, in numpy alone: importing scipy.signal costs about a second,
+    more than the transform (tests/unit/test_orders.py compares the two)."""
     t = np.asarray(t_s, float)
     fs = (t.size - 1) / (t[-1] - t[0])
     x = np.asarray(signal, float) - float(np.mean(signal))
     # at least 16 samples a segment, at most a quarter of the run (four segments or more)
     n = max(min(int(round(segment_s * fs)), x.size // 4), min(16, x.size))
-    f, tau, z = stft(x, fs=fs, window="hann", nperseg=n, noverlap=n // 2, boundary=None,
-                     padded=False, scaling="spectrum")
-    amp = 2.0 * np.abs(z)  # one-sided amplitude (scipy's "spectrum" scaling is A/2)
-    t_mid = t[0] + tau
+    step = n - n // 2
+    starts = np.arange(0, x.size - n + 1, step)
+    window = 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)  # periodic Hann
+    segments = x[starts[:, None] + np.arange(n)] * window
+    # one-sided amplitude: 2 |X_k| / sum(w) (the "spectrum" scaling A/2, doubled)
+    amp = 2.0 * np.abs(np.fft.rfft(segments, axis=1)).T / window.sum()
+    f = np.fft.rfftfreq(n, 1.0 / fs)
+    t_mid = t[0] + (starts + n / 2) / fs
     rpm = np.interp(t_mid, t, np.asarray(omega1_rad_s, float)) * 30.0 / np.pi
     return t_mid, rpm, f, amp
 

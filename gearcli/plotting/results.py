@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli.plotting.decimate import minmax_decimate
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -40,6 +42,12 @@ def stacked_figure(rows: int, height: float = 3.1, ratios=None) -> tuple[Figure,
 def _shade_window(ax: Axes, window_s) -> None:
     if window_s is not None:
         ax.axvspan(window_s[0], window_s[1], color=_WINDOW_FILL, zorder=0, label="steady window")
+
+
+def _line(ax: Axes, t, y, **style) -> None:
+    """A time series over the whole run, decimated to the axes' pixel columns with every
+    column's extrema kept (gearcli/plotting/decimate.py): the same picture, faster to draw."""
+    ax.plot(*minmax_decimate(t, y), **style)
 
 
 def _in(t: np.ndarray, span) -> np.ndarray:
@@ -92,9 +100,9 @@ def plot_speeds(t_s, omega1_rad_s, omega2_rad_s, teeth: tuple[int, int], window_
     kin = w1 * teeth[0] / teeth[1]
     fig, (ax, zx) = stacked_figure(2)
     _shade_window(ax, window_s)
-    ax.plot(t, w1, color=PINION, lw=1.0, label=f"pinion ω1 (z1 = {teeth[0]})")
-    ax.plot(t, w2, color=GEAR, lw=0.6, label=f"gear ω2 (z2 = {teeth[1]})")
-    ax.plot(t, kin, color=KIN, lw=0.9, ls="--", label="kinematic gear speed ω1·z1/z2")
+    _line(ax, t, w1, color=PINION, lw=1.0, label=f"pinion ω1 (z1 = {teeth[0]})")
+    _line(ax, t, w2, color=GEAR, lw=0.6, label=f"gear ω2 (z2 = {teeth[1]})")
+    _line(ax, t, kin, color=KIN, lw=0.9, ls="--", label="kinematic gear speed ω1·z1/z2")
     ax.set(xlabel="time [s]", ylabel=f"speed [{unit}]", xlim=(t[0], t[-1]))
     ax.legend(loc="lower right", fontsize=8)
     sel = _in(t, window_s) if window_s is not None else np.ones(t.size, bool)
@@ -126,9 +134,9 @@ def plot_force(t_s, force_N, static_N, force_max_N=None, force_max_t_s=None, win
     stat = np.broadcast_to(np.asarray(static_N, float), t.shape)
     fig, (ax, zx) = stacked_figure(2)
     _shade_window(ax, window_s)
-    ax.plot(t, f / 1e3, color=FORCE, lw=0.35, label="total normal force (output samples)")
-    ax.plot(t, stat / 1e3, color=STATIC, lw=1.2, ls="--",
-            label="static force (resisted torque / r_b2)")
+    _line(ax, t, f / 1e3, color=FORCE, lw=0.35, label="total normal force (output samples)")
+    _line(ax, t, stat / 1e3, color=STATIC, lw=1.2, ls="--",
+          label="static force (resisted torque / r_b2)")
     has_max = force_max_N is not None and force_max_t_s is not None
     if has_max:
         ax.plot(force_max_t_s, force_max_N / 1e3, "*", color=PEAK, ms=11, mec="white", mew=0.6,
@@ -226,7 +234,7 @@ def plot_dte(t_s, dte_mm, window_s=None, zoom_s=None, f_z_Hz: float | None = Non
     t, d = np.asarray(t_s, float), np.asarray(dte_mm, float) * k
     fig, (ax, zx) = stacked_figure(2)
     _shade_window(ax, window_s)
-    ax.plot(t, d, color=PINION, lw=0.4, label="DTE δ (output samples)")
+    _line(ax, t, d, color=PINION, lw=0.4, label="DTE δ (output samples)")
     sel = _in(t, window_s) if window_s is not None else np.ones(t.size, bool)
     mean, pp = float(np.mean(d[sel])), float(np.ptp(d[sel]))
     if window_s is not None:
@@ -276,7 +284,7 @@ def plot_modifications(errors: dict | None = None, relief: dict | None = None) -
         t = np.asarray(errors["t_s"], float)
         d = np.asarray(errors["dte_mm"], float) * 1e3
         m = np.asarray(errors["cycle_mean_mm"], float) * 1e3
-        ax.plot(t, d, color=PINION, lw=0.3, alpha=0.5, label="DTE δ (output samples)")
+        _line(ax, t, d, color=PINION, lw=0.3, alpha=0.5, label="DTE δ (output samples)")
         ax.plot(errors["cycle_t_s"], m, color=PEAK, lw=1.6,
                 label=f"DTE mean over each mesh cycle: {np.ptp(m):.1f} µm peak to peak")
         ref = errors.get("reference_mm")
@@ -340,7 +348,7 @@ def _time_panels(t_s, window_s, panels, title: str, ncol: int) -> Figure:
     for ax, (ylabel, curves) in zip(axes, panels, strict=True):
         _shade_window(ax, window_s)
         for values, label, colour, style in curves:
-            ax.plot(t, values, color=colour, ls=style, lw=0.8, label=label)
+            _line(ax, t, values, color=colour, ls=style, lw=0.8, label=label)
         ax.set(xlabel="time [s]", ylabel=ylabel, xlim=(t[0], t[-1]))
         ax.legend(fontsize=8, ncol=ncol, loc="best")
     fig.suptitle(title)

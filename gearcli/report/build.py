@@ -16,7 +16,7 @@ FORMATS = ("html", "md")
 
 
 def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | None = None,
-                 units: str = "engineering") -> Path:
+                 units: str = "engineering", svg: bool = False) -> Path:
     """Write the report of a results folder that ``gearcli analyze`` has processed.
 
     Parameters
@@ -28,10 +28,13 @@ def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | N
     out_file : report path; default ``folder/report.html`` or ``folder/report.md``
     units : display units of tables and figures, "engineering" (rpm, µm, N·m) or "si"
         (gearcli/display_units.py)
+    svg : also write every figure as SVG (vector, for print or editing); off by default, as
+        saving an SVG costs about as much as drawing the figure
 
     Returns
     -------
-    Path of the report. The figures are always written to ``folder/figures/`` as PNG and SVG;
+    Path of the report. The figures are always written to ``folder/figures/`` as PNG (and SVG
+    with ``svg``; an SVG of an earlier report without ``svg`` is removed);
     every file is written atomically and replaces an older report.
 
     Raises
@@ -52,7 +55,7 @@ def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | N
     if not out.parent.is_dir():
         raise OutputError(f"{out}: folder {out.parent} does not exist; expected an existing "
                           "folder")
-    figures = build_figures(data, data.folder / "figures")
+    figures = build_figures(data, data.folder / "figures", svg)
     doc = build_document(data, figures)
     text = render_html(doc) if fmt == "html" else render_markdown(doc, out.parent)
     write_atomic(out, text)

@@ -1,4 +1,5 @@
-"""The report's figures: choose what to zoom on, draw with gearcli.plotting, save PNG and SVG."""
+"""The report's figures: choose what to zoom on, draw with gearcli.plotting, save PNG (and SVG
+on request)."""
 
 from __future__ import annotations
 
@@ -33,16 +34,18 @@ SPECTRA = {
 
 @dataclass(frozen=True)
 class FigureFile:
-    """One saved figure: a short name, its caption and the files written."""
+    """One saved figure: a short name, its caption and the files written (``svg`` None when
+    no SVG was asked for)."""
 
     name: str
     caption: str
     png: Path
-    svg: Path
+    svg: Path | None
 
 
-def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
-    """Draw every figure of the report into ``out_dir`` (created) as PNG and SVG."""
+def build_figures(data: ReportData, out_dir: Path, svg: bool = False) -> list[FigureFile]:
+    """Draw every figure of the report into ``out_dir`` (created) as PNG, and as SVG too when
+    ``svg`` (saving an SVG costs about as much as drawing the figure: issue 29)."""
     out_dir.mkdir(parents=True, exist_ok=True)
     c = data.run.columns
     t = c["t_s"]
@@ -149,7 +152,7 @@ def build_figures(data: ReportData, out_dir: Path) -> list[FigureFile]:
                      "modifications change: the once-per-revolution DTE they add (mean over each "
                      "mesh cycle) and the relief along the path of contact.",
                      lambda: _modifications(data, period)))
-    return [_save(name, caption, draw(), out_dir) for name, caption, draw in jobs]
+    return [_save(name, caption, draw(), out_dir, svg) for name, caption, draw in jobs]
 
 
 def _stress(data: ReportData):
@@ -203,20 +206,27 @@ def _zoom_of(zoom: dict, span, r_b2, damping=(0.0, 0.0), column: str = "force_to
     return t[inside], zoom[column][inside], static
 
 
-def _save(name: str, caption: str, fig, out_dir: Path) -> FigureFile:
+def _save(name: str, caption: str, fig, out_dir: Path, svg: bool = False) -> FigureFile:
     from matplotlib import rc_context
 
-    paths = {}
+    paths: dict[str, Path | None] = {"svg": None}
     # SVG text stays text (smaller, faster); a fixed hash salt keeps the SVG ids reproducible.
     with rc_context({"svg.fonttype": "none", "svg.hashsalt": "gearcli"}):
-        for fmt in ("png", "svg"):
+        for fmt in ("png", "svg") if svg else ("png",):
             buf = io.BytesIO()
             fig.savefig(buf, format=fmt, dpi=PNG_DPI, metadata=_metadata(fmt))
             paths[fmt] = out_dir / f"{name}.{fmt}"
             write_atomic(paths[fmt], buf.getvalue())
             if fmt == "png":  # the layout is done: keep it for the SVG instead of redoing it
                 fig.set_layout_engine("none")
+    if not svg:  # an SVG of an earlier report would no longer match its PNG
+        (out_dir / f"{name}.svg").unlink(missing_ok=True)
     return FigureFile(name, caption, paths["png"], paths["svg"])
+
+
+def saved_formats(figures) -> str:
+    """"PNG and SVG" when any of ``figures`` (FigureFile) was saved as SVG too, else "PNG"."""
+    return "PNG and SVG" if any(f.svg is not None for f in figures) else "PNG"
 
 
 def _metadata(fmt: str) -> dict:

@@ -15,6 +15,7 @@ from gearcli.report.document import (
     Preformatted,
     Section,
 )
+from gearcli.report.figures import saved_formats
 
 CSS = """
 body { font-family: -apple-system, "Segoe UI", Helvetica, Arial, sans-serif; color: #1d1d1d;
@@ -68,8 +69,9 @@ def render_html(doc: Document) -> str:
         parts.append(f'<p class="description">{escape(doc.description)}</p>')
     parts.append(f"<nav>{nav}</nav>")
     parts += [_section(s) for s in doc.sections]
+    figures = [b.figure for s in doc.sections for b in s.blocks if isinstance(b, NumberedFigure)]
     parts += ["<footer>Written by gearcli report from the files of this results folder; the "
-              "figures are also in figures/ as PNG and SVG.</footer>",
+              f"figures are also in figures/ as {saved_formats(figures)}.</footer>",
               "</main>", "</body>", "</html>", ""]
     return "\n".join(parts)
 

@@ -14,6 +14,7 @@ from gearcli.report.document import (
     Paragraph,
     Preformatted,
 )
+from gearcli.report.figures import saved_formats
 
 _SPECIAL = re.compile(r"([\\`*_\[\]<>|#])")
 
@@ -33,8 +34,9 @@ def render_markdown(doc: Document, base: Path) -> str:
         out += [f"## {md_escape(section.title)}", ""]
         for block in section.blocks:
             out += _block(block, base) + [""]
+    figures = [b.figure for s in doc.sections for b in s.blocks if isinstance(b, NumberedFigure)]
     out += ["---", "Written by gearcli report from the files of this results folder; the "
-            "figures are also in figures/ as SVG.", ""]
+            f"figures are in figures/ as {saved_formats(figures)}.", ""]
     return "\n".join(out)
 
 

@@ -101,19 +101,34 @@ def _table(parsed: _Collector, title: str) -> tuple[list[list[str]], list[str]]:
     raise AssertionError(f"no table {title!r} in {list(parsed.tables)}")
 
 
-def test_html_is_written_next_to_the_results_and_figures_as_png_and_svg(short_dir, html_report):
-    path, _ = html_report
+def test_html_is_written_next_to_the_results_and_figures_as_png(short_dir, html_report):
+    path, text = html_report
     assert path == short_dir / "report.html"
     pngs = sorted((short_dir / "figures").glob("*.png"))
-    svgs = sorted((short_dir / "figures").glob("*.svg"))
-    assert [p.stem for p in pngs] == [p.stem for p in svgs]
     # the short seed run has a run-up (order map) and an overdamped mesh mode (Campbell)
     assert {p.stem for p in pngs} == {"geometry", "speeds", "force", "mesh_cycles", "dte",
                                       "spectra", "campbell", "orders"}
     for p in pngs:
         assert p.read_bytes().startswith(PNG_SIGNATURE)
+    # SVG only on request (issue 29: saving it doubled the report's time)
+    assert not list((short_dir / "figures").glob("*.svg"))
+    assert "figures/ as PNG." in text
+
+
+def test_svg_on_request_and_removed_when_no_longer_asked_for(short_dir, tmp_path):
+    folder = tmp_path / "svg"
+    shutil.copytree(short_dir, folder, ignore=shutil.ignore_patterns("report.*", "figures"))
+    md = build_report(folder, fmt="md", svg=True).read_text(encoding="utf-8")
+    pngs = sorted((folder / "figures").glob("*.png"))
+    svgs = sorted((folder / "figures").glob("*.svg"))
+    assert pngs and [p.stem for p in pngs] == [p.stem for p in svgs]
     for p in svgs:
         assert b"<svg" in p.read_bytes()[:2000]
+    assert "figures/ as PNG and SVG." in md
+    assert ".svg)" not in md  # the page links the PNGs
+    build_report(folder, fmt="md")
+    assert not list((folder / "figures").glob("*.svg"))
+    assert len(list((folder / "figures").glob("*.png"))) == len(pngs)
 
 
 def test_html_parses_and_embeds_every_figure(short_dir, html_report):
