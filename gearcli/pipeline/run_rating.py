@@ -13,10 +13,16 @@ from __future__ import annotations
 from pathlib import Path
 
 from gearcli.case.load import LoadedCase
-from gearcli.errors import CaseError
-from gearcli.pipeline.rating import CaseRating, rate_case, rating_input, simulated_load
+from gearcli.errors import GearcliError
+from gearcli.pipeline.rating import (
+    CaseRating,
+    SimulatedLoad,
+    rate_case,
+    rating_input,
+    simulated_load,
+)
 
-__all__ = ["rate_run"]
+__all__ = ["rate_run", "simulated_safeties"]
 
 
 def _first_line(exc: Exception) -> str:
@@ -30,10 +36,24 @@ def rate_run(folder: str | Path, loaded: LoadedCase) -> tuple[CaseRating | None,
     cannot be rated costs no stress evaluation of the run."""
     try:
         rating_input(loaded)
-    except CaseError as exc:
+    except GearcliError as exc:
         return None, _first_line(exc)
     try:
         simulated, _ = simulated_load(folder)
         return rate_case(loaded, simulated=simulated), ""
-    except CaseError as exc:
+    except GearcliError as exc:
         return None, _first_line(exc)
+
+
+def simulated_safeties(loaded: LoadedCase, dynamic_factor: float | None
+                       ) -> tuple[float | None, float | None]:
+    """(min S_H, min S_F) over pinion and gear of the ISO 6336 rating with K_v = the run's
+    F_max/F_static (a sweep point's metrics); (None, None) when the case cannot be rated."""
+    if dynamic_factor is None or not dynamic_factor > 0.0:
+        return None, None
+    try:
+        sim = rate_case(loaded, simulated=SimulatedLoad(float(dynamic_factor))).simulated
+    except GearcliError:
+        return None, None
+    gears = (sim.pinion, sim.gear)
+    return min(g.S_H for g in gears), min(g.S_F for g in gears)

@@ -16,7 +16,10 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from gearcli.case.load import load_case
 from gearcli.cli import app
+from gearcli.pipeline.run_rating import simulated_safeties
+from gearcli.results import sweep_metrics
 
 runner = CliRunner()
 ISO_PAIR = str(Path(__file__).resolve().parents[2] / "cases" / "iso_pair.yaml")
@@ -50,6 +53,14 @@ def test_run_writes_rating_json_with_both_columns_and_the_report_section(tmp_pat
     section = report.split("## Rating (ISO 6336)")[1].split("\n## ")[0]
     assert "| pinion | S\\_H |" in section and "| gear | S\\_F |" in section
     assert "simulated" in section and "Not rated" not in section
+    # the sweep's metrics: the same rating from the point's dynamic factor alone
+    loaded = load_case(ISO_PAIR, ["run.end_time=0.3", "material.contact_fatigue_limit=1500",
+                                  "material.bending_fatigue_limit=430"])
+    s_h, s_f = simulated_safeties(loaded, summary["dynamic_factor"])
+    assert s_h == pytest.approx(min(sim[r]["S_H"] for r in ("pinion", "gear")), rel=1e-9)
+    assert s_f == pytest.approx(min(sim[r]["S_F"] for r in ("pinion", "gear")), rel=1e-9)
+    assert simulated_safeties(load_case(ISO_PAIR), 1.3) == (None, None)
+    assert "safety_pitting_min" in sweep_metrics("sweep")
 
 
 def test_run_without_limits_says_what_is_missing(tmp_path):
