@@ -89,6 +89,7 @@ def run(
             write_simulation_files(result, tmp, set_)
             analysis = api.analyze(tmp)
             doc = write_analysis(analysis)
+            rating_note = _write_rating(tmp, result.loaded)
             name = build_report(tmp, fmt, None, units, svg).name
     path = out / name
     if not quiet:
@@ -97,7 +98,23 @@ def run(
         print_checks(AnalysisDocument.from_document(doc), units)
         for w in result.warnings:
             typer.echo(f"warning: {w}", err=True)
+        if rating_note:
+            typer.echo(f"not rated (ISO 6336): {rating_note}", err=True)
     typer.echo(f"report written to {path}")
     if not analysis.passed:
         failed = [c.name for c in analysis.checks if not c.passed]
         raise CheckFailed(f"{out}: check(s) failed: {', '.join(failed)}")
+
+
+def _write_rating(folder: Path, loaded) -> str:
+    """rating.json (ISO 6336: the ISO and the simulated column) of the run in ``folder`` when
+    its case can be rated, returning ""; else, writing nothing, why it was not rated."""
+    import json
+
+    from gearcli.io.files import write_atomic
+    from gearcli.pipeline.run_rating import rate_run
+
+    rating, why_not = rate_run(folder, loaded)
+    if rating is not None:
+        write_atomic(folder / "rating.json", json.dumps(rating.to_dict(), indent=2) + "\n")
+    return why_not

@@ -13,7 +13,14 @@ from gearcli.case.build import gear_side_damping, pair_spec
 from gearcli.case.load import load_case_text
 from gearcli.case.schema import Case
 from gearcli.errors import GearcliError, ResultsError
-from gearcli.io.results import StoredRun, read_analysis, read_columns, read_run, read_stress
+from gearcli.io.results import (
+    StoredRun,
+    read_analysis,
+    read_columns,
+    read_json,
+    read_run,
+    read_stress,
+)
 from gearcli.model.geometry import PairGeometry, compute_pair_geometry
 from gearcli.results import AnalysisDocument, AnalysisMetrics, StressDocument, Summary
 
@@ -39,6 +46,8 @@ class ReportData:
     gear_side_damping: tuple[float, float] = (0.0, 0.0)
     #: the stored case, typed and in internal units (gearcli.case.schema.Case)
     case: Case | None = None
+    #: rating.json of `gearcli run` (ISO 6336: the ISO and the simulated column), when written
+    rating: dict | None = None
 
     @property
     def folder(self) -> Path:
@@ -118,5 +127,8 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
     zoom = {}
     if (run.folder / "zoom.csv").is_file():
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
+    rating = None
+    if (run.folder / "rating.json").is_file():
+        rating = read_json(run.folder / "rating.json")
     return ReportData(run, analysis, spectrum, geometry, error, stress, stress_series, zoom,
-                      units, gear_side_damping(loaded.case), loaded.case)
+                      units, gear_side_damping(loaded.case), loaded.case, rating)

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from gearcli.report import tables as tb
 from gearcli.report.data import ReportData
 from gearcli.report.figures import FigureFile
+from gearcli.report.rating import missing_line, rating_table
 from gearcli.results import shown_values
 from gearcli.results.metrics import display
 
@@ -112,6 +113,9 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
                                              tb.modes_table(data))),
         Section("Checks", "checks", tables(tb.checks_table(data))),
         *([Section("Stress", "stress", tables(tb.stress_table(data)))] if data.stress else []),
+        Section("Rating (ISO 6336)", "rating",
+                tables(rating_table(data.rating)) if data.rating
+                else [Paragraph(missing_line(data.case))]),
         Section("Warnings", "warnings",
                 [Bullets(tuple(warnings), "warn")] if warnings else [Paragraph("None.")]),
         Section("Figures", "figures",

@@ -34,6 +34,8 @@ METRICS: dict[str, Metric] = {
     "force_max_t_s": Metric("time of the maximum force", "s"),
     "force_min_N": Metric("normal force, minimum", "N"),
     "dynamic_factor": Metric("dynamic factor F_max / F_static", "–"),
+    "safety_pitting_min": Metric("S_H ISO 6336 with the simulated K_v, min of the gears", "–"),
+    "safety_bending_min": Metric("S_F ISO 6336 with the simulated K_v, min of the gears", "–"),
     "dte_mean_mm": Metric("DTE, mean", "mm", True),
     "dte_peak_to_peak_mm": Metric("DTE, peak to peak", "mm", True),
     "dte_rms_mm": Metric("DTE, standard deviation", "mm", True),

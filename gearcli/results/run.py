@@ -102,6 +102,10 @@ class PointLines(Document):
                                                  signal="force_total_N")
     energy_balance_relative_residual: float | None = metric_field(
         "energy_balance_relative_residual", None, "sweep", metric="energy_relative_residual")
+    #: ISO 6336 safeties with K_v = the point's F_max/F_static, the smaller of pinion and gear
+    #: (pipeline/run_rating.py); None when the case has no fatigue limits
+    safety_pitting_min: float | None = metric_field("safety_pitting_min", None, "sweep")
+    safety_bending_min: float | None = metric_field("safety_bending_min", None, "sweep")
 
 
 def sweep_metrics(place: str = "sweep") -> tuple[str, ...]:

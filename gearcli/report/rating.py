@@ -1,0 +1,57 @@
+"""The report's "Rating (ISO 6336)" section: S_H and S_F per gear, the ISO column (K_v of the
+case) and the simulated column (K_v = the run's F_max/F_static) side by side, with the minimum
+safeties and verdicts (rating.json of `gearcli run`; docs/theory.md, "ISO 6336 rating")."""
+
+from __future__ import annotations
+
+from gearcli.case.schema import Case
+from gearcli.report.tables import Table, fmt
+
+_ROLES = ("pinion", "gear")
+_LIMITS = ("contact_fatigue_limit", "bending_fatigue_limit")
+
+
+def missing_limits(case: Case | None) -> list[str]:
+    """The fatigue limits the rating needs and the case does not give: per gear, its
+    material's (else the case's) σ_Hlim, σ_Flim, unless rating.<gear>.material.hardness
+    gives them (ISO 6336-5)."""
+    if case is None:
+        return ["the case"]
+    out = []
+    for role in _ROLES:
+        mat = getattr(case.gears, role).material or case.material
+        if getattr(case.rating, role).material.hardness is not None:
+            continue
+        out += [f"{role} {key}" for key in _LIMITS if getattr(mat, key) is None]
+    return out
+
+
+def rating_table(rating: dict) -> Table:
+    """One row per gear and safety: ISO, simulated, minimum, verdict of each column."""
+    iso, sim = rating["iso"], rating.get("simulated")
+    rows, status = [], []
+    for role in _ROLES:
+        for s, lim, verdict in (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending")):
+            a = iso[role]
+            b = sim[role] if sim else None
+            rows.append((role, s, fmt(a[s]), fmt(b[s]) if b else "–", fmt(a[lim]),
+                         a[verdict], b[verdict] if b else "–"))
+            ok = a[verdict] == "pass" and (b is None or b[verdict] == "pass")
+            status.append("pass" if ok else "fail")
+    load = rating.get("load", {})
+    note = (f"ISO 6336 Method B ({rating.get('edition', '')}); ISO column K_v: "
+            f"{load.get('dynamic_factor_source', '')}; simulated column K_v = the run's "
+            "F_max/F_static. Verdict: " + str(rating.get("verdict", "")) + ".")
+    return Table("Rating (ISO 6336): safety factors, ISO beside simulated",
+                 ("gear", "safety", "ISO", "simulated", "minimum", "verdict ISO",
+                  "verdict simulated"), rows, note=note, status=status)
+
+
+def missing_line(case: Case | None) -> str:
+    """One line: why the report has no rating."""
+    missing = missing_limits(case)
+    if missing:
+        return ("Not rated: the ISO 6336 rating needs the fatigue limits, missing here: "
+                + ", ".join(missing) + " (material.contact_fatigue_limit and "
+                "material.bending_fatigue_limit, or rating.<gear>.material.hardness).")
+    return "Not rated: no rating.json in this folder (`gearcli run` writes it)."

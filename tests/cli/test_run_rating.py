@@ -1,0 +1,75 @@
+"""`gearcli run` rates the pair (issue 28): rating.json with the ISO column and the simulated
+one (K_v = the run's F_max/F_static), and a "Rating (ISO 6336)" section in the report; a case
+without fatigue limits gets one line saying what is missing.
+
+Check of the two columns: they differ only in K_v (and what follows from it), so by ISO 6336-2
+(σ_H ∝ √(K_A K_γ K_v K_Hβ K_Hα)) and ISO 6336-3 (σ_F ∝ K_A K_γ K_v K_Fβ K_Fα) the safeties'
+ratio is that of the factor products; pure arithmetic on printed floats: rel 1e-9.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from gearcli.case.load import load_case
+from gearcli.cli import app
+from gearcli.pipeline.run_rating import simulated_safeties
+from gearcli.results import sweep_metrics
+
+runner = CliRunner()
+ISO_PAIR = str(Path(__file__).resolve().parents[2] / "cases" / "iso_pair.yaml")
+SHORT = ["--set", "run.end_time=0.3", "--format", "md", "-q"]
+LIMITS = ["--set", "material.contact_fatigue_limit=1500",
+          "--set", "material.bending_fatigue_limit=430"]
+
+
+def _k(column: dict, *symbols: str) -> float:
+    rows = {f["symbol"]: f["value"] for f in column["pair"]}
+    return math.prod(rows[s] for s in symbols)
+
+
+def test_run_writes_rating_json_with_both_columns_and_the_report_section(tmp_path):
+    out = tmp_path / "rated"
+    res = runner.invoke(app, ["run", ISO_PAIR, "-o", str(out), *SHORT, *LIMITS])
+    assert res.exit_code == 0, res.output
+    rating = json.loads((out / "rating.json").read_text())
+    iso, sim = rating["iso"], rating["simulated"]
+    assert sim is not None
+    summary = json.loads((out / "summary.json").read_text())["scalars"]
+    k_v_run = summary["force_max_N"] / summary["force_static_N"]
+    assert _k(sim, "K_v") == pytest.approx(k_v_run, rel=1e-9)
+    h = _k(iso, "K_v", "K_Hβ", "K_Hα") / _k(sim, "K_v", "K_Hβ", "K_Hα")
+    f = _k(iso, "K_v", "K_Fβ", "K_Fα") / _k(sim, "K_v", "K_Fβ", "K_Fα")
+    for role in ("pinion", "gear"):
+        assert sim[role]["S_H"] == pytest.approx(iso[role]["S_H"] * math.sqrt(h), rel=1e-9)
+        assert sim[role]["S_F"] == pytest.approx(iso[role]["S_F"] * f, rel=1e-9)
+    report = (out / "report.md").read_text()
+    assert "## Rating (ISO 6336)" in report
+    section = report.split("## Rating (ISO 6336)")[1].split("\n## ")[0]
+    assert "| pinion | S\\_H |" in section and "| gear | S\\_F |" in section
+    assert "simulated" in section and "Not rated" not in section
+    # the sweep's metrics: the same rating from the point's dynamic factor alone
+    loaded = load_case(ISO_PAIR, ["run.end_time=0.3", "material.contact_fatigue_limit=1500",
+                                  "material.bending_fatigue_limit=430"])
+    s_h, s_f = simulated_safeties(loaded, summary["dynamic_factor"])
+    assert s_h == pytest.approx(min(sim[r]["S_H"] for r in ("pinion", "gear")), rel=1e-9)
+    assert s_f == pytest.approx(min(sim[r]["S_F"] for r in ("pinion", "gear")), rel=1e-9)
+    assert simulated_safeties(load_case(ISO_PAIR), 1.3) == (None, None)
+    assert "safety_pitting_min" in sweep_metrics("sweep")
+
+
+def test_run_without_limits_says_what_is_missing(tmp_path):
+    out = tmp_path / "unrated"
+    res = runner.invoke(app, ["run", ISO_PAIR, "-o", str(out), *SHORT])
+    assert res.exit_code == 0, res.output
+    assert not (out / "rating.json").exists()
+    section = (out / "report.md").read_text().split("## Rating (ISO 6336)")[1].split("\n## ")[0]
+    lines = [x for x in section.strip().splitlines() if x.strip()]
+    assert len(lines) == 1 and lines[0].startswith("Not rated")
+    text = lines[0].replace("\\", "")  # Markdown escapes the underscores
+    assert "pinion contact_fatigue_limit" in text and "gear bending_fatigue_limit" in text
