@@ -99,5 +99,5 @@ def run(
             typer.echo(f"warning: {w}", err=True)
     typer.echo(f"report written to {path}")
     if not analysis.passed:
-        failed = [c.name for c in analysis.checks if not c.passed]
+        failed = [c.name for c in analysis.checks if c.failed]
         raise CheckFailed(f"{out}: check(s) failed: {', '.join(failed)}")

@@ -78,7 +78,8 @@ def json_schema(kind: str = "summary") -> dict:
                 "required": ["schema_version", "case", "status", "rows", "scalars"]}
     check = {"type": "object", "required": ["name", "value", "limit", "passed"],
              "properties": {"name": {"type": "string"}, "limit": {"type": "string"},
-                            "passed": {"type": "boolean"}, "checked": {"type": "boolean"},
+                            "passed": {"type": ["boolean", "null"]},
+                            "checked": {"type": "boolean"},
                             "note": {"type": "string"}}}
     checks = {"type": "array", "items": check}
     if kind == "analysis":
