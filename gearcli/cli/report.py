@@ -92,8 +92,11 @@ def run(
             name = build_report(tmp, fmt, None, units, svg).name
     path = out / name
     if not quiet:
+        from gearcli.cli.simulate import print_input_digest
+        from gearcli.pipeline.outputs import summary_document
         from gearcli.results import AnalysisDocument
 
+        print_input_digest(summary_document(result).input_digest)
         print_checks(AnalysisDocument.from_document(doc), units)
         for w in result.warnings:
             typer.echo(f"warning: {w}", err=True)
