@@ -114,14 +114,17 @@ def sweep_metrics(place: str = "sweep") -> tuple[str, ...]:
 @dataclasses.dataclass(frozen=True)
 class InputDigest(Document):
     """What the case asks for, at its final speed and load, for a check at a glance
-    (gearcli/pipeline/digest.py): summary.json's ``input_digest``."""
+    (gearcli/pipeline/digest.py; σ_H0 per ISO 6336-2 with Z_ε): summary.json's
+    ``input_digest``."""
 
-    power_kW: float = metric_field("power_kW", unit="kW")
-    pitch_line_velocity_m_s: float = metric_field("pitch_line_velocity_m_s", unit="m/s")
-    line_load_N_mm: float = metric_field("line_load_N_mm", unit="N/mm")  #: F_t/b
-    sigma_H0_MPa: float = metric_field("sigma_H0_MPa", unit="MPa")  #: ISO 6336-2, Z_ε included
-    gear_mesh_frequency_Hz: float = metric_field("gear_mesh_frequency_Hz", unit="Hz")
-    resonance_ratio: float = metric_field("resonance_ratio")  #: N = f_z / f_n (mesh mode)
+    power_kW: float = metric_field("power_kW", unit="kW", label="power T1 ω1")
+    pitch_line_velocity_m_s: float = metric_field("pitch_line_velocity_m_s", unit="m/s",
+                                                   label="pitch-line velocity v")
+    line_load_N_mm: float = metric_field("line_load_N_mm", unit="N/mm", label="F_t/b")
+    sigma_H0_MPa: float = metric_field("sigma_H0_MPa", unit="MPa", label="nominal σ_H0")
+    gear_mesh_frequency_Hz: float = metric_field("gear_mesh_frequency_Hz", unit="Hz",
+                                                  label="mesh frequency f_z")
+    resonance_ratio: float = metric_field("resonance_ratio", label="N = f_z/f_n")
     warnings: tuple[str, ...] = metric_field("warnings", ())  #: implausible magnitudes
 
 
