@@ -83,7 +83,7 @@ def analyze(
     elif not quiet:
         print_checks(typed, display_units())
     if not result.passed:
-        failed = [c.name for c in result.checks if not c.passed]
+        failed = [c.name for c in result.checks if c.failed]
         raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
 
 

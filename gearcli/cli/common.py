@@ -264,7 +264,7 @@ def print_checks_table(checks) -> None:
     for col in ("check", "value", "limit", "result", "note"):
         c.add_column(col)
     for ck in checks:
-        verdict = ("[yellow]not checked[/yellow]" if not ck.checked
+        verdict = ("[yellow]not checked[/yellow]" if ck.checked is False
                    else "[green]pass[/green]" if ck.passed else "[red]FAIL[/red]")
         c.add_row(escape(ck.name), escape(format_value(ck.value)), escape(ck.limit), verdict,
                   escape(ck.note))

@@ -67,7 +67,7 @@ def modal(
         if plot is not None:
             typer.echo(f"wrote {plot}")
     if not res.passed:
-        failed = [c.name for c in res.checks if not c.passed]
+        failed = [c.name for c in res.checks if c.failed]
         raise CheckFailed(f"{case}: check(s) failed: {', '.join(failed)}")
 
 

@@ -93,8 +93,11 @@ def run(
             name = build_report(tmp, fmt, None, units, svg).name
     path = out / name
     if not quiet:
+        from gearcli.cli.simulate import print_input_digest
+        from gearcli.pipeline.outputs import summary_document
         from gearcli.results import AnalysisDocument
 
+        print_input_digest(summary_document(result).input_digest)
         print_checks(AnalysisDocument.from_document(doc), units)
         for w in result.warnings:
             typer.echo(f"warning: {w}", err=True)
@@ -102,7 +105,7 @@ def run(
             typer.echo(f"not rated (ISO 6336): {rating_note}", err=True)
     typer.echo(f"report written to {path}")
     if not analysis.passed:
-        failed = [c.name for c in analysis.checks if not c.passed]
+        failed = [c.name for c in analysis.checks if c.failed]
         raise CheckFailed(f"{out}: check(s) failed: {', '.join(failed)}")
 
 

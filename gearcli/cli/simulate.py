@@ -66,7 +66,10 @@ def simulate(
     if as_json:
         typer.echo(json.dumps(doc.to_dict(), indent=2))
     elif not quiet and not to_stdout:
+        print_input_digest(doc.input_digest)
         _print_summary(doc, out, display_units())
+    if not quiet and (as_json or to_stdout):
+        print_input_digest(doc.input_digest, line=False)  # its warnings
     for w in result.warnings:
         if not quiet:
             typer.echo(f"warning: {w}", err=True)
@@ -75,6 +78,21 @@ def simulate(
 
         where = "" if to_stdout else f"; the results in {out} are marked invalid"
         raise InvalidResultError(f"{case}: {result.invalid_reason}{where}")
+
+
+def print_input_digest(digest, line: bool = True) -> None:
+    """The input digest (gearcli/pipeline/digest.py): one line a person checks at a glance
+    (when ``line``), and its warnings on stderr."""
+    if digest is None:
+        return
+    for w in digest.warnings:
+        typer.echo(f"warning: {w}", err=True)
+    if not line:
+        return
+    typer.echo(f"input: P = {digest.power_kW:.4g} kW, v = {digest.pitch_line_velocity_m_s:.4g} "
+               f"m/s, F_t/b = {digest.line_load_N_mm:.4g} N/mm, σ_H0 = "
+               f"{digest.sigma_H0_MPa:.4g} MPa, f_z = {digest.gear_mesh_frequency_Hz:.4g} Hz, "
+               f"N = f_z/f_n = {digest.resonance_ratio:.3g}")
 
 
 def _print_summary(doc, out: str, units: str) -> None:

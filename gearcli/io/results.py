@@ -202,7 +202,8 @@ def check_analysis(path: Path, doc: dict) -> None:
         raise bad("checks", "a list")
     for i, check in enumerate(doc["checks"]):
         if not (isinstance(check, dict) and isinstance(check.get("name"), str)
-                and isinstance(check.get("passed"), bool)):
+                and (isinstance(check.get("passed"), bool)
+                     or (check.get("passed") is None and check.get("checked") is False))):
             raise bad(f"checks.{i}", "a check (name, value, limit, passed, note)")
     lines = doc.get("lines", {})
     if not isinstance(lines, dict) or not all(

@@ -47,7 +47,7 @@ class Analysis:
 
     @property
     def passed(self) -> bool:
-        return all(c.passed for c in self.checks)
+        return not any(c.failed for c in self.checks)
 
     @property
     def spectra(self):
@@ -65,7 +65,7 @@ class Analysis:
         return analysis_document(self)
 
     def __repr__(self) -> str:
-        failed = [c.name for c in self.checks if not c.passed]
+        failed = [c.name for c in self.checks if c.failed]
         return (f"<Analysis {self.run.summary.case or self.run.folder.name}: "
                 f"{'passed' if self.passed else 'failed: ' + ', '.join(failed)}>")
 

@@ -76,7 +76,7 @@ class ModalAnalysis:
 
     @property
     def passed(self) -> bool:
-        return all(c.passed for c in self.checks)
+        return not any(c.failed for c in self.checks)
 
     @property
     def modes(self) -> list[Mode]:

@@ -22,6 +22,8 @@ ZOOM_FILE = "zoom.csv"
 
 def summary_document(res) -> SummaryDocument:
     """summary.json of a run (its JSON: ``.to_dict()``)."""
+    from gearcli.pipeline.digest import input_digest
+
     k = res.kernel
     return SummaryDocument(
         schema_version=RESULTS_SCHEMA_VERSION,
@@ -40,6 +42,7 @@ def summary_document(res) -> SummaryDocument:
         slots=int(k.slot_force.shape[1]),
         warnings=tuple(res.warnings),
         scalars=res.summary,
+        input_digest=input_digest(res),
     )
 
 

@@ -79,7 +79,7 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
         return [NumberedTable(next(counter), t) for t in items if t is not None]
 
     checks = data.analysis.checks
-    failed = [c.name for c in checks if not c.passed]
+    failed = [c.name for c in checks if c.checked is not False and not c.passed]
     skipped = [c.name for c in checks if c.checked is False]
     done = len(checks) - len(skipped)
     not_checked = (f" Not checked: {', '.join(map(str, skipped))} (see the notes)."

@@ -330,7 +330,7 @@ def checks_table(data: ReportData) -> Table:
         checked = c.checked is not False
         result = "not checked" if not checked else "pass" if ok else "FAIL"
         rows.append((str(c.name), fmt(c.value), str(c.limit), result, str(c.note or "")))
-        status.append("fail" if not ok else "pass" if checked else "")
+        status.append("" if not checked else "pass" if ok else "fail")
     return Table("Checks", ("check", "value", "limit", "result", "note"), rows, status=status)
 
 

@@ -81,11 +81,30 @@ class Check(Document):
     name: str
     value: float | str | None
     limit: str
-    passed: bool
+    #: True / False for a check that was made; None (JSON null) for one that was not
+    passed: bool | None
     note: str = ""
-    #: False when the check could not apply (the note says why); it then passes, and the
-    #: tables print "not checked" instead of "pass"
+    #: False when the check could not apply (the note says why); ``passed`` is then None,
+    #: ``verdict`` "not checked", and the overall pass/fail ignores it
     checked: bool = True
+
+    def __post_init__(self) -> None:
+        if self.checked is False:
+            self.passed = None
+
+    @property
+    def failed(self) -> bool:
+        """Made and failed (what the overall pass/fail counts)."""
+        return self.checked is not False and self.passed is False
+
+    @property
+    def verdict(self) -> str:
+        """"passed", "failed" or "not checked"."""
+        return ("not checked" if self.checked is False
+                else "passed" if self.passed else "failed")
+
+    def __repr__(self) -> str:
+        return f"<Check {self.name}: {self.verdict}>"
 
 
 @dataclasses.dataclass(frozen=True)

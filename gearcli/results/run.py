@@ -116,6 +116,23 @@ def sweep_metrics(place: str = "sweep") -> tuple[str, ...]:
 
 
 @dataclasses.dataclass(frozen=True)
+class InputDigest(Document):
+    """What the case asks for, at its final speed and load, for a check at a glance
+    (gearcli/pipeline/digest.py; σ_H0 per ISO 6336-2 with Z_ε): summary.json's
+    ``input_digest``."""
+
+    power_kW: float = metric_field("power_kW", unit="kW", label="power T1 ω1")
+    pitch_line_velocity_m_s: float = metric_field("pitch_line_velocity_m_s", unit="m/s",
+                                                   label="pitch-line velocity v")
+    line_load_N_mm: float = metric_field("line_load_N_mm", unit="N/mm", label="F_t/b")
+    sigma_H0_MPa: float = metric_field("sigma_H0_MPa", unit="MPa", label="nominal σ_H0")
+    gear_mesh_frequency_Hz: float = metric_field("gear_mesh_frequency_Hz", unit="Hz",
+                                                  label="mesh frequency f_z")
+    resonance_ratio: float = metric_field("resonance_ratio", label="N = f_z/f_n")
+    warnings: tuple[str, ...] = metric_field("warnings", ())  #: implausible magnitudes
+
+
+@dataclasses.dataclass(frozen=True)
 class SummaryDocument(Document):
     """summary.json: the run's status, solver counters, warnings and :class:`Summary`."""
 
@@ -128,6 +145,8 @@ class SummaryDocument(Document):
     slots: int = metric_field("slots", 0)
     warnings: tuple[str, ...] = metric_field("warnings", ())
     scalars: Summary = metric_field("scalars", Summary(), nested=Summary)
+    input_digest: InputDigest | None = metric_field("input_digest", None, omit_none=True,
+                                                    nested=InputDigest)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -14,7 +14,7 @@ from gearcli.results.models import (
     MeshSummary,
     Mode,
 )
-from gearcli.results.run import Summary
+from gearcli.results.run import InputDigest, Summary
 from gearcli.results.stress import GearStress
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
@@ -73,12 +73,13 @@ def json_schema(kind: str = "summary") -> dict:
                  "solver": obj, "rows": {"type": "integer", "minimum": 1},
                  "slots": {"type": "integer"},
                  "warnings": {"type": "array", "items": {"type": "string"}},
-                 "scalars": scalars}
+                 "scalars": scalars, "input_digest": typed(InputDigest)}
         return {**base, "title": "gearcli summary.json", "properties": props,
                 "required": ["schema_version", "case", "status", "rows", "scalars"]}
     check = {"type": "object", "required": ["name", "value", "limit", "passed"],
              "properties": {"name": {"type": "string"}, "limit": {"type": "string"},
-                            "passed": {"type": "boolean"}, "checked": {"type": "boolean"},
+                            "passed": {"type": ["boolean", "null"]},
+                            "checked": {"type": "boolean"},
                             "note": {"type": "string"}}}
     checks = {"type": "array", "items": check}
     if kind == "analysis":

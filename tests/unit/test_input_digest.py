@@ -1,0 +1,62 @@
+"""The input digest of a run (issue 29): iso_pair's against hand formulas, and the
+"did you mean" warnings of a bare torque / a slow speed."""
+
+import json
+import math
+
+import pytest
+from typer.testing import CliRunner
+
+from gearcli import api
+from gearcli.cli import app
+from gearcli.pipeline.digest import slip_warnings
+from gearcli.pipeline.outputs import summary_document
+from tests.conftest import SEED
+
+ISO_PAIR = SEED.parent / "iso_pair.yaml"
+SHORT = ["run.end_time=0.4"]  # past the 0.2 s ramps: the digest uses the final values anyway
+
+
+def test_iso_pair_digest_against_hand_formulas():
+    """iso_pair: z 21/43, m 5 mm, α 20°, b 50 mm, 1500 rpm, 300 N·m on the gear,
+    E 206 GPa, ν 0.3 (cases/iso_pair.yaml)."""
+    res = api.simulate(ISO_PAIR, SHORT)
+    d = summary_document(res).input_digest
+    geo = res.geometry.geometry
+    w1 = 1500 * 2 * math.pi / 60  # [rad/s]
+    d1, d2, b = 21 * 5.0, 43 * 5.0, 50.0  # [mm]
+    f_t = 300e3 / (d2 / 2)  # T2/r2 [N]
+    v = w1 * d1 / 2 / 1000  # [m/s]
+    # all relative 1e-9: the same closed forms, only the order of operations differs
+    assert d.pitch_line_velocity_m_s == pytest.approx(v, rel=1e-9)  # 8.247 m/s
+    assert d.line_load_N_mm == pytest.approx(f_t / b, rel=1e-9)  # 55.81 N/mm
+    assert d.power_kW == pytest.approx(300 * w1 * 21 / 43 / 1000, rel=1e-9)  # T2 ω2 = 23.0 kW
+    assert d.gear_mesh_frequency_Hz == pytest.approx(21 * 1500 / 60, rel=1e-9)  # 525 Hz
+    assert d.resonance_ratio == pytest.approx(525 / res.summary.mesh_natural_frequency_Hz,
+                                              rel=1e-9)
+    # ISO 6336-2 eq. 4 with Z_ε, spur: Z_E = √(E/(2π(1-ν²))) for equal materials
+    a, aw = math.radians(20), geo.alpha_w_rad
+    z_h = math.sqrt(2 * math.cos(aw) / (math.cos(a) ** 2 * math.sin(aw)))
+    z_e = math.sqrt(206e3 / (2 * math.pi * (1 - 0.3 ** 2)))
+    z_eps = math.sqrt((4 - geo.eps_alpha) / 3)
+    u = 43 / 21
+    sigma = z_eps * z_h * z_e * math.sqrt(f_t * (u + 1) / (d1 * b * u))
+    assert d.sigma_H0_MPa == pytest.approx(sigma, rel=1e-9)
+    assert d.warnings == ()
+    assert json.loads(json.dumps(summary_document(res).to_dict()))["input_digest"][
+        "line_load_N_mm"] == pytest.approx(f_t / b, rel=1e-9)
+
+
+def test_bare_torque_on_seed_warns_did_you_mean_Nm():
+    """The seed with `torque: 450` (N·mm, meant 450 N·m): F_t/b = 0.036 N/mm on module 10."""
+    r = CliRunner().invoke(app, ["simulate", str(SEED), "-o", "-", "--set", "load.torque=450",
+                                 "--set", "run.end_time=1.2"])
+    assert "did you mean N·m? the torque reads as N·mm" in r.stderr
+
+
+def test_slip_warnings_thresholds():
+    assert slip_warnings(0.5, 5.0, 5.0)[0].startswith("load.torque")
+    assert slip_warnings(0.5, 5.0, 4.0) == []  # a small module may carry little load
+    assert slip_warnings(50.0, 5.0, 10.0) == []
+    assert "did you mean rpm?" in slip_warnings(50.0, 0.01, 10.0)[0]
+    assert slip_warnings(50.0, 0.1, 10.0) == []
