@@ -435,6 +435,30 @@ def report_timing(args) -> None:
                 f"{med[name] / floor:.1f}x", "<= 3 s quiet")
 
 
+def rating_timing(args) -> None:
+    """`gearcli rate` of cases/nrel5mw_sun_planet.yaml in process: the whole rate_case (case
+    loading, geometry, ISO 6336 factors, life, inspection) and the rating formulas alone."""
+    from gearcli.case.load import load_case
+    from gearcli.model.iso6336.rate import rate
+    from gearcli.pipeline.rating import rate_case, rating_input
+
+    case = ROOT / "cases" / "nrel5mw_sun_planet.yaml"
+    print("ISO 6336 rating of the NREL 5 MW sun-planet mesh (in process, 20 calls each)")
+    rate_case(case)  # warm: imports, tables
+    loaded = load_case(case)
+    inp = rating_input(loaded)[0]
+    whole, formulas = [], []
+    for _ in range(20):
+        t0 = time.perf_counter()
+        rate_case(loaded)
+        whole.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        rate(inp)
+        formulas.append(time.perf_counter() - t0)
+    row("rate_case, NREL 5 MW sun-planet", f"median {1e3 * statistics.median(whole):.2f} ms")
+    row("  of which the rating formulas", f"median {1e3 * statistics.median(formulas):.2f} ms")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=9, help="timed solver runs (median), >= 7")
@@ -484,6 +508,7 @@ def _sections(args) -> None:
         post_processing(args)
         fe_mesh(args)
         report_timing(args)
+        rating_timing(args)
 
 
 if __name__ == "__main__":
