@@ -105,6 +105,10 @@ class Case(Section):
     faults: list[Fault] = Field(default_factory=list, description="damaged teeth: root_crack, "
                                 "spall, chipped_tip, missing_tooth (docs/theory.md, Tooth faults)")
 
+    def material_of(self, role: str) -> Material:
+        """The material of gear ``role`` ('pinion' or 'gear'): its own, else the case's."""
+        return getattr(self.gears, role).material or self.material
+
     @model_validator(mode="wrap")
     @classmethod
     def _in_declared_units(cls, data, handler):

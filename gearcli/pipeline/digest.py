@@ -44,7 +44,7 @@ def input_digest(res) -> InputDigest:
     b = min(g1.face_width_mm, g2.face_width_mm)
     v_m_s = omega1 * g1.d_mm / 2.0 / 1000.0
     u = g2.teeth / g1.teeth
-    mats = [case.gears.pinion.material or case.material, case.gears.gear.material or case.material]
+    mats = [case.material_of("pinion"), case.material_of("gear")]
     z_e = elasticity_factor(mats[0].youngs_modulus, mats[0].poisson_ratio,
                             mats[1].youngs_modulus, mats[1].poisson_ratio)
     sigma = (contact_ratio_factor(g.eps_alpha)

@@ -39,8 +39,7 @@ def fe_check(case, geo, force_N: float, store=None) -> FeCheck:
     from gearcli.model.pair_stiffness import mesh_stiffness, pair_stiffness
 
     g, gears = geo.geometry, case.gears
-    m1 = gears.pinion.material or case.material
-    m2 = gears.gear.material or case.material
+    m1, m2 = case.material_of("pinion"), case.material_of("gear")
     b = min(g.pinion.face_width_mm, g.gear.face_width_mm)
     common = {"face_width_mm": b, "E1_MPa": m1.youngs_modulus, "nu1": m1.poisson_ratio,
               "E2_MPa": m2.youngs_modulus, "nu2": m2.poisson_ratio,

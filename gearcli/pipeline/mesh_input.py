@@ -59,8 +59,7 @@ def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
     from gearcli.model.pair_stiffness import pair_stiffness
 
     g, gears = geo.geometry, case.gears
-    m1 = gears.pinion.material or case.material
-    m2 = gears.gear.material or case.material
+    m1, m2 = case.material_of("pinion"), case.material_of("gear")
     try:
         return pair_stiffness(g, np.asarray(x_mm, float),
                               face_width_mm=min(g.pinion.face_width_mm, g.gear.face_width_mm),

@@ -135,7 +135,7 @@ def _fatigue_limits(loaded: LoadedCase) -> list[tuple[float | None, float | None
     case = loaded.case
     out, missing = [], []
     for role in _ROLES:
-        mat = getattr(case.gears, role).material or case.material
+        mat = case.material_of(role)
         hard = getattr(case.rating, role).material.hardness
         limits = (mat.contact_fatigue_limit, mat.bending_fatigue_limit)
         for key, value in zip(("contact_fatigue_limit", "bending_fatigue_limit"), limits,
@@ -168,7 +168,7 @@ def _check_proof_stress(loaded: LoadedCase) -> None:
 def _gear_input(case: Case, geo: GeometryResult, role: str, limits, f_pb_um: float) -> GearInput:
     spec, rg = getattr(case.gears, role), getattr(case.rating, role)
     gg = getattr(geo.geometry, role)
-    mat = spec.material or case.material
+    mat = case.material_of(role)
     allow = rg.thickness_allowances or (-spec.thickness_allowance, -spec.thickness_allowance)
     own_fpb = rg.base_pitch_deviation
     return GearInput(

@@ -151,7 +151,7 @@ def _window(run: StoredRun, given) -> tuple[tuple[float, float], str]:
 
 def _materials(case):
     """((E1, E2), (ν1, ν2), limits) with each gear's own material overriding the case's."""
-    mats = [case.gears.pinion.material or case.material, case.gears.gear.material or case.material]
+    mats = [case.material_of("pinion"), case.material_of("gear")]
     limits = {name: (m.contact_fatigue_limit, m.bending_fatigue_limit)
               for name, m in zip(("pinion", "gear"), mats, strict=True)}
     return (mats[0].youngs_modulus, mats[1].youngs_modulus), \

@@ -19,7 +19,7 @@ def missing_limits(case: Case | None) -> list[str]:
         return ["the case"]
     out = []
     for role in _ROLES:
-        mat = getattr(case.gears, role).material or case.material
+        mat = case.material_of(role)
         if getattr(case.rating, role).material.hardness is not None:
             continue
         out += [f"{role} {key}" for key in _LIMITS if getattr(mat, key) is None]
