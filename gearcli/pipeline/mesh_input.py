@@ -23,14 +23,19 @@ if TYPE_CHECKING:
 _PATH_POINTS = 401
 
 
+def load_torque_Nmm(case: Case) -> float:
+    """The load torque at the end of its ramps [N·mm] (its final value, else its value at the
+    run's end time)."""
+    final = case.load.torque.pp.final_value()
+    return float(final if final is not None else case.load.torque.pp(case.run.end_time))
+
+
 def static_force_N(case: Case, geo: GeometryResult) -> float:
     """F_n [N] of the load torque at the end of its ramps, T_load/r_b2: the operating load of
     the contact model (linearisation, tolerances, validity; docs/theory.md §7.3). The dynamic
     factor's static force adds the speed-dependent terms measured in the run
     (model.mesh.static_reference_N)."""
-    final = case.load.torque.pp.final_value()
-    torque = final if final is not None else float(case.load.torque.pp(case.run.end_time))
-    return static_normal_force_N(torque, geo.geometry.gear.r_b_mm)
+    return static_normal_force_N(load_torque_Nmm(case), geo.geometry.gear.r_b_mm)
 
 
 def iso_stiffness(case: Case, geo: GeometryResult, force_N: float | None = None):

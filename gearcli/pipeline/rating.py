@@ -40,6 +40,7 @@ from gearcli.pipeline.geometry import (
     pair_inspection,
     run_geometry,
 )
+from gearcli.pipeline.mesh_input import load_torque_Nmm
 from gearcli.results.models import IsoResonance
 
 __all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
@@ -113,13 +114,6 @@ class CaseRating:
                 **self.simulated.to_dict(), "peaks": self.simulated_peaks},
             "notes": list(self.notes),
         }
-
-
-def _load_torque_Nmm(case: Case) -> float:
-    """The load torque at the end of its ramps [N·mm] (as pipeline.mesh_input's static force)."""
-    pp = case.load.torque.pp
-    final = pp.final_value()
-    return float(final if final is not None else pp(case.run.end_time))
 
 
 def _pinion_torque_Nm(case: Case, geo: GeometryResult, load_torque_Nmm: float) -> float:
@@ -211,7 +205,7 @@ def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
     geo = geo or run_geometry(loaded)
     limits = _fatigue_limits(loaded)
     _check_proof_stress(loaded)
-    torque = _load_torque_Nmm(case)
+    torque = load_torque_Nmm(case)
     if not torque > 0.0:
         raise loaded.error(("load", "torque"), "the rating needs the load: the load torque is "
                            "zero; expected a load torque > 0")
