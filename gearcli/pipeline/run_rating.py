@@ -14,6 +14,7 @@ from pathlib import Path
 
 from gearcli.case.load import LoadedCase
 from gearcli.errors import GearcliError
+from gearcli.model.iso6336.document import RatingResult
 from gearcli.pipeline.rating import (
     CaseRating,
     SimulatedLoad,
@@ -21,8 +22,9 @@ from gearcli.pipeline.rating import (
     rating_input,
     simulated_load,
 )
+from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
 
-__all__ = ["rate_run", "simulated_safeties"]
+__all__ = ["rate_run", "simulated_safeties", "rating_summary", "write_rating"]
 
 
 def _first_line(exc: Exception) -> str:
@@ -57,3 +59,46 @@ def simulated_safeties(loaded: LoadedCase, dynamic_factor: float | None
         return None, None
     gears = (sim.pinion, sim.gear)
     return min(g.S_H for g in gears), min(g.S_F for g in gears)
+
+
+def _column(result: RatingResult, source: str, peaks: dict | None = None) -> RatingColumn:
+    """The safeties of one column of the rating (with the peak safeties of ``peaks``)."""
+    gears = {}
+    for g in (result.pinion, result.gear):
+        peak = (peaks or {}).get(g.name, {})
+        gears[g.name] = GearSafeties(
+            S_H=g.S_H, S_H_min=g.S_H_min, pitting="pass" if g.pitting_ok else "fail",
+            S_F=g.S_F, S_F_min=g.S_F_min, bending="pass" if g.bending_ok else "fail",
+            S_H_peak=peak.get("S_H"), S_F_peak=peak.get("S_F"))
+    return RatingColumn(
+        dynamic_factor=result.factor("K_v").value, dynamic_factor_source=source,
+        pinion=gears["pinion"], gear=gears["gear"],
+        safety_pitting_min=min(g.S_H for g in gears.values()),
+        safety_bending_min=min(g.S_F for g in gears.values()),
+        verdict="pass" if result.ok else "fail")
+
+
+def rating_summary(rating: CaseRating) -> RatingSummary:
+    """summary.json's ``rating`` of a run's rating: S_H, S_F per gear of the ISO and the
+    simulated column, against their minimums, with verdicts (gearcli/results/rating.py)."""
+    sim = rating.simulated
+    return RatingSummary(
+        edition=rating.iso.edition, iso=_column(rating.iso, rating.dynamic_factor_source),
+        simulated=None if sim is None else _column(
+            sim, "simulated: the run's F_max/F_static", rating.simulated_peaks),
+        verdict="pass" if rating.ok else "fail")
+
+
+def write_rating(folder: str | Path, rating: CaseRating) -> None:
+    """rating.json (every factor, both columns) into the run's ``folder``, and the safeties
+    into its summary.json's ``rating`` (:func:`rating_summary`)."""
+    import json
+
+    from gearcli.io.files import write_atomic
+    from gearcli.io.results import read_json
+
+    folder = Path(folder)
+    write_atomic(folder / "rating.json", json.dumps(rating.to_dict(), indent=2) + "\n")
+    summary = read_json(folder / "summary.json")  # every other entry as written
+    summary["rating"] = rating_summary(rating).to_dict()  # SummaryDocument.rating
+    write_atomic(folder / "summary.json", json.dumps(summary, indent=2) + "\n")

@@ -9,6 +9,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from gearcli.results.fields import Document, metric_field, shown
+from gearcli.results.rating import RatingSummary
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
 
@@ -147,6 +148,9 @@ class SummaryDocument(Document):
     scalars: Summary = metric_field("scalars", Summary(), nested=Summary)
     input_digest: InputDigest | None = metric_field("input_digest", None, omit_none=True,
                                                     nested=InputDigest)
+    #: S_H, S_F per gear, ISO and simulated (`gearcli run` of a case it can rate; issue 28)
+    rating: RatingSummary | None = metric_field("rating", None, omit_none=True,
+                                                nested=RatingSummary)
 
 
 @dataclasses.dataclass(frozen=True)
