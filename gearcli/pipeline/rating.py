@@ -29,6 +29,7 @@ from gearcli.case.schema import Case
 from gearcli.errors import CaseError
 from gearcli.model.iso6336.common import Edition
 from gearcli.model.iso6336.document import RatingResult
+from gearcli.model.iso6336.editions import EditionRow, edition_rows
 from gearcli.model.iso6336.inputs import GearInput, RatingInput
 from gearcli.model.iso6336.material import MaterialKind, Quality
 from gearcli.model.iso6336.rate import rate
@@ -82,6 +83,8 @@ class CaseRating:
     simulated: RatingResult | None  #: K_v (and K_γ) of the run
     simulated_peaks: dict | None  #: safeties from the run's peak stresses
     notes: tuple[str, ...]
+    #: the edition-dependent factors of the ISO column under ISO 6336:2006 and :2019
+    editions: tuple[EditionRow, ...] = ()
 
     @property
     def name(self) -> str:
@@ -112,6 +115,7 @@ class CaseRating:
             "duty_cycle": None if self.duty_cycle is None else self.duty_cycle.to_dict(),
             "simulated": None if self.simulated is None else {
                 **self.simulated.to_dict(), "peaks": self.simulated_peaks},
+            "editions": [r.to_dict() for r in self.editions],
             "notes": list(self.notes),
         }
 
@@ -325,6 +329,7 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     bins = _duty_bins(loaded, geo)
     try:
         iso = _with_kv_clause(rate(inp), source_kv)
+        editions = edition_rows(inp, iso)
         damage = duty_cycle_damage(inp, bins) if bins is not None else None
     except ValueError as exc:
         raise loaded.error(("rating",), f"cannot rate this case: {exc}") from None
@@ -336,7 +341,8 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
         sim = _with_kv_clause(rate(dataclasses.replace(inp, **changes)),
                               "simulated: the run's F_max/F_static")
         peaks = _peaks(sim, simulated)
-    return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
+    return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes),
+                      editions)
 
 
 def case_inspection(source: str | Path | LoadedCase, geo: GeometryResult | None = None,
