@@ -115,7 +115,7 @@ def _write_rating(folder: Path, loaded) -> str:
     why it was not rated."""
     from gearcli.pipeline.run_rating import rate_run, write_rating
 
-    rating, why_not = rate_run(folder, loaded)
+    rating, why_not = rate_run(folder, loaded, stress_files=True)  # stress.json: the figure
     if rating is not None:  # rating.json, and the safeties into summary.json
         write_rating(folder, rating)
     return why_not

@@ -45,7 +45,7 @@ from gearcli.pipeline.mesh_input import load_torque_Nmm
 from gearcli.results.models import IsoResonance
 
 __all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
-           "case_inspection", "simulated_load", "RPM_PER_RAD_S"]
+           "case_inspection", "simulated_load", "simulated_load_of", "RPM_PER_RAD_S"]
 
 RPM_PER_RAD_S = 30.0 / math.pi
 _ROLES = ("pinion", "gear")
@@ -275,31 +275,34 @@ def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
     return out
 
 
-def simulated_load(folder: str | Path) -> tuple[SimulatedLoad, LoadedCase]:
-    """(SimulatedLoad, the run's case) of a results folder of `gearcli simulate`: K_v = the
-    summary's F_max/F_static, the peak σ_H, σ_F per gear of `gearcli stress` in the steady
-    window (pipeline.stress.compute_stress; None where a gear has no loaded sample)."""
-    import json
-
-    from gearcli.io.results import read_run
-    from gearcli.pipeline.stress import compute_stress
-
-    stored = read_run(folder)
-    scalars = stored.summary.scalars
+def simulated_load_of(res) -> SimulatedLoad:
+    """The SimulatedLoad of a run's stress evaluation ``res`` (pipeline.stress.StressResult):
+    K_v = the run's summary F_max/F_static, the peak σ_H, σ_F per gear of `gearcli stress` in
+    the steady window (None where a gear has no loaded sample)."""
+    scalars = res.run.summary.scalars
     f_max, f_static = float(scalars.force_max_N), float(scalars.force_static_N)
     if not (f_static > 0.0 and f_max > 0.0):
         raise CaseError(f"rate: the run's F_max {f_max:g} N / F_static {f_static:g} N is no "
                         "dynamic factor; expected a loaded run (both > 0)")
-    res = compute_stress(folder, None)
     gears = (res.pinion, res.gear)
     h = tuple(g.sigma_H_peak_MPa for g in gears)
     f = tuple(g.sigma_F_peak_MPa for g in gears)
-    simulated = SimulatedLoad(dynamic_factor=f_max / f_static,
-                              sigma_H_peak_MPa=None if None in h else h,
-                              sigma_F_peak_MPa=None if None in f else f)
-    loaded = load_case_text(json.dumps(stored.manifest["resolved_case"]),
+    return SimulatedLoad(dynamic_factor=f_max / f_static,
+                         sigma_H_peak_MPa=None if None in h else h,
+                         sigma_F_peak_MPa=None if None in f else f)
+
+
+def simulated_load(folder: str | Path) -> tuple[SimulatedLoad, LoadedCase]:
+    """(SimulatedLoad, the run's case) of a results folder of `gearcli simulate`
+    (:func:`simulated_load_of` its stress evaluation, pipeline.stress.compute_stress)."""
+    import json
+
+    from gearcli.pipeline.stress import compute_stress
+
+    res = compute_stress(folder, None)
+    loaded = load_case_text(json.dumps(res.run.manifest["resolved_case"]),
                             str(Path(folder) / "manifest.json"))
-    return simulated, loaded
+    return simulated_load_of(res), loaded
 
 
 def _with_kv_clause(result: RatingResult, source: str) -> RatingResult:

@@ -20,7 +20,7 @@ from gearcli.pipeline.rating import (
     SimulatedLoad,
     rate_case,
     rating_input,
-    simulated_load,
+    simulated_load_of,
 )
 from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
 
@@ -31,18 +31,25 @@ def _first_line(exc: Exception) -> str:
     return str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
 
 
-def rate_run(folder: str | Path, loaded: LoadedCase) -> tuple[CaseRating | None, str]:
+def rate_run(folder: str | Path, loaded: LoadedCase, stress_files: bool = False
+             ) -> tuple[CaseRating | None, str]:
     """(the rating of the run in ``folder`` of the case ``loaded``, "") or (None, why not).
 
     The case is checked first (rating_input: fatigue limits, load, speed), so a case that
-    cannot be rated costs no stress evaluation of the run."""
+    cannot be rated costs no stress evaluation of the run. ``stress_files``: also write the
+    stress evaluation the simulated column comes from (stress.json, stress.csv: the report's
+    Stress section and its figure, with the critical positions marked)."""
+    from gearcli.pipeline.stress import compute_stress, write_stress
+
     try:
         rating_input(loaded)
     except GearcliError as exc:
         return None, _first_line(exc)
     try:
-        simulated, _ = simulated_load(folder)
-        return rate_case(loaded, simulated=simulated), ""
+        res = compute_stress(folder, None)
+        if stress_files:
+            write_stress(res)
+        return rate_case(loaded, simulated=simulated_load_of(res)), ""
     except GearcliError as exc:
         return None, _first_line(exc)
 

@@ -64,7 +64,14 @@ def test_run_writes_rating_json_with_both_columns_and_the_report_section(tmp_pat
     for role in ("pinion", "gear"):
         assert getattr(typed.simulated, role).S_H_peak == sim["peaks"][role]["S_H"]
     assert typed.iso.pinion.S_H_peak is None and "S_H_peak" not in doc["rating"]["iso"]["gear"]
+    # the stress evaluation the simulated column comes from: the Stress section and its figure
+    stress = json.loads((out / "stress.json").read_text())
+    for role in ("pinion", "gear"):
+        assert sim["peaks"][role]["sigma_H_peak_MPa"] == stress[role]["peak_sigma_H"]["MPa"]
+        assert sim["peaks"][role]["sigma_F_peak_MPa"] == stress[role]["peak_sigma_F"]["MPa"]
     report = (out / "report.md").read_text()
+    assert "stars mark the critical positions" in report
+    assert (out / "figures" / "stress.png").is_file()
     assert "## Rating (ISO 6336)" in report
     section = report.split("## Rating (ISO 6336)")[1].split("\n## ")[0]
     assert "| pinion | S\\_H |" in section and "| gear | S\\_F |" in section
@@ -83,7 +90,7 @@ def test_run_without_limits_says_what_is_missing(tmp_path):
     out = tmp_path / "unrated"
     res = runner.invoke(app, ["run", ISO_PAIR, "-o", str(out), *SHORT])
     assert res.exit_code == 0, res.output
-    assert not (out / "rating.json").exists()
+    assert not (out / "rating.json").exists() and not (out / "stress.json").exists()
     assert "rating" not in json.loads((out / "summary.json").read_text())
     section = (out / "report.md").read_text().split("## Rating (ISO 6336)")[1].split("\n## ")[0]
     lines = [x for x in section.strip().splitlines() if x.strip()]
