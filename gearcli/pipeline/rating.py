@@ -24,6 +24,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from gearcli.case.inspection import PairInspection, pair_inspection
 from gearcli.case.load import LoadedCase, load_case, load_case_text
 from gearcli.case.schema import Case
 from gearcli.errors import CaseError
@@ -35,12 +36,7 @@ from gearcli.model.iso6336.material import MaterialKind, Quality
 from gearcli.model.iso6336.rate import rate
 from gearcli.model.iso6336.spectrum import DutyCycleDamage, LoadBin, duty_cycle_damage
 from gearcli.pipeline.capabilities import not_included
-from gearcli.pipeline.geometry import (
-    GeometryResult,
-    PairInspection,
-    pair_inspection,
-    run_geometry,
-)
+from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.mesh_input import load_torque_Nmm
 from gearcli.results.models import IsoResonance
 

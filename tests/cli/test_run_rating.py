@@ -71,6 +71,7 @@ def test_run_writes_rating_json_with_both_columns_and_the_report_section(tmp_pat
         assert sim["peaks"][role]["sigma_F_peak_MPa"] == stress[role]["peak_sigma_F"]["MPa"]
     report = (out / "report.md").read_text()
     assert "stars mark the critical positions" in report
+    assert "span W\\_k, nominal, pinion / gear" in report  # the geometry table's inspection
     assert (out / "figures" / "stress.png").is_file()
     assert "## Rating (ISO 6336)" in report
     section = report.split("## Rating (ISO 6336)")[1].split("\n## ")[0]
