@@ -168,6 +168,10 @@ class SpeedLevel(Document):
     force_max_N: float = metric_field("force_max_N")
     dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm")
     contact_loss_fraction: float = metric_field("contact_loss_fraction")
+    #: ISO 6336 S_H, S_F at this speed with its K_v = dynamic_factor, the smaller of the gears'
+    #: (pipeline/run_rating.level_safeties); NaN when the case cannot be rated
+    safety_pitting_min: float = metric_field("safety_pitting_min")
+    safety_bending_min: float = metric_field("safety_bending_min")
     status: str = metric_field("status", "ok")  #: "ok", "invalid" or "failed"
     error: str = metric_field("error", "")
 

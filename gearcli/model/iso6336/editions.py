@@ -23,8 +23,9 @@ __all__ = ["EditionRow", "EDITION_PAIR_SYMBOLS", "EDITION_GEAR_SYMBOLS", "editio
 
 #: Pair factors that depend on the edition (as implemented).
 EDITION_PAIR_SYMBOLS = ("Z_β",)
-#: Gear rows shown for both editions: the edition-dependent factors and what follows.
-EDITION_GEAR_SYMBOLS = ("Y_β", "Y_M", "σ_FG", "S_F", "S_H")
+#: Gear factors shown for both editions: the edition-dependent ones and σ_FG that follows
+#: (each gear's S_F and S_H are added after them).
+EDITION_GEAR_SYMBOLS = ("Y_β", "Y_M", "σ_FG")
 
 
 @dataclass(frozen=True)
@@ -48,9 +49,9 @@ class EditionRow:
 
 
 def edition_rows(inp: RatingInput, rated: RatingResult | None = None) -> tuple[EditionRow, ...]:
-    """The rows of :data:`EDITION_PAIR_SYMBOLS` and, per gear, :data:`EDITION_GEAR_SYMBOLS`
-    rated by ISO 6336:2006 and :2019 (``rated``: the rating of ``inp`` already at hand, reused
-    for its own edition)."""
+    """The rows of :data:`EDITION_PAIR_SYMBOLS` and, per gear, :data:`EDITION_GEAR_SYMBOLS`,
+    S_F and S_H, rated by ISO 6336:2006 and :2019 (``rated``: the rating of ``inp`` already at
+    hand, reused for its own edition)."""
     by = {}
     for ed in (Edition.ISO2006, Edition.ISO2019):
         if rated is not None and rated.edition == ed.value:
@@ -64,4 +65,6 @@ def edition_rows(inp: RatingInput, rated: RatingResult | None = None) -> tuple[E
         ga, gb = getattr(a, role), getattr(b, role)
         rows += [EditionRow(s, role, ga.factor(s).value, gb.factor(s).value, ga.factor(s).unit)
                  for s in EDITION_GEAR_SYMBOLS]
+        rows.append(EditionRow("S_F", role, ga.S_F, gb.S_F, "-"))
+        rows.append(EditionRow("S_H", role, ga.S_H, gb.S_H, "-"))
     return tuple(rows)
