@@ -14,17 +14,17 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-from gearcli.model.iso6336.common import Edition
+from gearcli.model.iso6336.common import Edition, Factor
 from gearcli.model.iso6336.document import RatingResult
 from gearcli.model.iso6336.inputs import RatingInput
-from gearcli.model.iso6336.rate import rate
+from gearcli.model.iso6336.rate import Evaluation, evaluate
 
 __all__ = ["EditionRow", "EDITION_PAIR_SYMBOLS", "EDITION_GEAR_SYMBOLS", "edition_rows"]
 
 #: Pair factors that depend on the edition (as implemented).
 EDITION_PAIR_SYMBOLS = ("Z_β",)
 #: Gear factors shown for both editions: the edition-dependent ones and σ_FG that follows
-#: (each gear's S_F and S_H are added after them).
+#: (each gear's S_F and S_H rows are shown after them).
 EDITION_GEAR_SYMBOLS = ("Y_β", "Y_M", "σ_FG")
 
 
@@ -48,23 +48,28 @@ class EditionRow:
                 "2019": self.value_2019, "unit": self.unit, "differs": self.differs}
 
 
+def _rows_of(rated: RatingResult | Evaluation) -> dict[str, dict[str, Factor]]:
+    """{"pair" | "pinion" | "gear": {symbol: row}} of a rating document or an evaluation."""
+    gears = (rated.pinion, rated.gear)
+    return {"pair": {f.symbol: f for f in rated.pair_factors},
+            **{role: {f.symbol: f for f in g.factors}
+               for role, g in zip(("pinion", "gear"), gears, strict=True)}}
+
+
 def edition_rows(inp: RatingInput, rated: RatingResult | None = None) -> tuple[EditionRow, ...]:
     """The rows of :data:`EDITION_PAIR_SYMBOLS` and, per gear, :data:`EDITION_GEAR_SYMBOLS`,
     S_F and S_H, rated by ISO 6336:2006 and :2019 (``rated``: the rating of ``inp`` already at
-    hand, reused for its own edition)."""
+    hand, reused for its own edition; the other edition is evaluated without the lives and
+    inspection dimensions, which it does not change)."""
     by = {}
     for ed in (Edition.ISO2006, Edition.ISO2019):
         if rated is not None and rated.edition == ed.value:
-            by[ed.value] = rated
+            by[ed.value] = _rows_of(rated)
         else:
-            by[ed.value] = rate(dataclasses.replace(inp, edition=ed))
+            by[ed.value] = _rows_of(evaluate(dataclasses.replace(inp, edition=ed)))
     a, b = by["2006"], by["2019"]
-    rows = [EditionRow(s, "pair", a.factor(s).value, b.factor(s).value, a.factor(s).unit)
-            for s in EDITION_PAIR_SYMBOLS]
-    for role in ("pinion", "gear"):
-        ga, gb = getattr(a, role), getattr(b, role)
-        rows += [EditionRow(s, role, ga.factor(s).value, gb.factor(s).value, ga.factor(s).unit)
-                 for s in EDITION_GEAR_SYMBOLS]
-        rows.append(EditionRow("S_F", role, ga.S_F, gb.S_F, "-"))
-        rows.append(EditionRow("S_H", role, ga.S_H, gb.S_H, "-"))
-    return tuple(rows)
+    wanted = [("pair", s) for s in EDITION_PAIR_SYMBOLS] + [  # and the safeties S_H, S_F
+        (role, s) for role in ("pinion", "gear")
+        for s in (*EDITION_GEAR_SYMBOLS, *(x for x in a[role] if x.startswith("S_")))]
+    return tuple(EditionRow(s, where, a[where][s].value, b[where][s].value, a[where][s].unit)
+                 for where, s in wanted)
