@@ -3,7 +3,8 @@ critical positions on the stress figure.
 
 Anchor: the KISSsoft printout of the NREL 5 MW sun–planet mesh (tests/data/
 kisssoft_nrel5mw_stage02.txt): W_k 165.869/296.803 (k 3/5), M_dK 466.306/836.492 with balls
-45/40 mm; the table prints to 1 µm, the printout's own resolution.
+45/40 mm, and at the allowances W_k 165.747/165.690, 296.638/296.563, M_dK 466.079/465.974,
+836.128/835.961; the table prints to 1 µm, the printout's own resolution.
 """
 
 from __future__ import annotations
@@ -38,6 +39,11 @@ def test_geometry_table_rows_carry_the_printed_inspection_dimensions():
     # 165.869 − 0.130 cos 20° = 165.747, 296.803 − 0.175 cos 20° = 296.639 (±1 µm rounding)
     upper = rows["span W_k, upper allowance, pinion / gear"][0].split(" / ")
     assert abs(float(upper[0]) - 165.747) <= 0.0015 and abs(float(upper[1]) - 296.639) <= 0.0015
+    # the printout at the allowances ([Wk.e/i], [MdK.e/i]), to its 1 µm
+    assert rows["span W_k, upper allowance, pinion / gear"][0] == "165.747 / 296.638"
+    assert rows["span W_k, lower allowance, pinion / gear"][0] == "165.690 / 296.563"
+    assert rows["over balls M_dK, upper allowance, pinion / gear"][0] == "466.079 / 836.128"
+    assert rows["over balls M_dK, lower allowance, pinion / gear"][0] == "465.974 / 835.961"
     si = {r[0]: r[1:] for r in inspection_rows(
         pair_inspection(loaded.case, run_geometry(loaded).geometry), "si")}
     assert si["span W_k, nominal, pinion / gear"] == ("0.165869 / 0.296803", "m")
