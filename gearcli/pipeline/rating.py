@@ -255,18 +255,34 @@ def _duty_bins(loaded: LoadedCase, geo: GeometryResult) -> list[LoadBin] | None:
 
 
 def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
-    """Safeties of the run's peak stresses against the ISO strengths at the required life."""
+    """Safeties of the run's peak stresses against the ISO strengths at the required life.
+
+    The peaks of `gearcli stress` come from the converged dynamic pair forces at their actual
+    contact positions: they carry what K_v, K_Hα/K_Fα, Z_B/Z_D and Z_ε stand for in ISO, but not
+    the load the torsional model does not see: K_A, K_γ and the face load distribution K_Hβ,
+    K_Fβ (and, in the root, Y_β Y_B Y_DT, taken 1 by the stress histories). So (ISO 6336-2
+    σ_H = Z_B σ_H0 √ΠK, ISO 6336-3 σ_F = σ_F0 ΠK; docs/theory.md, "ISO 6336 rating" §9)
+    σ_H,sim = σ_H,peak √(K_A K_γ K_Hβ), σ_F,sim = σ_F,peak K_A K_γ K_Fβ Y_β Y_B Y_DT, and
+    S = σ_G/σ_sim."""
     if sim.sigma_H_peak_MPa is None and sim.sigma_F_peak_MPa is None:
         return None
+    k = {f.symbol: f.value for f in result.pair_factors}
+    k_h = k["K_A"] * k["K_γ"] * k["K_Hβ"]
+    k_f = k["K_A"] * k["K_γ"] * k["K_Fβ"]
     out = {}
     for i, g in enumerate((result.pinion, result.gear)):
         row = {}
         if sim.sigma_H_peak_MPa is not None:
             s = sim.sigma_H_peak_MPa[i]
-            row.update(sigma_H_peak_MPa=s, S_H=g.sigma_HG_MPa / s, S_H_min=g.S_H_min)
+            s_h = s * math.sqrt(k_h)
+            row.update(sigma_H_peak_MPa=s, sigma_H_MPa=s_h, S_H=g.sigma_HG_MPa / s_h,
+                       S_H_min=g.S_H_min)
         if sim.sigma_F_peak_MPa is not None:
             s = sim.sigma_F_peak_MPa[i]
-            row.update(sigma_F_peak_MPa=s, S_F=g.sigma_FG_MPa / s, S_F_min=g.S_F_min)
+            y = math.prod(g.factor(sym).value for sym in ("Y_β", "Y_B", "Y_DT"))
+            s_f = s * k_f * y
+            row.update(sigma_F_peak_MPa=s, sigma_F_MPa=s_f, S_F=g.sigma_FG_MPa / s_f,
+                       S_F_min=g.S_F_min)
         out[g.name] = row
     return out
 
