@@ -35,11 +35,12 @@ class GearSafeties(Document):
     S_F_min: float = _safety("S_F_min", "minimum safety against tooth breakage S_F,min",
                              required=True)
     bending: str = _verdict("bending", "bending")
-    #: σ_HG/σ_H,peak with the run's contact stress peak (simulated column; `gearcli stress`)
+    #: from the run's stress peaks (simulated column; `gearcli stress`; pipeline/rating.py)
     S_H_peak: float | None = _safety("S_H_peak", "S_H from the run's contact stress peak "
-                                     "σ_HG/σ_H,peak", None, omit_none=True)
+                                     "σ_HG/(σ_H,peak √(K_A K_γ K_Hβ))", None, omit_none=True)
     S_F_peak: float | None = _safety("S_F_peak", "S_F from the run's root stress peak "
-                                     "σ_FG/σ_F,peak", None, omit_none=True)
+                                     "σ_FG/(σ_F,peak K_A K_γ K_Fβ Y_β Y_B Y_DT)", None,
+                                     omit_none=True)
 
 
 @dataclasses.dataclass(frozen=True)
