@@ -376,7 +376,8 @@ def rate(case_or_run, set=None):  # noqa: A002
     gearcli.pipeline.rating.CaseRating
         ``.iso`` (the ISO column), ``.simulated`` (with a run: K_v = the run's
         F_max/F_static; its ``simulated_peaks`` the safeties of the peak contact and root
-        stresses of :func:`stress` in the steady window against σ_HG, σ_FG),
+        stresses of :func:`stress` in the steady window, with K_A, K_γ, K_Hβ/K_Fβ, against
+        σ_HG, σ_FG),
         ``.duty_cycle``, ``.ok``, ``.to_dict()`` (what ``gearcli rate --json`` prints);
         docs/theory.md, "ISO 6336 rating".
     """

@@ -22,6 +22,10 @@ def rate(
     set_: list[str] = typer.Option(
         [], "--set", help="Override a case value: key.path=value (repeatable)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
+    edition: str | None = typer.Option(
+        None, "--edition", help="ISO 6336 edition followed where they differ: 2006 or 2019 "
+        "(default: the case's rating.edition). Either way the table 'ISO 6336:2006 and :2019' "
+        "shows the edition-dependent factors under both."),
 ) -> None:
     """ISO 6336 Method B load capacity of the pair (parts 1, 2, 3, 5, 6) from the case's
     `rating:` section, its load and its fatigue limits: every factor with its symbol, value and
@@ -29,7 +33,7 @@ def rate(
     the minimum safeties and, with rating.duty_cycle, the Palmgren–Miner damage. Stresses in
     N/mm², lengths in mm, lives in h (the standard's units).
 
-    Example: gearcli rate cases/nrel5mw_sun_planet.yaml
+    Example: gearcli rate cases/nrel5mw_sun_planet.yaml --edition 2019
 
     Exit codes: 0 every safety at or above its minimum, 1 bad input, 4 a safety below its
     minimum (or a duty-cycle damage above 1).
@@ -40,6 +44,12 @@ def rate(
     from gearcli.io.outdir import check_target
     from gearcli.pipeline.rating import rate_case
 
+    if edition is not None:
+        if edition not in ("2006", "2019"):
+            from gearcli.errors import CaseError
+
+            raise CaseError(f"--edition {edition}: expected 2006 or 2019")
+        set_ = [*set_, f"rating.edition={edition}"]
     if out is not None:
         check_target(out, force)  # before the work, not after
     result = rate_case(case, set_)
@@ -129,6 +139,8 @@ def print_rating(doc: dict) -> None:
         gears.add_row(*row)
     console.print(gears)
     console.print(verdict_table(iso, doc.get("duty_cycle")))
+    if doc.get("editions"):
+        console.print(edition_table(doc["editions"], iso["edition"]))
     for note in doc["notes"]:
         console.print(f"note: {note}")
     console.print(f"verdict: {doc['verdict'].upper()}")
@@ -150,4 +162,15 @@ def verdict_table(iso: dict, duty: dict | None):
             ok = all(d is not None and d <= 1.0 for d in (dp[kind], dg[kind]))
             t.add_row(f"duty-cycle damage, {kind}", fmt(dp[kind]), fmt(dg[kind]), "1",
                       "pass" if ok else "fail")
+    return t
+
+
+def edition_table(rows: list[dict], followed: str):
+    """The edition-dependent factors under ISO 6336:2006 and :2019 (model/iso6336/editions)."""
+    t = _table(f"ISO 6336:2006 and :2019 (this rating follows {followed})", [
+        ("symbol", "left"), ("gear", "left"), ("2006", "right"), ("2019", "right"),
+        ("unit", "left"), ("", "left")])
+    for r in rows:
+        t.add_row(r["symbol"], r["gear"], f"{r['2006']:.6g}", f"{r['2019']:.6g}", r["unit"],
+                  "differs" if r["differs"] else "same")
     return t

@@ -110,14 +110,12 @@ def run(
 
 
 def _write_rating(folder: Path, loaded) -> str:
-    """rating.json (ISO 6336: the ISO and the simulated column) of the run in ``folder`` when
-    its case can be rated, returning ""; else, writing nothing, why it was not rated."""
-    import json
+    """rating.json (ISO 6336: the ISO and the simulated column; S_H, S_F also in summary.json)
+    of the run in ``folder`` when its case can be rated, returning ""; else, writing nothing,
+    why it was not rated."""
+    from gearcli.pipeline.run_rating import rate_run, write_rating
 
-    from gearcli.io.files import write_atomic
-    from gearcli.pipeline.run_rating import rate_run
-
-    rating, why_not = rate_run(folder, loaded)
-    if rating is not None:
-        write_atomic(folder / "rating.json", json.dumps(rating.to_dict(), indent=2) + "\n")
+    rating, why_not = rate_run(folder, loaded, stress_files=True)  # stress.json: the figure
+    if rating is not None:  # rating.json, and the safeties into summary.json
+        write_rating(folder, rating)
     return why_not

@@ -49,6 +49,7 @@ RESULT_NAMES = frozenset({
     "analysis.json", "spectrum.csv", "harmonics.csv", "stress.csv", "stress.json",
     "report.html", "report.md", "figures", "mesh.json", "mesh.csv", "mesh.png",
     "summary.csv", "speed_curve.json", "speed_curve.png", "rating.json", "monitor.json",
+    "speed_curve_rating.png",
 })
 
 

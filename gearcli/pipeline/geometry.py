@@ -7,43 +7,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from gearcli.case.build import mass_inputs, nominal_pinion_speed, pair_spec
+from gearcli.case.inspection import PairInspection, pair_inspection
 from gearcli.case.load import LoadedCase, load_case
-from gearcli.case.schema import Case
 from gearcli.model.geometry import Finding, PairGeometry, compute_pair_geometry, mesh_frequencies
-from gearcli.model.iso6336.inspection import InspectionDimensions, inspection_dimensions
 from gearcli.model.params import MassProperties, gear_mass_properties
-
-
-@dataclass(frozen=True)
-class PairInspection:
-    """Inspection dimensions of both gears (tuples: nominal, upper, lower allowance) [mm]."""
-
-    pinion: InspectionDimensions
-    gear: InspectionDimensions
-    allowances_mm: tuple[tuple[float, float], tuple[float, float]]  #: (upper, lower) per gear
-
-    def to_dict(self) -> dict:
-        return {"pinion": {**self.pinion.to_dict(),
-                           "thickness_allowances_mm": list(self.allowances_mm[0])},
-                "gear": {**self.gear.to_dict(),
-                         "thickness_allowances_mm": list(self.allowances_mm[1])}}
-
-
-def pair_inspection(case: Case, g: PairGeometry) -> PairInspection:
-    """Span W_k, balls (theoretical, next standard or rating.<gear>.ball_diameter), M_dK and
-    chordal tooth thickness/height of both gears at the nominal thickness and at the
-    allowances rating.<gear>.thickness_allowances (default: both −gears.<gear>.
-    thickness_allowance); docs/theory.md, "ISO 6336 rating" §6."""
-    out, allowances = [], []
-    for role in ("pinion", "gear"):
-        spec, rg, gg = getattr(case.gears, role), getattr(case.rating, role), getattr(g, role)
-        allow = rg.thickness_allowances or (-spec.thickness_allowance, -spec.thickness_allowance)
-        allow = (float(allow[0]) + 0.0, float(allow[1]) + 0.0)  # -0.0 as 0.0
-        allowances.append(allow)
-        out.append(inspection_dimensions(spec.teeth, spec.profile_shift, g.module_mm,
-                                         g.pressure_angle_rad, gg.d_a_mm, allow,
-                                         rg.ball_diameter))
-    return PairInspection(out[0], out[1], (allowances[0], allowances[1]))
 
 
 @dataclass(frozen=True)

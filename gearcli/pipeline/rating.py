@@ -24,27 +24,24 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from gearcli.case.inspection import PairInspection, pair_inspection
 from gearcli.case.load import LoadedCase, load_case, load_case_text
 from gearcli.case.schema import Case
 from gearcli.errors import CaseError
 from gearcli.model.iso6336.common import Edition
 from gearcli.model.iso6336.document import RatingResult
+from gearcli.model.iso6336.editions import EditionRow, edition_rows
 from gearcli.model.iso6336.inputs import GearInput, RatingInput
 from gearcli.model.iso6336.material import MaterialKind, Quality
 from gearcli.model.iso6336.rate import rate
 from gearcli.model.iso6336.spectrum import DutyCycleDamage, LoadBin, duty_cycle_damage
 from gearcli.pipeline.capabilities import not_included
-from gearcli.pipeline.geometry import (
-    GeometryResult,
-    PairInspection,
-    pair_inspection,
-    run_geometry,
-)
+from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.mesh_input import load_torque_Nmm
 from gearcli.results.models import IsoResonance
 
 __all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
-           "case_inspection", "simulated_load", "RPM_PER_RAD_S"]
+           "case_inspection", "simulated_load", "simulated_load_of", "RPM_PER_RAD_S"]
 
 RPM_PER_RAD_S = 30.0 / math.pi
 _ROLES = ("pinion", "gear")
@@ -82,6 +79,8 @@ class CaseRating:
     simulated: RatingResult | None  #: K_v (and K_γ) of the run
     simulated_peaks: dict | None  #: safeties from the run's peak stresses
     notes: tuple[str, ...]
+    #: the edition-dependent factors of the ISO column under ISO 6336:2006 and :2019
+    editions: tuple[EditionRow, ...] = ()
 
     @property
     def name(self) -> str:
@@ -112,6 +111,7 @@ class CaseRating:
             "duty_cycle": None if self.duty_cycle is None else self.duty_cycle.to_dict(),
             "simulated": None if self.simulated is None else {
                 **self.simulated.to_dict(), "peaks": self.simulated_peaks},
+            "editions": [r.to_dict() for r in self.editions],
             "notes": list(self.notes),
         }
 
@@ -255,47 +255,66 @@ def _duty_bins(loaded: LoadedCase, geo: GeometryResult) -> list[LoadBin] | None:
 
 
 def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
-    """Safeties of the run's peak stresses against the ISO strengths at the required life."""
+    """Safeties of the run's peak stresses against the ISO strengths at the required life.
+
+    The peaks of `gearcli stress` come from the converged dynamic pair forces at their actual
+    contact positions: they carry what K_v, K_Hα/K_Fα, Z_B/Z_D and Z_ε stand for in ISO, but not
+    the load the torsional model does not see: K_A, K_γ and the face load distribution K_Hβ,
+    K_Fβ (and, in the root, Y_β Y_B Y_DT, taken 1 by the stress histories). So (ISO 6336-2
+    σ_H = Z_B σ_H0 √ΠK, ISO 6336-3 σ_F = σ_F0 ΠK; docs/theory.md, "ISO 6336 rating" §9)
+    σ_H,sim = σ_H,peak √(K_A K_γ K_Hβ), σ_F,sim = σ_F,peak K_A K_γ K_Fβ Y_β Y_B Y_DT, and
+    S = σ_G/σ_sim."""
     if sim.sigma_H_peak_MPa is None and sim.sigma_F_peak_MPa is None:
         return None
+    k = {f.symbol: f.value for f in result.pair_factors}
+    k_h = k["K_A"] * k["K_γ"] * k["K_Hβ"]
+    k_f = k["K_A"] * k["K_γ"] * k["K_Fβ"]
     out = {}
     for i, g in enumerate((result.pinion, result.gear)):
         row = {}
         if sim.sigma_H_peak_MPa is not None:
             s = sim.sigma_H_peak_MPa[i]
-            row.update(sigma_H_peak_MPa=s, S_H=g.sigma_HG_MPa / s, S_H_min=g.S_H_min)
+            s_h = s * math.sqrt(k_h)
+            row.update(sigma_H_peak_MPa=s, sigma_H_MPa=s_h, S_H=g.sigma_HG_MPa / s_h,
+                       S_H_min=g.S_H_min)
         if sim.sigma_F_peak_MPa is not None:
             s = sim.sigma_F_peak_MPa[i]
-            row.update(sigma_F_peak_MPa=s, S_F=g.sigma_FG_MPa / s, S_F_min=g.S_F_min)
+            y = math.prod(g.factor(sym).value for sym in ("Y_β", "Y_B", "Y_DT"))
+            s_f = s * k_f * y
+            row.update(sigma_F_peak_MPa=s, sigma_F_MPa=s_f, S_F=g.sigma_FG_MPa / s_f,
+                       S_F_min=g.S_F_min)
         out[g.name] = row
     return out
 
 
-def simulated_load(folder: str | Path) -> tuple[SimulatedLoad, LoadedCase]:
-    """(SimulatedLoad, the run's case) of a results folder of `gearcli simulate`: K_v = the
-    summary's F_max/F_static, the peak σ_H, σ_F per gear of `gearcli stress` in the steady
-    window (pipeline.stress.compute_stress; None where a gear has no loaded sample)."""
-    import json
-
-    from gearcli.io.results import read_run
-    from gearcli.pipeline.stress import compute_stress
-
-    stored = read_run(folder)
-    scalars = stored.summary.scalars
+def simulated_load_of(res) -> SimulatedLoad:
+    """The SimulatedLoad of a run's stress evaluation ``res`` (pipeline.stress.StressResult):
+    K_v = the run's summary F_max/F_static, the peak σ_H, σ_F per gear of `gearcli stress` in
+    the steady window (None where a gear has no loaded sample)."""
+    scalars = res.run.summary.scalars
     f_max, f_static = float(scalars.force_max_N), float(scalars.force_static_N)
     if not (f_static > 0.0 and f_max > 0.0):
         raise CaseError(f"rate: the run's F_max {f_max:g} N / F_static {f_static:g} N is no "
                         "dynamic factor; expected a loaded run (both > 0)")
-    res = compute_stress(folder, None)
     gears = (res.pinion, res.gear)
     h = tuple(g.sigma_H_peak_MPa for g in gears)
     f = tuple(g.sigma_F_peak_MPa for g in gears)
-    simulated = SimulatedLoad(dynamic_factor=f_max / f_static,
-                              sigma_H_peak_MPa=None if None in h else h,
-                              sigma_F_peak_MPa=None if None in f else f)
-    loaded = load_case_text(json.dumps(stored.manifest["resolved_case"]),
+    return SimulatedLoad(dynamic_factor=f_max / f_static,
+                         sigma_H_peak_MPa=None if None in h else h,
+                         sigma_F_peak_MPa=None if None in f else f)
+
+
+def simulated_load(folder: str | Path) -> tuple[SimulatedLoad, LoadedCase]:
+    """(SimulatedLoad, the run's case) of a results folder of `gearcli simulate`
+    (:func:`simulated_load_of` its stress evaluation, pipeline.stress.compute_stress)."""
+    import json
+
+    from gearcli.pipeline.stress import compute_stress
+
+    res = compute_stress(folder, None)
+    loaded = load_case_text(json.dumps(res.run.manifest["resolved_case"]),
                             str(Path(folder) / "manifest.json"))
-    return simulated, loaded
+    return simulated_load_of(res), loaded
 
 
 def _with_kv_clause(result: RatingResult, source: str) -> RatingResult:
@@ -325,6 +344,7 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
     bins = _duty_bins(loaded, geo)
     try:
         iso = _with_kv_clause(rate(inp), source_kv)
+        editions = edition_rows(inp, iso)
         damage = duty_cycle_damage(inp, bins) if bins is not None else None
     except ValueError as exc:
         raise loaded.error(("rating",), f"cannot rate this case: {exc}") from None
@@ -336,7 +356,8 @@ def rate_case(source: str | Path | LoadedCase, overrides: list[str] | None = Non
         sim = _with_kv_clause(rate(dataclasses.replace(inp, **changes)),
                               "simulated: the run's F_max/F_static")
         peaks = _peaks(sim, simulated)
-    return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes))
+    return CaseRating(loaded, inp, iso, source_kv, info, damage, sim, peaks, tuple(notes),
+                      editions)
 
 
 def case_inspection(source: str | Path | LoadedCase, geo: GeometryResult | None = None,

@@ -209,6 +209,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
     """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow)."""
     from gearcli.pipeline.geometry import run_geometry
     from gearcli.pipeline.mesh_input import iso_dynamic
+    from gearcli.pipeline.run_rating import with_level_safeties
     from gearcli.pipeline.sweep.run import case_from_json, execute
 
     results = list(execute(run_direction, plan(study), jobs, scheduler))
@@ -226,6 +227,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
         # a failed row: still placed on the axis
         resonance_ratio=r.resonance_ratio if math.isfinite(r.resonance_ratio)
         else r.mesh_frequency_Hz / f_n) for r in rows]
+    rows = with_level_safeties(base, rows)  # S_H, S_F at each speed (issue 28)
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
                       _notes(base.case))
@@ -271,6 +273,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
 
     from gearcli.io.manifest import versions
     from gearcli.io.outdir import atomic_dir
+    from gearcli.pipeline.run_rating import write_rating_figure
     from gearcli.plotting.speed_curve import plot_speed_curve
 
     with atomic_dir(out, force) as tmp:
@@ -286,6 +289,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
                "iso6336_method_b": curve.iso.to_dict() if curve.iso else None,
                "errors": curve.errors, "notes": curve.notes}
+        doc["rating"] = write_rating_figure(curve, tmp)  # S_H, S_F against speed (issue 28)
         (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,

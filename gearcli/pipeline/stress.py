@@ -392,6 +392,12 @@ def write_stress(res: StressResult, doc: dict | None = None) -> dict:
     return doc
 
 
+def _peaks_of(res: StressResult) -> dict:
+    """stress.json's per-gear peaks (their positions are marked on the figure)."""
+    doc = stress_document(res)
+    return {"pinion": doc.pinion.to_dict(), "gear": doc.gear.to_dict()}
+
+
 def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -> None:
     """σ_H and σ_F through the last ``cycles`` mesh cycles of the window and along the path."""
     from gearcli.io.files import save_figure
@@ -402,6 +408,6 @@ def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -
     fig = plot_stress_of_run(
         res.t_s, res.x_mm, res.force_N, res.sigma_H, res.sigma_F_pinion, res.sigma_F_gear,
         geometry=geo, static=_static_doc(res.static).to_dict(), window_s=res.window_s,
-        f_z_Hz=f_z, cycles=cycles,
+        f_z_Hz=f_z, cycles=cycles, peaks=_peaks_of(res),
         title=f"{res.name}: tooth stresses (z1 = {geo.pinion.teeth}, z2 = {geo.gear.teeth})")
     save_figure(fig, path, 130)

@@ -14,7 +14,7 @@ import numpy as np
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["plot_stress"]
+__all__ = ["plot_stress", "plot_stress_of_run", "critical_points"]
 
 _SLOT_COLOURS = ("#1f5fa8", "#d9771e", "#2e7d32", "#7b2d8e", "#8c564b", "#e377c2")
 _PINION, _GEAR, _STATIC, _MARK = "#1f5fa8", "#d9771e", "#c62828", "#555555"
@@ -27,16 +27,51 @@ def _marks(ax, marks_mm: dict[str, float]) -> None:
                 ha="center", fontsize=8, color=_MARK)
 
 
+def critical_points(peaks: dict | None) -> dict[str, list[tuple[str, float, float]]]:
+    """The critical positions of stress.json's per-gear peaks ``peaks`` = {"pinion": {...},
+    "gear": {...}} (``peak_sigma_H``, ``peak_sigma_F``: ``MPa``, ``x_from_A_mm``), the peaks the
+    simulated rating divides σ_HG, σ_FG by (docs/theory.md, "ISO 6336 rating" §9):
+    {"H": [(label, x [mm from A], σ [MPa])], "F": [...]}, a contact peak shared by both gears
+    listed once."""
+    out: dict[str, list[tuple[str, float, float]]] = {"H": [], "F": []}
+    for role in ("pinion", "gear"):
+        gear = (peaks or {}).get(role) or {}
+        for kind, key in (("H", "peak_sigma_H"), ("F", "peak_sigma_F")):
+            p = gear.get(key) or {}
+            if p.get("MPa") is None or p.get("x_from_A_mm") is None:
+                continue
+            point = (float(p["x_from_A_mm"]), float(p["MPa"]))
+            if kind == "H" and any(q[1:] == point for q in out["H"]):
+                continue
+            label = f"σ_H peak ({role})" if kind == "H" else f"σ_F peak {role}"
+            out[kind].append((label, *point))
+    return out
+
+
+def _critical(ax, points: list[tuple[str, float, float]]) -> None:
+    """A marker and an annotation at each critical position (label, x [mm], σ [MPa])."""
+    for k, (label, x, value) in enumerate(points):
+        ax.plot([x], [value], marker="*", ms=13, color="#000000", mfc="#ffd600", ls="none",
+                zorder=5, label="critical position (simulated rating)" if k == 0 else None)
+        ax.annotate(f"{label}: {value:.4g} MPa at x = {x:.3g} mm", (x, value),
+                    xytext=(0.99, 0.62 - 0.13 * k), textcoords="axes fraction", fontsize=7,
+                    ha="right", va="top", arrowprops={"arrowstyle": "-", "lw": 0.5},
+                    bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "#999999",
+                          "alpha": 0.85})
+
+
 def plot_stress(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, window_s,
                 zoom_s, marks_mm: dict[str, float], single_pair_x_mm, single_pair_sigma_H,
-                static_MPa: dict[str, float], title: str) -> Figure:
+                static_MPa: dict[str, float], title: str,
+                critical: dict[str, list[tuple[str, float, float]]] | None = None) -> Figure:
     """Four panels: σ_H per slot and σ_F (pinion, gear) per slot over ``zoom_s`` = (t0, t1) [s];
     σ_H and σ_F against the roll position x from A [mm] for every loaded sample of the window.
 
     ``single_pair_sigma_H`` (on ``single_pair_x_mm``) is the Hertz stress of one pair carrying
     the whole static load, drawn as the quasi-static reference; ``static_MPa`` holds the ISO
     values ``sigma_H_B``, ``sigma_H_D``, ``sigma_F0_pinion``, ``sigma_F0_gear`` [MPa];
-    ``marks_mm`` the points A…E [mm from A].
+    ``marks_mm`` the points A…E [mm from A]; ``critical`` (:func:`critical_points`) the
+    positions of the peaks the simulated rating uses, marked on the position panels.
     """
     from matplotlib.figure import Figure
 
@@ -80,6 +115,8 @@ def plot_stress(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, wi
                  label="ISO σ_F0 pinion (load at D)")
     px_f.axhline(static_MPa["sigma_F0_gear"], color=_GEAR, lw=0.9, ls=":",
                  label="ISO σ_F0 gear (load at B)")
+    for ax, kind in ((px_h, "H"), (px_f, "F")):
+        _critical(ax, (critical or {}).get(kind, []))
     for ax, what in ((px_h, "σ_H [MPa]"), (px_f, "σ_F [MPa]")):
         ax.set(xlabel="pinion roll position from A along the line of action [mm]", ylabel=what)
         ax.grid(True, lw=0.4, alpha=0.5)
@@ -90,12 +127,14 @@ def plot_stress(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, wi
 
 def plot_stress_of_run(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, geometry,
                        static: dict, window_s, f_z_Hz: float, title: str,
-                       cycles: float = 3.0) -> Figure:
+                       cycles: float = 3.0, peaks: dict | None = None) -> Figure:
     """:func:`plot_stress` of a run: the last ``cycles`` mesh cycles of the window (mesh
     frequency ``f_z_Hz`` [Hz]), the points A…E of ``geometry`` (a PairGeometry) and the
     single-pair Hertz reference from stress.json's ``static`` values (``force_normal_N``,
     ``contact_face_width_mm``, ``E_star_MPa``, and per gear ``sigma_H_iso_MPa``,
-    ``sigma_F0_MPa``), so that `gearcli stress --plot` and the report draw the same figure."""
+    ``sigma_F0_MPa``), so that `gearcli stress --plot` and the report draw the same figure;
+    ``peaks``: stress.json's {"pinion": ..., "gear": ...}, whose peak positions are marked
+    (:func:`critical_points`)."""
     from gearcli.model.rating import hertz_line_contact_stress
 
     geo = geometry
@@ -114,4 +153,4 @@ def plot_stress_of_run(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear
                     "sigma_H_D": static["gear"]["sigma_H_iso_MPa"],
                     "sigma_F0_pinion": static["pinion"]["sigma_F0_MPa"],
                     "sigma_F0_gear": static["gear"]["sigma_F0_MPa"]},
-        title=title)
+        title=title, critical=critical_points(peaks))

@@ -137,7 +137,8 @@ def build_figures(data: ReportData, out_dir: Path, svg: bool = False) -> list[Fi
                      "Hertz contact stress σ_H and ISO 6336-3 root stress σ_F per pair slot "
                      "through the last mesh cycles of the window, and against the position on "
                      "the path of contact, with the ISO static values and the single-pair "
-                     "quasi-static reference.", lambda: _stress(data)))
+                     "quasi-static reference; stars mark the critical positions (the contact "
+                     "and root stress peaks the simulated rating uses).", lambda: _stress(data)))
     lateral = [k for k in ("x1_mm", "y1_mm", "x2_mm", "y2_mm") if k in c]
     if lateral:
         jobs.append(("lateral", "Lateral-torsional model: centre displacements of the pinion "
@@ -171,7 +172,8 @@ def _stress(data: ReportData):
         ss["t_s"], stack("x_slot{}_mm", c), stack("force_slot{}_N", c),
         stack("sigma_H_slot{}_MPa", ss), stack("sigma_F_pinion_slot{}_MPa", ss),
         stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st.static.to_dict(),
-        window_s=tuple(st.window_s),
+        window_s=tuple(st.window_s), peaks={"pinion": st.pinion.to_dict(),
+                                            "gear": st.gear.to_dict()},
         f_z_Hz=data.scalars.gear_mesh_frequency_Hz or 0.0,  # as `gearcli stress --plot`
         title=f"{st.case}: tooth stresses (z1 = {geo.pinion.teeth}, "
               f"z2 = {geo.gear.teeth})")

@@ -1,6 +1,7 @@
 """The report's "Rating (ISO 6336)" section: S_H and S_F per gear, the ISO column (K_v of the
-case) and the simulated column (K_v = the run's F_max/F_static) side by side, with the minimum
-safeties and verdicts (rating.json of `gearcli run`; docs/theory.md, "ISO 6336 rating")."""
+case), the simulated column (K_v = the run's F_max/F_static) and the safeties of the run's
+stress peaks side by side, with the minimum safeties and verdicts (rating.json of `gearcli
+run`; docs/theory.md, "ISO 6336 rating")."""
 
 from __future__ import annotations
 
@@ -29,22 +30,27 @@ def missing_limits(case: Case | None) -> list[str]:
 def rating_table(rating: dict) -> Table:
     """One row per gear and safety: ISO, simulated, minimum, verdict of each column."""
     iso, sim = rating["iso"], rating.get("simulated")
+    peaks = (sim or {}).get("peaks") or {}
     rows, status = [], []
     for role in _ROLES:
         for s, lim, verdict in (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending")):
             a = iso[role]
             b = sim[role] if sim else None
-            rows.append((role, s, fmt(a[s]), fmt(b[s]) if b else "–", fmt(a[lim]),
+            peak = peaks.get(role, {}).get(s)
+            rows.append((role, s, fmt(a[s]), fmt(b[s]) if b else "–",
+                         "–" if peak is None else fmt(peak), fmt(a[lim]),
                          a[verdict], b[verdict] if b else "–"))
             ok = a[verdict] == "pass" and (b is None or b[verdict] == "pass")
             status.append("pass" if ok else "fail")
     load = rating.get("load", {})
     note = (f"ISO 6336 Method B ({rating.get('edition', '')}); ISO column K_v: "
             f"{load.get('dynamic_factor_source', '')}; simulated column K_v = the run's "
-            "F_max/F_static. Verdict: " + str(rating.get("verdict", "")) + ".")
+            "F_max/F_static; stress peaks: σ_G over the run's peak stresses (gearcli stress, "
+            "their positions starred on the stress figure) times √(K_A K_γ K_Hβ) resp. "
+            "K_A K_γ K_Fβ Y_β Y_B Y_DT. Verdict: " + str(rating.get("verdict", "")) + ".")
     return Table("Rating (ISO 6336): safety factors, ISO beside simulated",
-                 ("gear", "safety", "ISO", "simulated", "minimum", "verdict ISO",
-                  "verdict simulated"), rows, note=note, status=status)
+                 ("gear", "safety", "ISO", "simulated", "simulated, stress peaks", "minimum",
+                  "verdict ISO", "verdict simulated"), rows, note=note, status=status)
 
 
 def missing_line(case: Case | None) -> str:

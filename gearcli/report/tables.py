@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 from pydantic import BaseModel
 
+from gearcli.case.inspection import PairInspection, pair_inspection
 from gearcli.case.schema import Case
 from gearcli.case.schema_gears import Gear
 from gearcli.case.types import TimeFunction, field_dim
@@ -170,8 +171,50 @@ def geometry_table(data: ReportData) -> Table | None:
         ("time with one pair in contact", fmt(100.0 * geo.single_contact_fraction), "%"),
         ("normal backlash j_n", *_cells(geo.j_n_mm, u, "mm")),
     ]
+    if data.case is not None:
+        rows += inspection_rows(pair_inspection(data.case, geo), u)
     note = "; ".join(f.message for f in geo.findings)
     return Table("Pair geometry (derived)", ("quantity", "value", "unit"), rows, note)
+
+
+#: (label, key of InspectionDimensions, index: 0 nominal, 1 upper, 2 lower allowance, or None)
+_INSPECTION = (
+    ("span measurement teeth k", "span_teeth", None),
+    *((f"span W_k, {at}", "span_mm", i) for i, at in enumerate(
+        ("nominal", "upper allowance", "lower allowance"))),
+    *((f"over balls M_dK, {at}", "over_balls_mm", i) for i, at in enumerate(
+        ("nominal", "upper allowance", "lower allowance"))),
+    *((f"chordal thickness s_c, {at}", "chordal_thickness_mm", i) for i, at in enumerate(
+        ("nominal", "upper allowance", "lower allowance"))),
+    *((f"chordal height h_c, {at}", "chordal_height_mm", i) for i, at in enumerate(
+        ("nominal", "upper allowance", "lower allowance"))),
+)
+
+
+def inspection_rows(insp: PairInspection, u: str) -> list[tuple[str, str, str]]:
+    """The inspection dimensions as rows "quantity, pinion / gear", "value / value", unit, to
+    1 µm: the tooth thickness allowances, span W_k, balls, M_dK, chordal thickness and height
+    at the nominal thickness and at the allowances (gearcli/case/inspection.py;
+    docs/theory.md, "ISO 6336 rating" §6)."""
+    unit = convert(1.0, "mm", u)[1]
+    digits = 3 + round(-math.log10(convert(1.0, "mm", u)[0]))  # 1 µm in the display unit
+
+    def cell(values) -> str:
+        return " / ".join(f"{convert(float(v), 'mm', u)[0]:.{digits}f}" for v in values)
+
+    gears = (insp.pinion, insp.gear)
+    rows = [("tooth thickness allowances A_sne / A_sni, pinion; gear",
+             "; ".join(cell(a) for a in insp.allowances_mm), unit),
+            ("ball diameter D_M, theoretical / used, pinion; gear",
+             "; ".join(cell((g.ball_theoretical_mm, g.ball_mm)) for g in gears), unit)]
+    for label, key, i in _INSPECTION:
+        if i is None:
+            rows.append((label + ", pinion / gear",
+                         " / ".join(str(getattr(g, key)) for g in gears), "–"))
+        else:
+            rows.append((label + ", pinion / gear", cell(getattr(g, key)[i] for g in gears),
+                         unit))
+    return rows
 
 
 def contact_table(data: ReportData) -> Table:

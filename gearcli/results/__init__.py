@@ -20,6 +20,7 @@ from gearcli.results.analysis import (
 from gearcli.results.fields import PLACES, Document, shown, shown_values
 from gearcli.results.models import MeshSummary, ModalDocument, Mode
 from gearcli.results.monitor import MonitorDocument, ShaftMonitor
+from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
 from gearcli.results.run import (
     EnergyBalance,
     PointLines,
@@ -37,4 +38,5 @@ __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "Sto
            "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin", "Check",
            "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
            "SpeedLevel", "MonitorDocument", "ShaftMonitor", "Document", "PLACES", "shown",
-           "shown_values", "sweep_metrics", "json_schema", "KINDS"]
+           "shown_values", "sweep_metrics", "json_schema", "KINDS", "GearSafeties",
+           "RatingColumn", "RatingSummary"]

@@ -9,6 +9,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from gearcli.results.fields import Document, metric_field, shown
+from gearcli.results.rating import RatingSummary
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
 
@@ -147,6 +148,9 @@ class SummaryDocument(Document):
     scalars: Summary = metric_field("scalars", Summary(), nested=Summary)
     input_digest: InputDigest | None = metric_field("input_digest", None, omit_none=True,
                                                     nested=InputDigest)
+    #: S_H, S_F per gear, ISO and simulated (`gearcli run` of a case it can rate; issue 28)
+    rating: RatingSummary | None = metric_field("rating", None, omit_none=True,
+                                                nested=RatingSummary)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -164,6 +168,10 @@ class SpeedLevel(Document):
     force_max_N: float = metric_field("force_max_N")
     dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm")
     contact_loss_fraction: float = metric_field("contact_loss_fraction")
+    #: ISO 6336 S_H, S_F at this speed with its K_v = dynamic_factor, the smaller of the gears'
+    #: (pipeline/run_rating.level_safeties); NaN when the case cannot be rated
+    safety_pitting_min: float = metric_field("safety_pitting_min")
+    safety_bending_min: float = metric_field("safety_bending_min")
     status: str = metric_field("status", "ok")  #: "ok", "invalid" or "failed"
     error: str = metric_field("error", "")
 

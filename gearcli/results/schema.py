@@ -14,6 +14,7 @@ from gearcli.results.models import (
     MeshSummary,
     Mode,
 )
+from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
 from gearcli.results.run import InputDigest, Summary
 from gearcli.results.stress import GearStress
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
@@ -28,6 +29,24 @@ def _finite(value) -> bool:
 
 #: The documents ``gearcli schema --results KIND`` describes.
 KINDS = ("summary", "analysis", "stress", "modal", "mesh")
+
+
+def _rating_schema(typed) -> dict:
+    """summary.json's ``rating`` (gearcli/results/rating.py): the ISO and the simulated column,
+    each with both gears' safeties."""
+    verdict = {"enum": ["pass", "fail"]}
+    gear = typed(GearSafeties)
+    gear["properties"].update(pitting=verdict, bending=verdict)
+    gear["required"] = ["S_H", "S_H_min", "pitting", "S_F", "S_F_min", "bending"]
+    column = typed(RatingColumn)
+    column["properties"].update(pinion=gear, gear=gear, verdict=verdict)
+    column["required"] = ["dynamic_factor", "pinion", "gear", "verdict"]
+    rating = typed(RatingSummary)
+    rating["properties"]["verdict"] = verdict
+    rating["required"] = ["edition", "iso", "verdict"]
+    rating["properties"].update(iso=column, simulated={"anyOf": [column, {"type": "null"}]})
+    rating["description"] = RatingSummary.__doc__.split("\n")[0]
+    return rating
 
 
 def json_schema(kind: str = "summary") -> dict:
@@ -73,7 +92,8 @@ def json_schema(kind: str = "summary") -> dict:
                  "solver": obj, "rows": {"type": "integer", "minimum": 1},
                  "slots": {"type": "integer"},
                  "warnings": {"type": "array", "items": {"type": "string"}},
-                 "scalars": scalars, "input_digest": typed(InputDigest)}
+                 "scalars": scalars, "input_digest": typed(InputDigest),
+                 "rating": _rating_schema(typed)}
         return {**base, "title": "gearcli summary.json", "properties": props,
                 "required": ["schema_version", "case", "status", "rows", "scalars"]}
     check = {"type": "object", "required": ["name", "value", "limit", "passed"],

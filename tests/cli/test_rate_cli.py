@@ -127,3 +127,42 @@ def test_duty_cycle_rows_and_their_verdict():
     ok = runner.invoke(app, ["rate", NREL, "--set", bins, "--set",
                              "rating.minimum_safety.pitting=1.2", "--json"])
     assert ok.exit_code == 0 and json.loads(ok.output)["duty_cycle"]["pinion"]["pitting"] == 0
+
+
+def test_both_editions_for_the_anchor():
+    """ISO 6336:2006 beside :2019 for the NREL case (docs/theory.md, "ISO 6336 rating" §7).
+    Printed (2006): Z_β 1.000, Y_β 1.00/1.00, Y_M 1.000/0.700, σ_FG 589.60/429.38, S_F 2.82/2.04.
+    2019 by hand: Z_β = 1/√cos 0° = 1, Y_β = (1 − 0)/cos³0° = 1; the planet (idler) Y_M =
+    1/(1 + 1.2 (1 − M)/(1 + M)), M = 0.8 − 0.15 Y_S with the printed Y_S 2.18 → M = 0.473,
+    Y_M = 0.69963; the printed Y_S carries ±0.005, so Y_M lies between its values at Y_S 2.175
+    and 2.185 (0.70004 … 0.69922; the unrounded Y_S 2.1755 gives 0.69999); σ_FG and S_F scale
+    with Y_M (σ_FG ∝ Y_M, ISO 6336-3 eq. (3)): 429.38 × 0.69999/0.7 = 429.374."""
+    out = {}
+    for ed in ("2006", "2019"):
+        res = runner.invoke(app, ["rate", NREL, "--json", "--edition", ed])
+        assert res.exit_code == 4, res.output
+        out[ed] = json.loads(res.output)
+        assert out[ed]["edition"] == ed
+    rows = {(r["symbol"], r["gear"]): r for r in out["2019"]["editions"]}
+    assert out["2006"]["editions"] == out["2019"]["editions"]  # both columns, either way
+    assert rows["Z_β", "pair"]["2006"] == rows["Z_β", "pair"]["2019"] == 1.0
+    for role in ("pinion", "gear"):
+        assert rows["Y_β", role]["2006"] == rows["Y_β", role]["2019"] == 1.0
+        assert within_print(rows["S_H", role]["2019"], {"pinion": "1.21", "gear": "1.38"}[role])
+    assert rows["Y_M", "pinion"]["2006"] == rows["Y_M", "pinion"]["2019"] == 1.0
+    def y_m(y_s: float) -> float:
+        m = 0.8 - 0.15 * y_s
+        return 1.0 / (1.0 + 1.2 * (1.0 - m) / (1.0 + m))
+
+    planet = {s: rows[s, "gear"] for s in ("Y_M", "σ_FG", "S_F")}
+    assert planet["Y_M"]["2006"] == 0.7
+    assert y_m(2.185) < planet["Y_M"]["2019"] < y_m(2.175)
+    assert abs(planet["Y_M"]["2019"] - 0.69999) < 5e-6  # the unrounded Y_S
+    assert within_print(planet["σ_FG"]["2006"], "429.38")
+    assert abs(planet["σ_FG"]["2019"] - 429.38 * 0.69999 / 0.7) < 0.006  # printed digits
+    assert within_print(planet["S_F"]["2006"], "2.04") and within_print(planet["S_F"]["2019"],
+                                                                       "2.04")
+    assert [k for k, r in rows.items() if r["differs"]] == [
+        ("Y_M", "gear"), ("σ_FG", "gear"), ("S_F", "gear")]
+    bad = runner.invoke(app, ["rate", NREL, "--edition", "2017"])
+    assert bad.exit_code == 1 and "expected 2006 or 2019" in bad.output

@@ -13,13 +13,14 @@ import json
 import math
 from pathlib import Path
 
+import jsonschema
 import pytest
 from typer.testing import CliRunner
 
 from gearcli.case.load import load_case
 from gearcli.cli import app
 from gearcli.pipeline.run_rating import simulated_safeties
-from gearcli.results import sweep_metrics
+from gearcli.results import SummaryDocument, json_schema, sweep_metrics
 
 runner = CliRunner()
 ISO_PAIR = str(Path(__file__).resolve().parents[2] / "cases" / "iso_pair.yaml")
@@ -48,7 +49,30 @@ def test_run_writes_rating_json_with_both_columns_and_the_report_section(tmp_pat
     for role in ("pinion", "gear"):
         assert sim[role]["S_H"] == pytest.approx(iso[role]["S_H"] * math.sqrt(h), rel=1e-9)
         assert sim[role]["S_F"] == pytest.approx(iso[role]["S_F"] * f, rel=1e-9)
+    # summary.json carries the safeties of both columns as typed fields, valid by the schema
+    doc = json.loads((out / "summary.json").read_text())
+    jsonschema.validate(doc, json_schema("summary"))
+    typed = SummaryDocument.from_document(doc).rating
+    assert typed.edition == rating["edition"] and typed.verdict == rating["verdict"]
+    for column, full in ((typed.iso, iso), (typed.simulated, sim)):
+        assert column.dynamic_factor == _k(full, "K_v")
+        for role in ("pinion", "gear"):
+            g, f = getattr(column, role), full[role]
+            assert (g.S_H, g.S_H_min, g.pitting) == (f["S_H"], f["S_H_min"], f["pitting"])
+            assert (g.S_F, g.S_F_min, g.bending) == (f["S_F"], f["S_F_min"], f["bending"])
+        assert column.safety_pitting_min == min(full[r]["S_H"] for r in ("pinion", "gear"))
+    for role in ("pinion", "gear"):
+        assert getattr(typed.simulated, role).S_H_peak == sim["peaks"][role]["S_H"]
+    assert typed.iso.pinion.S_H_peak is None and "S_H_peak" not in doc["rating"]["iso"]["gear"]
+    # the stress evaluation the simulated column comes from: the Stress section and its figure
+    stress = json.loads((out / "stress.json").read_text())
+    for role in ("pinion", "gear"):
+        assert sim["peaks"][role]["sigma_H_peak_MPa"] == stress[role]["peak_sigma_H"]["MPa"]
+        assert sim["peaks"][role]["sigma_F_peak_MPa"] == stress[role]["peak_sigma_F"]["MPa"]
     report = (out / "report.md").read_text()
+    assert "stars mark the critical positions" in report
+    assert "span W\\_k, nominal, pinion / gear" in report  # the geometry table's inspection
+    assert (out / "figures" / "stress.png").is_file()
     assert "## Rating (ISO 6336)" in report
     section = report.split("## Rating (ISO 6336)")[1].split("\n## ")[0]
     assert "| pinion | S\\_H |" in section and "| gear | S\\_F |" in section
@@ -67,7 +91,8 @@ def test_run_without_limits_says_what_is_missing(tmp_path):
     out = tmp_path / "unrated"
     res = runner.invoke(app, ["run", ISO_PAIR, "-o", str(out), *SHORT])
     assert res.exit_code == 0, res.output
-    assert not (out / "rating.json").exists()
+    assert not (out / "rating.json").exists() and not (out / "stress.json").exists()
+    assert "rating" not in json.loads((out / "summary.json").read_text())
     section = (out / "report.md").read_text().split("## Rating (ISO 6336)")[1].split("\n## ")[0]
     lines = [x for x in section.strip().splitlines() if x.strip()]
     assert len(lines) == 1 and lines[0].startswith("Not rated")

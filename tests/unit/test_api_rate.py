@@ -5,6 +5,7 @@ a run the "simulated" column takes K_v = the run's F_max/F_static and the peak s
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 from typer.testing import CliRunner
@@ -92,8 +93,10 @@ def test_rate_refuses_a_bad_argument():
 
 
 def test_simulated_peaks_are_the_stress_peaks(run):
-    """The simulated column's peak safeties: S = σ_G/σ_peak with the peaks of gearcli.stress
-    in the steady window (pipeline.rating.SimulatedLoad)."""
+    """The simulated column's peak safeties: S_H = σ_HG/(σ_H,peak √(K_A K_γ K_Hβ)), S_F =
+    σ_FG/(σ_F,peak K_A K_γ K_Fβ Y_β Y_B Y_DT) with the peaks of gearcli.stress in the steady
+    window (pipeline.rating.SimulatedLoad): the peaks carry the dynamics and the load sharing
+    between the pairs, not the application and face load factors. Same arithmetic: rel 1e-12."""
     rated = gearcli.rate(run)
     stress = gearcli.stress(run)
     peaks = rated.simulated_peaks
@@ -102,5 +105,13 @@ def test_simulated_peaks_are_the_stress_peaks(run):
         row = peaks[g.name]
         assert row["sigma_H_peak_MPa"] == pytest.approx(ref.sigma_H_peak_MPa, rel=1e-12)
         assert row["sigma_F_peak_MPa"] == pytest.approx(ref.sigma_F_peak_MPa, rel=1e-12)
-        assert row["S_H"] == pytest.approx(g.sigma_HG_MPa / ref.sigma_H_peak_MPa, rel=1e-12)
-        assert row["S_F"] == pytest.approx(g.sigma_FG_MPa / ref.sigma_F_peak_MPa, rel=1e-12)
+        # the loads the torsional model does not see: K_A K_γ K_Hβ (K_Fβ), and Y_β Y_B Y_DT
+        k_h = _factor(rated.simulated, "K_A") * _factor(rated.simulated, "K_γ") \
+            * _factor(rated.simulated, "K_Hβ")
+        k_f = _factor(rated.simulated, "K_A") * _factor(rated.simulated, "K_γ") \
+            * _factor(rated.simulated, "K_Fβ")
+        y = math.prod(g.factor(s).value for s in ("Y_β", "Y_B", "Y_DT"))
+        assert row["S_H"] == pytest.approx(
+            g.sigma_HG_MPa / (ref.sigma_H_peak_MPa * math.sqrt(k_h)), rel=1e-12)
+        assert row["S_F"] == pytest.approx(
+            g.sigma_FG_MPa / (ref.sigma_F_peak_MPa * k_f * y), rel=1e-12)

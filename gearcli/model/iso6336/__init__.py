@@ -13,6 +13,7 @@ Pure functions and frozen dataclasses, one job per module:
 ``inspection``     span W_k, ball diameter, dimension over balls M_dK, chordal thickness
 ``rate``           the rating document of a pair from plain typed inputs
 ``spectrum``       a duty cycle (torque, speed, time share bins) rated by ISO 6336-6
+``editions``       the edition-dependent factors under ISO 6336:2006 and :2019 side by side
 =================  ==========================================================================
 
 K_v by Method B is :mod:`gearcli.model.iso_kv` (a number here). Units: mm, N, N/mm² (MPa), µm
