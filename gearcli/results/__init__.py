@@ -30,6 +30,7 @@ from gearcli.results.run import (
     sweep_metrics,
 )
 from gearcli.results.schema import KINDS, json_schema
+from gearcli.results.sensors import SensorChannel, SensorsDocument
 from gearcli.results.stress import GearStress, StressDocument
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
@@ -37,4 +38,5 @@ __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "Sto
            "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin", "Check",
            "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
            "SpeedLevel", "MonitorDocument", "ShaftMonitor", "Document", "PLACES", "shown",
-           "shown_values", "sweep_metrics", "json_schema", "KINDS"]
+           "shown_values", "sweep_metrics", "json_schema", "KINDS", "SensorChannel",
+           "SensorsDocument"]
