@@ -168,3 +168,20 @@ def test_sensors_at_the_output_rate_are_the_encoders_and_the_reaction(runs):
     assert np.all(np.abs(table["te_mm"] - te) <= room)
     fy2 = (ts["force_total_N"] - ts["force_coast_N"]) * math.cos(g.alpha_w_rad)
     np.testing.assert_allclose(table["bearing_force_y2_N"], fy2, rtol=1e-8, atol=1e-6)
+
+
+def test_lateral_model_bearing_forces_are_the_models(tmp_path):
+    from gearcli import api
+    from gearcli.io.results import read_columns
+
+    folder = tmp_path / "lat"
+    api.simulate(ROOT / "cases" / "drivetrain.yaml",
+                 ["run.end_time=0.02", "sensors={noise: {seed: 0}}"]).save(folder)
+    ts = read_columns(folder / "timeseries.csv", "t_s")
+    table = read_columns(folder / "sensors.csv", "t_s")
+    assert "lateral-torsional" in json.loads((folder / "sensors.json").read_text())[
+        "bearing_forces"]
+    for name in ("bearing_force_x1_N", "bearing_force_y1_N", "bearing_force_x2_N",
+                 "bearing_force_y2_N"):
+        np.testing.assert_array_equal(table[name], ts[name])  # same values, same 10 digits
+    assert np.max(np.abs(table["bearing_force_y2_N"])) > 1.0
