@@ -23,7 +23,7 @@ import numpy as np
 
 __all__ = ["HousingMode", "quasi_static_bearing_forces", "housing_frf", "housing_acceleration",
            "torsional_acceleration", "resample", "noise_rms_for_snr", "add_noise",
-           "ANTI_ALIAS_ORDER", "ANTI_ALIAS_CUTOFF"]
+           "ANTI_ALIAS_ORDER", "ANTI_ALIAS_CUTOFF", "AUDIO_RATE_HZ", "AUDIO_PEAK", "audio_samples"]
 
 #: The recorder's anti-alias filter: a Butterworth low-pass of this order ...
 ANTI_ALIAS_ORDER = 8
@@ -138,3 +138,20 @@ def add_noise(x, rms: float, seed: int, channel: int) -> np.ndarray:
         return y.copy()
     rng = np.random.default_rng([int(seed), int(channel)])
     return y + rng.normal(0.0, rms, y.shape)
+
+
+#: Audio: the CD rate [Hz] and the peak level as a share of 16-bit full scale (headroom).
+AUDIO_RATE_HZ = 44_100
+AUDIO_PEAK = 0.9
+
+
+def audio_samples(t_s, x, rate_Hz: int = AUDIO_RATE_HZ) -> np.ndarray:
+    """16-bit PCM samples of a signal in real time (one simulated second lasts one second):
+    resampled to ``rate_Hz`` (:func:`resample`; anti-aliased when the signal's rate is
+    higher), its mean removed and its peak scaled to :data:`AUDIO_PEAK` of full scale
+    (32767); a constant signal is silence."""
+    _t, y = resample(t_s, x, float(rate_Hz))
+    y = y - y.mean()
+    peak = float(np.max(np.abs(y))) if y.size else 0.0
+    scale = AUDIO_PEAK * 32767.0 / peak if peak > 0.0 else 0.0
+    return np.round(y * scale).astype(np.int16)

@@ -19,7 +19,7 @@ from gearcli.results.analysis import (
 )
 from gearcli.results.fields import PLACES, Document, shown, shown_values
 from gearcli.results.models import MeshSummary, ModalDocument, Mode
-from gearcli.results.monitor import MonitorDocument, ShaftMonitor
+from gearcli.results.monitor import MonitorDocument, ShaftMonitor, SidebandRow
 from gearcli.results.run import (
     EnergyBalance,
     PointLines,
@@ -39,4 +39,4 @@ __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "Sto
            "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
            "SpeedLevel", "MonitorDocument", "ShaftMonitor", "Document", "PLACES", "shown",
            "shown_values", "sweep_metrics", "json_schema", "KINDS", "SensorChannel",
-           "SensorsDocument"]
+           "SensorsDocument", "SidebandRow"]
