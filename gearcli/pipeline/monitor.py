@@ -178,3 +178,22 @@ def write_monitor(doc: MonitorDocument, folder: str | Path, force: bool) -> Path
         provenance = manifest(loaded.source, case_json, [])
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
     return Path(folder)
+
+
+def write_run_monitor(folder: str | Path) -> str:
+    """monitor.json (of the TE, :func:`monitor`) into a results folder whose case has
+    ``faults:``, for the report's "Condition monitoring" section; returns "" when written or
+    not needed, else why it was not (a window shorter than a revolution of a shaft)."""
+    import json
+
+    from gearcli.io.files import write_atomic
+
+    run = read_run(folder)
+    if not run.manifest.get("resolved_case", {}).get("faults"):
+        return ""
+    try:
+        doc = monitor(folder)
+    except ResultsError as exc:
+        return str(exc)
+    write_atomic(Path(folder) / "monitor.json", json.dumps(doc.to_dict(), indent=2) + "\n")
+    return ""
