@@ -22,7 +22,6 @@ def monitor(
                                     "manifest.json into this folder."),
     force: bool = typer.Option(False, "--force", help="Replace an earlier results folder "
                                "(files gearcli did not write stay)."),
-    quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
     signal: str = typer.Option(
         "te", "--signal", help="te (the TE from the simulated shaft angles, default) or a "
         "column of the run's sensors table: accel_m_s2, te_mm, alpha1_rad_s2, alpha2_rad_s2, "
@@ -36,6 +35,7 @@ def monitor(
     wav: Path | None = typer.Option(
         None, "--wav", help="Write the signal of the whole run as audio: mono 16-bit WAV, "
         "44.1 kHz, real time, peak-normalised."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
 ) -> None:
     """Condition-monitoring metrics of a run (docs/theory.md, "Condition-monitoring signals"):
     the transmission error from the simulated shaft angles, resampled onto each shaft's angle,
