@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.case.load import load_case_text
-from gearcli.errors import ResultsError
+from gearcli.errors import GearcliError, ResultsError
 from gearcli.io.results import StoredRun, read_run, window_mask
 from gearcli.io.sensor_files import read_sensors
 from gearcli.model.monitoring import (
@@ -188,12 +188,15 @@ def write_run_monitor(folder: str | Path) -> str:
 
     from gearcli.io.files import write_atomic
 
-    run = read_run(folder)
+    try:
+        run = read_run(folder)
+    except ResultsError:
+        return ""  # not a results folder: the report says so in its own words
     if not run.manifest.get("resolved_case", {}).get("faults"):
         return ""
     try:
         doc = monitor(folder)
-    except ResultsError as exc:
-        return str(exc)
-    write_atomic(Path(folder) / "monitor.json", json.dumps(doc.to_dict(), indent=2) + "\n")
+        write_atomic(Path(folder) / "monitor.json", json.dumps(doc.to_dict(), indent=2) + "\n")
+    except (GearcliError, OSError) as exc:  # a window too short; a folder we cannot write
+        return str(exc).splitlines()[0]
     return ""

@@ -185,3 +185,14 @@ def test_lateral_model_bearing_forces_are_the_models(tmp_path):
                  "bearing_force_y2_N"):
         np.testing.assert_array_equal(table[name], ts[name])  # same values, same 10 digits
     assert np.max(np.abs(table["bearing_force_y2_N"])) > 1.0
+
+
+def test_simulation_sensors_frame():
+    from gearcli import api
+
+    sim = api.simulate(ROOT / "cases" / "iso_pair.yaml", [*SHORT, SENSORS])
+    frame = sim.sensors()
+    assert frame.index.name == "t_s" and "accel_m_s2" in frame.columns
+    assert frame.attrs["sensors"].sample_rate_Hz == 6400.0
+    with pytest.raises(ValueError, match="no 'sensors:'"):
+        api.simulate(ROOT / "cases" / "iso_pair.yaml", SHORT).sensors()
