@@ -459,6 +459,29 @@ def rating_timing(args) -> None:
     row("  of which the rating formulas", f"median {1e3 * statistics.median(formulas):.2f} ms")
 
 
+def fault_dataset(args) -> None:
+    """`gearcli dataset` throughput (issue 30): 8 points of cases/studies/fault_dataset.yaml
+    (4 fault cases x 2 noise seeds at 1500 rpm, 300 N*m; 0.4 s each, signals as Parquet, labels
+    with the TSA metrics) on 2 worker processes, points per minute of wall time (the solver
+    cached; start-up included)."""
+    import tempfile
+
+    import yaml
+
+    study = yaml.safe_load((ROOT / "cases" / "studies" / "fault_dataset.yaml").read_text())
+    study["base"] = str(ROOT / "cases" / "iso_pair.yaml")
+    p = study["parameters"]
+    p["faults"], p["mesh_frequency"] = p["faults"][:4], ["525 Hz"]
+    p["load.torque"], p["sensors.noise.seed"] = p["load.torque"][1:], [1, 2]
+    print("fault dataset: 8 points of cases/studies/fault_dataset.yaml, -j 2")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "study.yaml"
+        path.write_text(yaml.safe_dump(study))
+        cmd = [*GEARCLI, "dataset", str(path), "-o", str(Path(tmp) / "out"), "-j", "2", "-q"]
+        t = wall(cmd, 1)[0]
+    row("fault dataset, 8 points on 2 workers", f"{t:.1f} s, {8 * 60.0 / t:.1f} points/min")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=9, help="timed solver runs (median), >= 7")
@@ -509,6 +532,7 @@ def _sections(args) -> None:
         fe_mesh(args)
         report_timing(args)
         rating_timing(args)
+        fault_dataset(args)
 
 
 if __name__ == "__main__":

@@ -235,7 +235,7 @@ def spectra_frame(analysis):
     return analysis.spectra
 
 
-def monitor(run, baseline=None):
+def monitor(run, baseline=None, signal: str = "te"):
     """Condition-monitoring metrics of a run per shaft (`gearcli monitor`): the transmission
     error from the shaft angles, its time-synchronous average over the steady window's whole
     revolutions and the metrics of docs/theory.md, "Condition-monitoring signals".
@@ -247,6 +247,9 @@ def monitor(run, baseline=None):
     baseline : Simulation or str or Path, optional
         A healthy run of the same pair: NA4 and NB4 are normalised by its revolutions (default:
         the run's own).
+    signal : str
+        "te" (default: from the time series' shaft angles) or a column of the run's sensors
+        table (a case with ``sensors:``), e.g. "accel_m_s2".
 
     Returns
     -------
@@ -260,7 +263,7 @@ def monitor(run, baseline=None):
 
     with contextlib.ExitStack() as stack:
         base = None if baseline is None else _folder_of(baseline, stack)
-        return run_monitor(_folder_of(run, stack), base)
+        return run_monitor(_folder_of(run, stack), base, signal)
 
 
 def modal(case, set=None,  # noqa: A002

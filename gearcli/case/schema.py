@@ -19,6 +19,7 @@ from gearcli.case.schema_gears import Gear, Gears, InertiaSpec, Material, Rack, 
 from gearcli.case.schema_mesh import IMPACT_KEYS, TOOTH_KEYS, Contact, Friction
 from gearcli.case.schema_mods import Errors, Modifications, PitchDeviation, Relief, Runout
 from gearcli.case.schema_rating import Rating
+from gearcli.case.schema_sensors import Sensors
 from gearcli.case.section import Coefficient, FieldError, Section, pair, raise_all
 from gearcli.case.types import Frequency, Length, Time, qfield, unit_system
 
@@ -104,6 +105,9 @@ class Case(Section):
     rating: Rating = Field(default_factory=Rating, description="ISO 6336 rating (gearcli rate)")
     faults: list[Fault] = Field(default_factory=list, description="damaged teeth: root_crack, "
                                 "spall, chipped_tip, missing_tooth (docs/theory.md, Tooth faults)")
+    sensors: Sensors | None = Field(None, description="what a test rig would record: encoders, "
+                                    "bearing forces, a housing accelerometer, noise "
+                                    "(docs/theory.md, What a sensor sees; optional)")
 
     def material_of(self, role: str) -> Material:
         """The material of gear ``role`` ('pinion' or 'gear'): its own, else the case's."""
@@ -125,6 +129,8 @@ class Case(Section):
         data = handler(self)
         if self.units is None:
             data.pop("units", None)
+        if self.sensors is None:  # the resolved case of a run without sensors is unchanged
+            data.pop("sensors", None)
         return data
 
     @model_validator(mode="after")

@@ -20,6 +20,9 @@ def mesh(
                                 "peak-to-peak against 0.1 .. 2 x the load)."),
     as_json: bool = typer.Option(False, "--json", help="Print the results as JSON."),
     plot: Path | None = typer.Option(None, "--plot", help="Write the figure (.png, .svg, .pdf)."),
+    faults_plot: Path | None = typer.Option(
+        None, "--faults-plot", help="With faults: write the faulted stiffness and STE over one "
+        "pinion revolution (.png, .svg, .pdf)."),
     out: Path | None = typer.Option(None, "-o", "--out", help="Write mesh.json, mesh.csv, "
                                     "mesh.png and manifest.json into this folder."),
     force: bool = typer.Option(False, "--force", help="Replace an earlier results folder "
@@ -42,6 +45,10 @@ def mesh(
     mesh stiffness, loaded STE and FE/PE - 1; its influence coefficients are cached per
     geometry in the user cache folder.
 
+    With faults (case ``faults:``), also the faulted mesh stiffness and STE over one pinion
+    revolution (mesh.json ``faulted_revolution``, mesh_faults.csv and mesh_faults.png with -o,
+    --faults-plot); the tables of the healthy pair stay.
+
     Example: gearcli mesh cases/seed.yaml --harris --plot mesh.png
 
     Exit codes: 0 ok, 1 bad input.
@@ -50,7 +57,7 @@ def mesh(
 
     from gearcli import api
     from gearcli.errors import CaseError
-    from gearcli.pipeline.mesh import save_mesh_plot, write_mesh
+    from gearcli.pipeline.mesh import save_mesh_plot, save_revolution_plot, write_mesh
 
     if method not in ("pe", "fe"):
         raise CaseError(f"--method {method!r:.40}: expected pe or fe")
@@ -59,6 +66,7 @@ def mesh(
     from gearcli.io.outdir import check_target
 
     check_figure_path("--plot", plot, force)
+    check_figure_path("--faults-plot", faults_plot, force)
     if out is not None:
         check_target(out, force)  # before the work, not after
     analysis = api.mesh(case, set_, load_N=load, harris=harris, method=method)
@@ -68,13 +76,18 @@ def mesh(
         write_mesh(res, out, force, set_, units, doc)
     if plot is not None:
         save_mesh_plot(res, plot, units)
+    if faults_plot is not None:
+        if res.revolution is None:
+            raise CaseError(f"--faults-plot {faults_plot}: the case has no tooth faults of "
+                            "nonzero size; expected a case with 'faults:'")
+        save_revolution_plot(res, faults_plot, units)
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
         return
     if quiet:
         return
     _print(typed, units)
-    for path in (out, plot):
+    for path in (out, plot, faults_plot):
         if path is not None:
             typer.echo(f"wrote {path}")
 
@@ -144,6 +157,18 @@ def _print(doc, units: str) -> None:
         console.print(h)
     if doc.fe_check is not None:
         console.print(_fe_table(doc.fe_check, units))
+    if doc.faulted_revolution is not None:
+        r = doc.faulted_revolution
+        console.print(_table(f"Faulted mesh over one pinion revolution ({', '.join(r.faults)}; "
+                             "the tables above: the healthy pair)", [
+            ("mesh stiffness, minimum", r.stiffness_min_N_mm, "N/mm"),
+            ("  healthy", r.stiffness_healthy_min_N_mm, "N/mm"),
+            ("largest stiffness drop 1 − k_f/k", r.stiffness_largest_drop, "–"),
+            ("  at pinion roll from t = 0", r.stiffness_largest_drop_at_roll_mm, "mm"),
+            ("loaded STE peak-to-peak", r.ste_peak_to_peak_um, "µm"),
+            ("  healthy", r.ste_healthy_peak_to_peak_um, "µm"),
+            ("share of the revolution without a carrying pair", r.no_contact_share, "–"),
+        ], units))
     for note in doc.notes:
         console.print(f"note: {note}")
 

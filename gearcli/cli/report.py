@@ -29,6 +29,7 @@ def report(
     Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError
     from gearcli.io.files import check_new_file, check_no_earlier
+    from gearcli.pipeline.monitor import write_run_monitor
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):
@@ -37,6 +38,7 @@ def report(
     check_new_file(target, force, "-o" if out is not None else "the report")
     if out is None:
         check_no_earlier(folder, ("figures",), force, "report's figures")
+    _note_monitor(write_run_monitor(folder), quiet)  # faults: the monitoring section
     path = build_report(folder, fmt, out, display_units(), svg)
     if not quiet:
         typer.echo(f"report written to {path}")
@@ -68,6 +70,7 @@ def run(
     from gearcli.errors import CheckFailed, InvalidResultError, OutputError
     from gearcli.io.outdir import atomic_dir, check_target
     from gearcli.pipeline.analysis_io import write_analysis
+    from gearcli.pipeline.monitor import write_run_monitor
     from gearcli.pipeline.outputs import write_simulation_files
     from gearcli.report import build_report
 
@@ -90,6 +93,7 @@ def run(
             analysis = api.analyze(tmp)
             doc = write_analysis(analysis)
             rating_note = _write_rating(tmp, result.loaded)
+            monitor_note = write_run_monitor(tmp)  # faults: the monitoring section
             name = build_report(tmp, fmt, None, units, svg).name
     path = out / name
     if not quiet:
@@ -103,10 +107,17 @@ def run(
             typer.echo(f"warning: {w}", err=True)
         if rating_note:
             typer.echo(f"not rated (ISO 6336): {rating_note}", err=True)
+        _note_monitor(monitor_note, quiet)
     typer.echo(f"report written to {path}")
     if not analysis.passed:
         failed = [c.name for c in analysis.checks if c.failed]
         raise CheckFailed(f"{out}: check(s) failed: {', '.join(failed)}")
+
+
+def _note_monitor(why_not: str, quiet: bool) -> None:
+    """Say on stderr why a faulted case's report has no monitoring section."""
+    if why_not and not quiet:
+        typer.echo(f"no condition-monitoring section: {why_not}", err=True)
 
 
 def _write_rating(folder: Path, loaded) -> str:

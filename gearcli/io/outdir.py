@@ -37,10 +37,11 @@ from gearcli.io.files import umask
 #: A folder holding this file is a gearcli result folder.
 MARKER = "manifest.json"
 
-#: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py),
-#: analyze (analysis_io.ANALYSIS_FILES), stress (stress.STRESS_FILES), report, mesh -o
-#: (pipeline/mesh.py), rate -o (cli/rate.py), monitor -o (pipeline/monitor.py) and speed-curve
-#: studies (pipeline/speed_curve.py).
+#: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py;
+#: sensors.* with a sensors: section), analyze (analysis_io.ANALYSIS_FILES), stress
+#: (stress.STRESS_FILES), report, mesh -o (pipeline/mesh.py; mesh_faults.* with faults), rate -o
+#: (cli/rate.py), monitor -o (pipeline/monitor.py) and speed-curve studies
+#: (pipeline/speed_curve.py).
 #: With ``force`` these go with the earlier results and everything else moves into the new folder;
 #: tests/cli/test_force_keeps_user_files.py checks the list against what the commands write
 #: (a name missing here would only be moved over, stale, never lost).
@@ -50,6 +51,7 @@ RESULT_NAMES = frozenset({
     "report.html", "report.md", "figures", "mesh.json", "mesh.csv", "mesh.png",
     "summary.csv", "speed_curve.json", "speed_curve.png", "rating.json", "monitor.json",
     "speed_curve_rating.png",
+    "sensors.csv", "sensors.parquet", "sensors.json", "mesh_faults.csv", "mesh_faults.png",
 })
 
 

@@ -17,8 +17,8 @@ features the case uses and the command leaves out. A new feature or command is o
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 
 from gearcli.case.schema import Case
 
@@ -31,6 +31,8 @@ class Feature:
     label: str  #: how a note names it
     used: Callable[[Case], bool]  #: whether a case has it
     why: str  #: why leaving it out matters, and where it is modelled
+    #: command -> its own ``why``, where the general one would not say what it does instead
+    why_for: Mapping[str, str] = field(default_factory=dict)
 
 
 def _has_pair(pair) -> bool:
@@ -50,7 +52,13 @@ FEATURES = (
             "simulate and mesh include them"),
     Feature("faults", "tooth faults",
             lambda c: bool(c.faults),
-            "the healthy pair is used; simulate includes them (docs/theory.md, Tooth faults)"),
+            "the healthy pair is used; simulate includes them (docs/theory.md, Tooth faults)",
+            {"modal": "the modes are linearised at the healthy pair's mean mesh stiffness; a "
+                      "fault changes one tooth's stiffness once per revolution, which simulate "
+                      "includes (docs/theory.md, Tooth faults)",
+             "mesh": "the tables are the healthy pair's; the faulted mesh stiffness and STE "
+                     "over one pinion revolution are shown beside them (faulted_revolution); "
+                     "simulate includes them (docs/theory.md, Tooth faults)"}),
 )
 
 #: command -> the features it models (names of :data:`FEATURES`)
@@ -75,5 +83,5 @@ def not_included(command: str, case: Case) -> list[str]:
     for f in used_features(case):
         if f.name not in have:
             verb = "are" if f.label.endswith("s") else "is"
-            notes.append(f"{f.label} {verb} not included ({f.why})")
+            notes.append(f"{f.label} {verb} not included ({f.why_for.get(command, f.why)})")
     return notes

@@ -22,6 +22,7 @@ from gearcli.model.stiffness import IsoStiffness
 from gearcli.pipeline.capabilities import not_included
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.kernel_input import case_gap_tables
+from gearcli.pipeline.mesh_faults import RevolutionColumns, faulted_revolution, revolution_summary
 from gearcli.pipeline.mesh_input import (
     bore_notes,
     case_mesh,
@@ -57,6 +58,8 @@ class MeshAnalysis:
     harris: tuple[np.ndarray, np.ndarray] | None  #: loads [N], STE peak-to-peak [mm]
     notes: tuple[str, ...]  #: what the quasi-static model leaves out for this case
     fe: FeCheck | None = None  #: the tooth law against the FE model (``method="fe"``)
+    #: with faults: stiffness and STE over one pinion revolution (pipeline/mesh_faults.py)
+    revolution: RevolutionColumns | None = None
 
     @property
     def summary(self) -> MeshSummary:
@@ -122,8 +125,14 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     notes = not_included("mesh", case)
     notes += bore_notes(case, geo)
     iso = iso_stiffness(case, geo, force)
+    revolution = None
+    if case.faults:
+        from gearcli.pipeline.kernel_input import linearised_mesh
+
+        deflection = linearised_mesh(case, geo, mesh, tables).loaded_deflection_mm
+        revolution = faulted_revolution(case, geo, result, deflection)
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes),
-                        _fe_check(case, geo, force) if method == "fe" else None)
+                        _fe_check(case, geo, force) if method == "fe" else None, revolution)
 
 
 def _fe_check(case, geo, force: float) -> FeCheck:
@@ -182,7 +191,9 @@ def mesh_document(res: MeshAnalysis) -> MeshSummary:
             iso6336_single_pair_c_prime_b_N_mm=res.iso.pair_stiffness_N_mm,
             iso6336_mean_c_gamma_alpha_b_N_mm=res.iso.mesh_stiffness_N_mm),
         iso6336_method_b=_iso_resonance(res),
-        notes=tuple(res.notes), harris=harris, fe_check=res.fe)
+        notes=tuple(res.notes), harris=harris, fe_check=res.fe,
+        faulted_revolution=None if res.revolution is None else revolution_summary(
+            res.revolution, res.source.case))
 
 
 def mesh_table(res: MeshAnalysis):
@@ -222,6 +233,26 @@ def save_mesh_plot(res: MeshAnalysis, path: str | Path, units: str = "engineerin
     save_figure(fig, path, 150)
 
 
+def save_revolution_plot(res: MeshAnalysis, path: str | Path,
+                         units: str = "engineering") -> None:
+    """The faulted revolution's figure (plotting.mesh_faults.plot_revolution), written
+    atomically; the analysis must have ``revolution``."""
+    from gearcli.display_units import unit_and_factor
+    from gearcli.io.files import save_figure
+    from gearcli.plotting.mesh_faults import plot_revolution
+
+    rev, g = res.revolution, res.geometry.geometry
+    te_unit, k_te = unit_and_factor("mm", units, fine=True)
+    k_unit, k_k = unit_and_factor("N/mm", units)
+    faults = ", ".join(f"{f.kind} {f.gear} tooth {f.tooth}" for f in res.source.case.faults)
+    fig = plot_revolution(rev.s1_mm / g.p_b_mm, k_k * rev.k_faulted_N_mm,
+                          k_k * rev.k_healthy_N_mm, k_te * rev.ste_faulted_mm,
+                          k_te * rev.ste_healthy_mm, k_unit, te_unit,
+                          f"{res.name}: one pinion revolution with {faults} at "
+                          f"{res.loaded.force_N:.0f} N")
+    save_figure(fig, path, 150)
+
+
 def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
                overrides: list[str] | None = None, units: str = "engineering",
                doc: dict | None = None) -> Path:
@@ -240,6 +271,9 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
             json.dumps(doc or mesh_document(res).to_dict(), indent=2) + "\n")
         (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
         save_mesh_plot(res, tmp / "mesh.png", units)
+        if res.revolution is not None:  # faults: the faulted revolution, its table and figure
+            (tmp / "mesh_faults.csv").write_text(columns_to_csv(res.revolution.columns()))
+            save_revolution_plot(res, tmp / "mesh_faults.png", units)
         provenance = manifest(res.source.source, case_json, overrides)
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
     return Path(folder)

@@ -20,8 +20,9 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.case.load import load_case_text
-from gearcli.errors import ResultsError
+from gearcli.errors import GearcliError, ResultsError
 from gearcli.io.results import StoredRun, read_run, window_mask
+from gearcli.io.sensor_files import read_sensors
 from gearcli.model.monitoring import (
     SynchronousAverage,
     gear_metrics,
@@ -29,17 +30,22 @@ from gearcli.model.monitoring import (
     samples_per_revolution,
     time_synchronous_average,
 )
+from gearcli.model.monitoring.orders import sideband_table
 from gearcli.pipeline.geometry import run_geometry
-from gearcli.results import MonitorDocument, ShaftMonitor
+from gearcli.results import MonitorDocument, ShaftMonitor, SidebandRow
 
 SIGNAL = "transmission error r_b1 θ1 − r_b2 θ2 from the shaft angles"
 SIGNAL_UNIT = "mm"
 SHAFTS = (("pinion", "theta1_rad"), ("gear", "theta2_rad"))
 
 
-def steady_signal(run: StoredRun) -> tuple[dict[str, np.ndarray], tuple[float, float]]:
-    """The steady window's shaft angles and TE: {"theta1_rad", "theta2_rad" [rad], "te" [mm],
-    "pinion", "gear" (teeth)}, and the window (T0, T1) [s]."""
+def steady_signal(run: StoredRun, signal: str = "te"
+                  ) -> tuple[dict[str, np.ndarray], tuple[float, float]]:
+    """The steady window's shaft angles and signal: {"theta1_rad", "theta2_rad" [rad], "te"
+    [signal unit], "pinion", "gear" (teeth), "faulted" ({shaft: faulted teeth})}, and the
+    window (T0, T1) [s]. ``signal``: "te" (the TE from the time series' angles, [mm]) or a
+    column of the run's sensors table (:data:`gearcli.pipeline.sensors.CHANNELS`, on the
+    sensors' own angles and times)."""
     import json
 
     for col in ("theta1_rad", "theta2_rad"):
@@ -50,11 +56,18 @@ def steady_signal(run: StoredRun) -> tuple[dict[str, np.ndarray], tuple[float, f
                             str(run.folder / "manifest.json"))
     geo = run_geometry(loaded).geometry
     t0, t1 = map(float, run.summary.scalars.window_s)
-    sel = window_mask(run.column("t_s"), t0, t1)
-    th1, th2 = run.column("theta1_rad")[sel], run.column("theta2_rad")[sel]
-    te = geo.pinion.r_b_mm * th1 - geo.gear.r_b_mm * th2
-    return {"theta1_rad": th1, "theta2_rad": th2, "te": te,
-            "pinion": geo.pinion.teeth, "gear": geo.gear.teeth}, (t0, t1)
+    cols = run.columns if signal == "te" else read_sensors(run.folder)
+    if signal != "te" and signal not in cols:
+        raise ResultsError(f"--signal {signal}: not in {run.folder}'s sensors table; expected "
+                           f"te or one of {', '.join(c for c in cols if c != 't_s')}")
+    sel = window_mask(cols["t_s"], t0, t1)
+    th1, th2 = cols["theta1_rad"][sel], cols["theta2_rad"][sel]
+    x = (geo.pinion.r_b_mm * th1 - geo.gear.r_b_mm * th2 if signal == "te"
+         else cols[signal][sel])
+    faulted = {shaft: tuple(sorted({f.tooth for f in loaded.case.faults if f.gear == shaft}))
+               for shaft, _ in SHAFTS}
+    return {"theta1_rad": th1, "theta2_rad": th2, "te": x, "t_s": cols["t_s"][sel],
+            "pinion": geo.pinion.teeth, "gear": geo.gear.teeth, "faulted": faulted}, (t0, t1)
 
 
 def angle_record(signal: dict, shaft: str, n: int | None = None, what: str = "the run"):
@@ -83,35 +96,67 @@ def _revolutions(angle) -> list[SynchronousAverage]:
             for b in angle.values[: angle.n_revolutions * n].reshape(-1, n)]
 
 
-def monitor(folder: str | Path, baseline: str | Path | None = None) -> MonitorDocument:
-    """Monitoring metrics of a results folder (optionally against a healthy baseline run)."""
+#: Sidebands each side of a mesh harmonic, and mesh harmonics, in the document's table.
+SIDEBANDS = 3
+SIDEBAND_HARMONICS = 3
+#: What each signal is, and its unit (the sensors table's columns: pipeline/sensors.CHANNELS).
+SIGNALS = {"te": (SIGNAL, SIGNAL_UNIT), "te_mm": ("encoder transmission error (sensors)", "mm"),
+           "alpha1_rad_s2": ("pinion torsional acceleration (sensors)", "rad/s^2"),
+           "alpha2_rad_s2": ("gear torsional acceleration (sensors)", "rad/s^2"),
+           "accel_m_s2": ("housing accelerometer (sensors)", "m/s^2"),
+           **{f"bearing_force_{a}{k}_N": (f"{a} force on the {g} bearing (sensors)", "N")
+              for a in "xy" for k, g in (("1", "pinion"), ("2", "gear"))}}
+
+
+def sidebands_of(tsa, z: int) -> tuple[SidebandRow, ...]:
+    """The order spectrum around the first mesh harmonics (docs/theory.md, "Condition-
+    monitoring signals", §3): A_{hz+s}, s = −S … S, per harmonic h."""
+    table = sideband_table(tsa, z, SIDEBANDS)[:SIDEBAND_HARMONICS]
+    return tuple(SidebandRow(harmonic=h + 1, order=(h + 1) * z,
+                             amplitudes=tuple(float(a) if math.isfinite(a) else None
+                                              for a in row))
+                 for h, row in enumerate(table))
+
+
+def monitor(folder: str | Path, baseline: str | Path | None = None,
+            signal: str = "te") -> MonitorDocument:
+    """Monitoring metrics of a results folder (optionally against a healthy baseline run) of
+    ``signal`` (:data:`SIGNALS`: "te" from the time series, or a sensors-table column)."""
+    if signal not in SIGNALS:
+        raise ResultsError(f"--signal {signal}: expected one of {', '.join(SIGNALS)}")
     run = read_run(folder)
-    signal, window = steady_signal(run)
+    signal_data, window = steady_signal(run, signal)
     base = None
     if baseline is not None:
-        base, _ = steady_signal(read_run(baseline))
+        base, _ = steady_signal(read_run(baseline), signal)
         for shaft, _col in SHAFTS:
-            if base[shaft] != signal[shaft]:
+            if base[shaft] != signal_data[shaft]:
                 raise ResultsError(f"--baseline {baseline}: the {shaft} has {base[shaft]} "
-                                   f"teeth, the run {signal[shaft]}; expected the same pair")
+                                   f"teeth, the run {signal_data[shaft]}; expected the same "
+                                   "pair")
     shafts = []
     for shaft, _col in SHAFTS:
-        angle, n = angle_record(signal, shaft, what=str(folder))
+        angle, n = angle_record(signal_data, shaft, what=str(folder))
         if base is None:
             records, how = _revolutions(angle), "the run's own revolutions"
         else:
             records = _revolutions(angle_record(base, shaft, n, f"--baseline {baseline}")[0])
             how = f"the baseline run's revolutions ({baseline})"
-        metrics = gear_metrics(time_synchronous_average(angle), int(signal[shaft]),
-                               signal_unit=SIGNAL_UNIT, baseline=records)
-        z = int(signal[shaft])
+        tsa = time_synchronous_average(angle)
+        metrics = gear_metrics(tsa, int(signal_data[shaft]), signal_unit=SIGNALS[signal][1],
+                               baseline=records)
+        z = int(signal_data[shaft])
         first = round(angle.start_angle_rad * z / (2.0 * np.pi)) % z
         shafts.append(ShaftMonitor(shaft=shaft, teeth=z, first_tooth=first,
                                    n_revolutions=angle.n_revolutions, samples_per_revolution=n,
-                                   normalisation=f"NA4, NB4 against {how}", metrics=metrics))
+                                   normalisation=f"NA4, NB4 against {how}", metrics=metrics,
+                                   faulted_teeth=signal_data["faulted"][shaft],
+                                   sidebands=sidebands_of(tsa, z),
+                                   tsa=tuple(float(v) for v in tsa.values)))
     return MonitorDocument(case=run.summary.case or run.folder.name, run=str(folder),
                            baseline=None if baseline is None else str(baseline),
-                           signal=SIGNAL, signal_unit=SIGNAL_UNIT, window_s=window,
+                           signal=SIGNALS[signal][0], signal_unit=SIGNALS[signal][1],
+                           window_s=window,
                            window_reason=run.summary.scalars.window_reason,
                            shafts=tuple(shafts))
 
@@ -133,3 +178,25 @@ def write_monitor(doc: MonitorDocument, folder: str | Path, force: bool) -> Path
         provenance = manifest(loaded.source, case_json, [])
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
     return Path(folder)
+
+
+def write_run_monitor(folder: str | Path) -> str:
+    """monitor.json (of the TE, :func:`monitor`) into a results folder whose case has
+    ``faults:``, for the report's "Condition monitoring" section; returns "" when written or
+    not needed, else why it was not (a window shorter than a revolution of a shaft)."""
+    import json
+
+    from gearcli.io.files import write_atomic
+
+    try:
+        run = read_run(folder)
+    except ResultsError:
+        return ""  # not a results folder: the report says so in its own words
+    if not run.manifest.get("resolved_case", {}).get("faults"):
+        return ""
+    try:
+        doc = monitor(folder)
+        write_atomic(Path(folder) / "monitor.json", json.dumps(doc.to_dict(), indent=2) + "\n")
+    except (GearcliError, OSError) as exc:  # a window too short; a folder we cannot write
+        return str(exc).splitlines()[0]
+    return ""

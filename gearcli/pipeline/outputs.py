@@ -88,7 +88,28 @@ def write_simulation_files(res, folder: Path,
         from gearcli.io.tables import columns_to_csv
 
         (folder / ZOOM_FILE).write_text(columns_to_csv(res.zoom))
+    if res.loaded.case.sensors is not None:
+        write_sensors(res, folder, fmt)
     summary = summary_document(res).to_dict()
     (folder / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     doc = manifest(res.loaded.source, case_json, overrides)
     (folder / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
+
+
+def write_sensors(res, folder: Path, fmt: str = "csv") -> Path:
+    """``folder``/sensors.<fmt> (pipeline/sensors.py: what a rig would record) and
+    sensors.json (its channels, units, sources and noise); returns the table's path."""
+    from gearcli.pipeline.sensors import sensor_table
+
+    columns, doc = sensor_table(res)
+    path = folder / f"sensors.{fmt}"
+    if fmt == "csv":
+        from gearcli.io.tables import columns_to_csv
+
+        path.write_text(columns_to_csv(columns))
+    else:
+        from gearcli.io.tables import columns_to_parquet
+
+        columns_to_parquet(columns, path)
+    (folder / "sensors.json").write_text(json.dumps(doc.to_dict(), indent=2) + "\n")
+    return path

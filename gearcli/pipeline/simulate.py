@@ -19,6 +19,7 @@ from gearcli.pipeline.kernel_input import (
     SAMPLES_PER_PERIOD,
     build_kernel_input,
 )
+from gearcli.pipeline.sensors import check_sensors, output_rate_Hz
 from gearcli.pipeline.simulation import SimulationResult
 from gearcli.pipeline.spectrum import alias_frequency
 from gearcli.pipeline.structure import refuse_unsupported
@@ -96,6 +97,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     check_load(loaded)
     ki = build_kernel_input(case, geo)
     check_static_deflection(loaded, geo, ki.mesh.loaded_deflection_mm)
+    check_sensors(loaded, output_rate_Hz(ki.t_out))  # before the run, not after
     compiling = announce_compilation(notice)  # a refused run compiles nothing: no notice
     last_ramp = last_ramp_s(case)
     # the natural frequencies of `gearcli modal` (one model): settling time, summary, margins

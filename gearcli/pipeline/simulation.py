@@ -97,6 +97,21 @@ class SimulationResult:
                                      units)
         raise ValueError(f"plot {what!r}: expected 'force', 'dte' or 'speeds'")
 
+    def sensors(self):
+        """What a rig would record (case ``sensors:``; docs/theory.md, "What a sensor sees"):
+        the sensors table as a pandas DataFrame indexed by ``t_s`` [s], its description
+        (:class:`~gearcli.results.SensorsDocument`) in ``.attrs["sensors"]``. A case without
+        ``sensors:`` is a ValueError."""
+        from gearcli.io.tables import columns_to_frame
+        from gearcli.pipeline.sensors import sensor_table
+
+        if self.loaded.case.sensors is None:
+            raise ValueError(f"{self.name}: the case has no 'sensors:' section")
+        columns, doc = sensor_table(self)
+        frame = columns_to_frame(columns, "t_s")
+        frame.attrs["sensors"] = doc
+        return frame
+
     def columns(self) -> dict[str, np.ndarray]:
         """Output columns in file order; names carry units."""
         from gearcli.core.layout import COLUMN_NAMES, DRIVE_SHAFT, OPTIONAL_COLUMNS, P

@@ -11,6 +11,7 @@ from gearcli.report.document import build_document
 from gearcli.report.figures import build_figures
 from gearcli.report.html import render_html
 from gearcli.report.markdown import render_markdown
+from gearcli.report.monitoring import add_monitoring
 
 FORMATS = ("html", "md")
 
@@ -57,6 +58,7 @@ def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | N
                           "folder")
     figures = build_figures(data, data.folder / "figures", svg)
     doc = build_document(data, figures)
+    add_monitoring(doc, data, data.folder / "figures", svg)  # with monitor.json (faults)
     text = render_html(doc) if fmt == "html" else render_markdown(doc, out.parent)
     write_atomic(out, text)
     return out

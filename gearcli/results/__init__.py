@@ -19,7 +19,7 @@ from gearcli.results.analysis import (
 )
 from gearcli.results.fields import PLACES, Document, shown, shown_values
 from gearcli.results.models import MeshSummary, ModalDocument, Mode
-from gearcli.results.monitor import MonitorDocument, ShaftMonitor
+from gearcli.results.monitor import MonitorDocument, ShaftMonitor, SidebandRow
 from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
 from gearcli.results.run import (
     EnergyBalance,
@@ -31,6 +31,7 @@ from gearcli.results.run import (
     sweep_metrics,
 )
 from gearcli.results.schema import KINDS, json_schema
+from gearcli.results.sensors import SensorChannel, SensorsDocument
 from gearcli.results.stress import GearStress, StressDocument
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
@@ -39,4 +40,4 @@ __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "Sto
            "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
            "SpeedLevel", "MonitorDocument", "ShaftMonitor", "Document", "PLACES", "shown",
            "shown_values", "sweep_metrics", "json_schema", "KINDS", "GearSafeties",
-           "RatingColumn", "RatingSummary"]
+           "RatingColumn", "RatingSummary", "SensorChannel", "SensorsDocument", "SidebandRow"]

@@ -168,6 +168,22 @@ class FeCheck(Document):
 
 
 @dataclasses.dataclass(frozen=True)
+class FaultedRevolution(Document):
+    """The faulted mesh over one pinion revolution (`gearcli mesh` of a case with faults;
+    docs/theory.md, "Tooth faults"): stiffness and STE extremes against the healthy pair."""
+
+    faults: tuple[str, ...] = metric_field("faults", ())  #: "kind gear tooth i"
+    points: int = metric_field("points", 0)  #: roll positions over the revolution
+    stiffness_min_N_mm: float = metric_field("stiffness_min_N_mm")
+    stiffness_healthy_min_N_mm: float = metric_field("stiffness_healthy_min_N_mm")
+    stiffness_largest_drop: float = metric_field("stiffness_largest_drop")  #: 1 − k_f/k [-]
+    stiffness_largest_drop_at_roll_mm: float = metric_field("stiffness_largest_drop_at_roll_mm")
+    ste_peak_to_peak_um: float = metric_field("ste_peak_to_peak_um")  #: where a pair carries
+    ste_healthy_peak_to_peak_um: float = metric_field("ste_healthy_peak_to_peak_um")
+    no_contact_share: float = metric_field("no_contact_share", 0.0)  #: share with k_f = 0 [-]
+
+
+@dataclasses.dataclass(frozen=True)
 class MeshSummary(Document):
     """A quasi-static loaded contact analysis (`gearcli mesh --json`): the static normal force,
     the STE, the mesh stiffness against ISO 6336-1 and the ISO 6336-1 Method B data."""
@@ -184,3 +200,6 @@ class MeshSummary(Document):
     notes: tuple[str, ...] = metric_field("notes", ())
     harris: HarrisMap | None = metric_field("harris", None, omit_none=True, nested=HarrisMap)
     fe_check: FeCheck | None = metric_field("fe_check", None, omit_none=True, nested=FeCheck)
+    #: with faults: the faulted stiffness and STE over one pinion revolution
+    faulted_revolution: FaultedRevolution | None = metric_field(
+        "faulted_revolution", None, omit_none=True, nested=FaultedRevolution)

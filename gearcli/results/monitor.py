@@ -37,6 +37,16 @@ def _metric(obj: Any, name: str):
 
 
 @dataclasses.dataclass(frozen=True)
+class SidebandRow(Document):
+    """The order spectrum of a shaft's TSA around one mesh harmonic h z: A_{hz+s} for
+    s = −S … S (middle: the mesh harmonic; NaN outside the spectrum)."""
+
+    harmonic: int = metric_field("harmonic", 0)  #: h [-]
+    order: int = metric_field("order", 0)  #: h z, shaft orders [-]
+    amplitudes: tuple[float, ...] = metric_field("amplitudes", ())  #: [signal unit]
+
+
+@dataclasses.dataclass(frozen=True)
 class ShaftMonitor(Document):
     """One shaft's time-synchronous average and its metrics."""
 
@@ -47,6 +57,12 @@ class ShaftMonitor(Document):
     samples_per_revolution: int = metric_field("samples_per_revolution", 0)  #: n [-]
     normalisation: str = metric_field("normalisation", "")  #: NA4/NB4's records
     metrics: Any = metric_field("metrics", None)  #: GearMetrics (or its mapping)
+    #: the case's faulted teeth of this shaft's gear (docs/theory.md, Tooth faults: indices)
+    faulted_teeth: tuple[int, ...] = metric_field("faulted_teeth", ())
+    #: the order spectrum around the first mesh harmonics, with the shaft-order sidebands
+    sidebands: tuple[SidebandRow, ...] = metric_field("sidebands", (), nested=SidebandRow)
+    #: the TSA itself, index 0 at ``first_tooth``'s pitch-point passage [signal unit]
+    tsa: tuple[float, ...] = metric_field("tsa", ())
 
     def value(self, name: str) -> float | None:
         """A metric's value (None when absent or not finite)."""

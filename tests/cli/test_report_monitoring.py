@@ -1,0 +1,44 @@
+"""`gearcli run` of a case with ``faults:`` writes monitor.json and the report's "Condition
+monitoring" section (report/monitoring.py): metrics per shaft, the sideband table, the order
+and tooth-by-tooth figures; a healthy case's report has none of them."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from typer.testing import CliRunner
+
+from gearcli.cli import app
+
+ROOT = Path(__file__).resolve().parents[2]
+CASE = str(ROOT / "cases" / "iso_pair.yaml")
+CRACK = "faults=[{kind: root_crack, gear: pinion, tooth: 2, depth: 4 mm, angle: 45 deg}]"
+runner = CliRunner()
+
+
+def _run(folder: Path, *sets: str) -> str:
+    args = ["run", CASE, "-o", str(folder), "-q", "--format", "md", "--set",
+            "run.end_time=0.3"]
+    for s in sets:
+        args += ["--set", s]
+    res = runner.invoke(app, args)
+    assert res.exit_code == 0, res.output
+    return (folder / "report.md").read_text()
+
+
+def test_faulted_run_report_has_the_monitoring_section(tmp_path):
+    text = _run(tmp_path / "crack", CRACK)
+    assert "## Condition monitoring" in text and "Faulted: pinion tooth 2." in text
+    assert "| fm4 |" in text and "mesh order h z" in text and "21 × 1" not in text
+    assert "1 × 21 = 21" in text
+    for name in ("monitor_orders.png", "monitor_teeth.png"):
+        assert (tmp_path / "crack" / "figures" / name).is_file()
+        assert f"figures/{name}" in text
+    assert (tmp_path / "crack" / "monitor.json").is_file()
+
+
+def test_healthy_run_report_has_none(tmp_path):
+    text = _run(tmp_path / "healthy")
+    assert "Condition monitoring" not in text
+    assert not (tmp_path / "healthy" / "monitor.json").exists()
+    assert not (tmp_path / "healthy" / "figures" / "monitor_orders.png").exists()
