@@ -17,6 +17,19 @@ one): dynamic factor = max F_total / F_static, DTE peak-to-peak, contact-loss fr
 level gets its own validity (gearcli/pipeline/validity.py) from the DTE, which bounds the pair
 penetrations from above for pairs without pitch errors (drive: p ≤ δ; coast: p ≤ −δ − j_n), the
 gear's speed over the level and the run's energy residual.
+
+A valid level is ``unsettled`` (docs/theory.md §10.4; its numbers kept, marked in summary.csv
+and the figure) when its measured half-dwell is not one steady state: the speed that carries the
+mesh (the gear's, and the pinion's when it is free) changes by more than 1 % over it (the
+operating-state rule of a run, pipeline/validity.operating_state), or the two halves of it
+disagree, or the speed swings by more than ``SETTLED_SPEED`` peak to peak (not one
+operating speed) — the force maxima by more than ``SETTLED_FORCE`` of the static force or the DTE
+peak-to-peak values by more than ``SETTLED_DTE`` of the larger. A periodic response repeats in
+both halves up to the sampling of its maximum (0.55 %, above) and, with pitch deviations, up to
+the tooth combinations each half sees; a transient that has not died out (a lightly damped shaft
+mode excited by the speed step) or a beating or chaotic response does not.
+A run that left the contact tables (pipeline/validity.table_exit) makes every level it did not
+finish invalid with that reason.
 """
 
 from __future__ import annotations
@@ -42,6 +55,17 @@ MEASURE_FRACTION = 0.5
 SAMPLES_PER_PERIOD = 30
 #: Time to reach the first speed from rest [s] when the base case's ramps are shorter.
 MIN_START_S = 0.05
+
+#: Largest difference of the two halves of a level's measurement for a settled level: force
+#: maxima [fraction of the static force] and DTE peak-to-peak [fraction of the larger].
+SETTLED_FORCE = 0.05
+SETTLED_DTE = 0.10
+#: Largest peak-to-peak swing of the speed that carries the mesh over a settled level
+#: [fraction of its mean]: settled levels measure 0.6-1.5 % (the mesh's own speed ripple with
+#: a soft drive shaft, cases/iso_pair.yaml at 2000-3000 Hz), unsettled ones 36-83 %.
+SETTLED_SPEED = 0.05
+#: Status of a valid level that did not settle (module notes).
+UNSETTLED = "unsettled"
 
 DIRECTIONS = ("up", "down")
 #: summary.csv's columns (gearcli.results.SpeedLevel's fields).
@@ -106,6 +130,12 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
     rows = []
     for i, (fz, (t0, t1)) in enumerate(zip(stairs.f_z_Hz, stairs.windows_s, strict=True)):
         w = (t >= t0) & (t <= t1)
+        if res.status != "ok" and t1 > t[-1]:  # stopped where it left the tables
+            rows.append(SpeedLevel(
+                point=first_point + i, direction=direction, mesh_frequency_Hz=fz,
+                pinion_speed_rpm=fz / z1 * 60.0, resonance_ratio=fz / f_n_Hz,
+                iso_resonance_ratio=math.nan, status="invalid", error=res.invalid_reason))
+            continue
         bound = float(max(delta[w].max(), (-delta[w] - j_n).max(), 0.0))
         status, reason = check_validity(
             penetration_max_mm=bound, static_deflection_mm=ki.mesh.loaded_deflection_mm,
@@ -116,6 +146,11 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
         # each level's own static force: the resisted torque at its gear speed (§7.3)
         f_static = static_force_at(res, float(omega2[w].mean()))
         valid = status == "ok"
+        if valid:
+            status, reason = settled(t[w], force[w], delta[w],
+                                     {"gear speed": omega2[w],
+                                      **({"pinion speed": omega1[w]} if free_pinion else {})},
+                                     f_static)
         rows.append(SpeedLevel(
             point=first_point + i, direction=direction, mesh_frequency_Hz=fz,
             pinion_speed_rpm=fz / z1 * 60.0, resonance_ratio=fz / f_n_Hz,
@@ -127,6 +162,40 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
             contact_loss_fraction=float(np.mean(force[w] <= 0.0)) if valid else math.nan,
             status=status, error=reason))
     return rows
+
+
+def settled(t_s, force_N, delta_mm, speeds: dict, f_static_N: float) -> tuple[str, str]:
+    """("ok", "") for a settled level, else (UNSETTLED, why) (module notes); arguments are
+    the samples of the level's measured part [s, N, mm, rad/s] and its static force [N]."""
+    from gearcli.pipeline.validity import UNSTEADY, operating_state
+
+    state, _, why = operating_state(t_s, speeds, {})
+    if state == UNSTEADY:
+        text = why.replace("unsteady:", "unsettled:").replace("steady window", "level")
+        return UNSETTLED, text.replace(
+            "the dynamic factor is not that of one steady operating point",
+            "the level has not settled")
+    for name, omega in speeds.items():
+        swing = float(np.ptp(omega) / abs(np.mean(omega))) if np.mean(omega) else 0.0
+        if swing > SETTLED_SPEED:
+            return UNSETTLED, (f"unsettled: the {name} swings by {100 * swing:.3g} % peak to "
+                               f"peak over the level (settled below {100 * SETTLED_SPEED:g} %): "
+                               "not one operating speed")
+    half = t_s.size // 2
+    if half < 2:
+        return "ok", ""
+    f_a, f_b = float(force_N[:half].max()), float(force_N[half:].max())
+    if f_static_N > 0.0 and abs(f_a - f_b) > SETTLED_FORCE * f_static_N:
+        return UNSETTLED, (f"unsettled: the force maxima of the two halves of the level differ "
+                           f"by {100 * abs(f_a - f_b) / f_static_N:.3g} % of the static force "
+                           f"({f_a:.4g} / {f_b:.4g} N; settled below "
+                           f"{100 * SETTLED_FORCE:g} %)")
+    d_a, d_b = float(np.ptp(delta_mm[:half])), float(np.ptp(delta_mm[half:]))
+    if abs(d_a - d_b) > SETTLED_DTE * max(d_a, d_b):
+        return UNSETTLED, (f"unsettled: the DTE peak-to-peak of the two halves of the level "
+                           f"differ ({1e3 * d_a:.4g} / {1e3 * d_b:.4g} µm; settled within "
+                           f"{100 * SETTLED_DTE:g} %)")
+    return "ok", ""
 
 
 def run_direction(payload: dict) -> dict:

@@ -17,22 +17,28 @@ def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
                      iso_factors: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> Figure:
     """Dynamic factor [-] against N = f_z / f_n [-] (f_n the case's mesh mode) for the run-up
     and the run-down of gearcli/pipeline/speed_curve.py (``rows``: its levels,
-    gearcli.results.SpeedLevel); points outside the model's validity
-    are marked with a grey cross at the top of the axes, not plotted as values; dotted lines
-    at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO) arrays: ISO 6336-1 Method B's K_v on the
+    gearcli.results.SpeedLevel); levels that did not settle (status "unsettled") are ringed;
+    points outside the model's validity are marked with a grey cross at the top of the axes,
+    not plotted as values; dotted lines at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO) arrays: ISO 6336-1 Method B's K_v on the
     same axis (its own resonance ratio n1/n_E1 on a secondary axis), computed with
     ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend states."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(8.0, 4.8))
     ax = fig.add_subplot()
-    top = max((r.dynamic_factor for r in rows if r.status == "ok"), default=2.0)
+    valued = ("ok", "unsettled")  # levels with a value; unsettled ones ringed
+    top = max((r.dynamic_factor for r in rows if r.status in valued), default=2.0)
     for direction, (colour, marker, label) in _STYLE.items():
-        ok = [r for r in rows if r.direction == direction and r.status == "ok"]
+        ok = [r for r in rows if r.direction == direction and r.status in valued]
         ok.sort(key=lambda r: r.resonance_ratio)
         ax.plot([r.resonance_ratio for r in ok], [r.dynamic_factor for r in ok],
                 marker=marker, color=colour, lw=1.2, ms=4, label=f"gearcli {label}")
-        bad = [r for r in rows if r.direction == direction and r.status != "ok"]
+        loose = [r for r in ok if r.status == "unsettled"]
+        if loose:
+            ax.plot([r.resonance_ratio for r in loose], [r.dynamic_factor for r in loose], "o",
+                    mfc="none", mec=colour, ms=10, mew=1.2,
+                    label=f"{label}: not settled (status unsettled)")
+        bad = [r for r in rows if r.direction == direction and r.status not in valued]
         if bad:
             ax.plot([r.resonance_ratio for r in bad], [1.05 * top] * len(bad), "x",
                     color="0.5", label=f"{label}: outside the model's validity")
