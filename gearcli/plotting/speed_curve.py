@@ -20,8 +20,9 @@ def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
     gearcli.results.SpeedLevel); levels that did not settle (status "unsettled") are ringed;
     points outside the model's validity are marked with a grey cross at the top of the axes,
     not plotted as values; dotted lines at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO)
-    arrays: ISO 6336-1 Method B's K_v on the same axis (its own resonance ratio n1/n_E1 on a secondary axis), computed with
-    ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend states."""
+    arrays: ISO 6336-1 Method B's K_v on the same axis (its own resonance ratio n1/n_E1 on a
+    secondary axis), computed with ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend
+    states."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(8.0, 4.8))
