@@ -98,3 +98,17 @@ class Gears(Section):
     gear: Gear
 
 
+
+
+class Accuracy(Section):
+    """ISO 1328-1:2013 flank tolerance class of both gears (docs/theory.md §10.5): seeded
+    random single pitch deviations of the class for every gear without its own
+    ``errors.pitch_deviation`` (gearcli/model/accuracy.py), and the class's tolerances in ISO
+    6336-1 Method B's K_v."""
+
+    grade: Annotated[int, Strict()] | None = Field(
+        None, ge=1, le=11, description="ISO 1328-1:2013 flank tolerance class 1..11 (none: no "
+        "deviations from a grade)")
+    seed: Annotated[int, Strict()] = Field(
+        0, ge=0, le=2**32 - 1, description="random seed of the pinion's deviations (the gear's: "
+        "seed + 1); the same seed, the same deviations (0)")

@@ -85,7 +85,7 @@ def sweep(
             failed = int((df["status"] == "failed").sum())
             unsettled = int((df["status"] == "unsettled").sum())
             typer.echo(f"{len(df)} points, {invalid} outside the model's validity, "
-                       f"{unsettled} not settled, {failed} failed; results in {out}/ "
+                       f"{failed} failed, {unsettled} not settled; results in {out}/ "
                        "(summary.csv, speed_curve.png)")
         for e in df.attrs["errors"]:
             typer.echo(f"warning: a direction failed: {e}", err=True)
