@@ -93,14 +93,20 @@ parameters:
 """
 
 
-def test_an_unsettled_speed_curve_level_is_marked_in_status_and_figure(tmp_path):
+def speed_curve_of(tmp_path, study_text: str):
+    """The speed curve of a study file's text (one job)."""
     from gearcli.pipeline.speed_curve import run_speed_curve
     from gearcli.pipeline.sweep.study import load_study
+
+    study = tmp_path / "study.yaml"
+    study.write_text(study_text)
+    return run_speed_curve(load_study(study), jobs=1)
+
+
+def test_an_unsettled_speed_curve_level_is_marked_in_status_and_figure(tmp_path):
     from gearcli.plotting.speed_curve import plot_speed_curve
 
-    study = tmp_path / "soft.yaml"
-    study.write_text(SOFT_SHAFT)
-    curve = run_speed_curve(load_study(study), jobs=1)
+    curve = speed_curve_of(tmp_path, SOFT_SHAFT)
     status = {(r.direction, r.mesh_frequency_Hz): r for r in curve.rows}
     loose = status[("up", 2500.0)]
     assert loose.status == UNSETTLED and "gear speed swings by" in loose.error

@@ -115,12 +115,10 @@ parameters:
 
 
 def test_speed_curve_of_a_grade_overlays_iso_kv_with_and_without_the_low_load_factor(tmp_path):
-    from gearcli.pipeline.speed_curve import run_speed_curve, write_speed_curve
-    from gearcli.pipeline.sweep.study import load_study
+    from gearcli.pipeline.speed_curve import write_speed_curve
+    from tests.physics.test_validity_same_everywhere import speed_curve_of
 
-    study = tmp_path / "graded.yaml"
-    study.write_text(STUDY)
-    curve = run_speed_curve(load_study(study), jobs=1)
+    curve = speed_curve_of(tmp_path, STUDY)
     out = tmp_path / "out"
     write_speed_curve(curve, out, force=False)
     doc = json.loads((out / "speed_curve.json").read_text())
