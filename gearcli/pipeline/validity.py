@@ -124,8 +124,8 @@ def cut_at_table_exit(kr, window):
     t_stop = float(kr.series[-1, 0]) if n > 1 else kr.extremum("t_reached_s")
     if window.t0_s < t_stop:
         return kr, Window(window.t0_s, t_stop, window.reason + ", cut where the run stopped")
-    return kr, Window(0.5 * t_stop, t_stop, "the second half of the run up to where it left "
-                      "the contact tables")
+    return kr, Window(0.5 * t_stop, t_stop, "the run up to where it left the contact tables, "
+                      "its second half")
 
 
 #: Change of a speed or of the load torque over the steady window (least-squares trend times
