@@ -123,9 +123,35 @@ def cut_at_table_exit(kr, window):
                      slot_force_coast=kr.slot_force_coast[:n])
     t_stop = float(kr.series[-1, 0]) if n > 1 else kr.extremum("t_reached_s")
     if window.t0_s < t_stop:
-        return kr, Window(window.t0_s, t_stop, window.reason + ", cut where the run stopped")
-    return kr, Window(0.5 * t_stop, t_stop, "the run up to where it left the contact tables, "
-                      "its second half")
+        window = Window(window.t0_s, t_stop, window.reason + ", cut where the run stopped")
+    else:
+        window = Window(0.5 * t_stop, t_stop, "the run up to where it left the contact "
+                        "tables, its second half")
+    return _sampled_extrema(kr, window.t0_s), window
+
+
+def _sampled_extrema(kr, t0_s: float):
+    """``kr`` with the window's force and DTE extrema that the solver did not record (its
+    extrema start at the planned window, after the stop) taken from the samples."""
+    from gearcli.core.layout import EXTREMA_NAMES
+
+    t = kr.column("t_s")
+    w = t >= t0_s
+    if not w.any():
+        return kr
+    extrema = kr.extrema.copy()
+    for name, column, pick in (("force_total_max", "force_total_N", np.argmax),
+                               ("force_total_min", "force_total_N", np.argmin),
+                               ("delta_max", "delta_mm", np.argmax),
+                               ("delta_min", "delta_mm", np.argmin)):
+        unit = "N" if column.endswith("_N") else "mm"
+        i = EXTREMA_NAMES.index(f"{name}_{unit}")
+        if math.isnan(extrema[i]):
+            values = kr.column(column)[w]
+            k = int(pick(values))
+            extrema[i] = values[k]
+            extrema[EXTREMA_NAMES.index(f"{name}_t_s")] = t[w][k]
+    return kr._replace(extrema=extrema)
 
 
 #: Change of a speed or of the load torque over the steady window (least-squares trend times
