@@ -42,15 +42,19 @@ class MassInput:
     inertia_t_mm2: float | None  # given polar inertia
     mass_t: float | None  # given mass
     extra_inertia_t_mm2: float
+    bore_diameter_mm: float | None = None  # the gear's given bore (None: solid body)
 
 
 def mass_inputs(case: Case) -> tuple[MassInput, MassInput]:
-    """Mass-property inputs of (pinion, gear); the gear's own material overrides the case's."""
+    """Mass-property inputs of (pinion, gear); the gear's own material overrides the case's.
+    The body is the one the tooth law's gear-body compliance sees: a given ``bore_diameter``
+    is taken out of the disc (docs/theory.md §2.6)."""
 
     def one(spec: Gear) -> MassInput:
         material = spec.material or case.material
         i = spec.inertia
-        return MassInput(i.model, material.density, i.diameter, i.value, i.mass, i.extra)
+        return MassInput(i.model, material.density, i.diameter, i.value, i.mass, i.extra,
+                         spec.bore_diameter)
 
     return one(case.gears.pinion), one(case.gears.gear)
 

@@ -15,7 +15,7 @@ from pydantic import Field, Strict, model_serializer, model_validator
 from gearcli import units
 from gearcli.case.schema_drive import Bearing, Bearings, Drive, Load, MotorCurve, Shaft
 from gearcli.case.schema_faults import Fault
-from gearcli.case.schema_gears import Gear, Gears, InertiaSpec, Material, Rack, Teeth
+from gearcli.case.schema_gears import Accuracy, Gear, Gears, InertiaSpec, Material, Rack, Teeth
 from gearcli.case.schema_mesh import IMPACT_KEYS, TOOTH_KEYS, Contact, Friction
 from gearcli.case.schema_mods import Errors, Modifications, PitchDeviation, Relief, Runout
 from gearcli.case.schema_rating import Rating
@@ -100,6 +100,8 @@ class Case(Section):
     bearings: Bearings = Field(default_factory=Bearings)
     modifications: Modifications = Field(default_factory=Modifications)
     errors: Errors = Field(default_factory=Errors)
+    accuracy: Accuracy = Field(default_factory=Accuracy, description="ISO 1328-1 flank "
+                               "tolerance class: seeded pitch deviations of both gears")
     run: Run
     checks: Checks = Field(default_factory=Checks)
     rating: Rating = Field(default_factory=Rating, description="ISO 6336 rating (gearcli rate)")
@@ -132,6 +134,25 @@ class Case(Section):
         if self.sensors is None:  # the resolved case of a run without sensors is unchanged
             data.pop("sensors", None)
         return data
+
+    @model_validator(mode="after")
+    def _deviations_of_the_grade(self):
+        """``accuracy.grade``: the grade's seeded pitch deviations (errors.pitch_deviation) of
+        every gear that has none of its own (gearcli/model/accuracy.py)."""
+        acc = self.accuracy
+        if acc.grade is None:
+            return self
+        from gearcli.model.accuracy import gear_seeds
+
+        given = self.errors.pitch_deviation
+        fill = {role: PitchDeviation(iso1328_grade=acc.grade, seed=seed)
+                for role, seed in zip(("pinion", "gear"), gear_seeds(acc.seed), strict=True)
+                if getattr(given, role) is None}
+        if not fill:
+            return self
+        errors = self.errors.model_copy(update={
+            "pitch_deviation": given.model_copy(update=fill)})
+        return self.model_copy(update={"errors": errors})
 
     @model_validator(mode="after")
     def _cross_checks(self):

@@ -65,14 +65,23 @@ class Gear(Section):
     )
     tip_rounding: Length = qfield(units.LENGTH, 0.0, "tip rounding radius (0: sharp)", ge=0)
     bore_diameter: Length | None = qfield(
-        units.LENGTH, None, "bore (rim inner) diameter for the tooth law's gear-body compliance "
-        "(Sainsot et al. 2004); default: a third of the root diameter (a solid gear on a shaft)",
-        gt=0)
+        units.LENGTH, None, "bore (rim inner) diameter: the body of the tooth law's gear-body "
+        "compliance (Sainsot et al. 2004) and of the disc inertia and mass (taken out of the "
+        "disc, docs/theory.md §2.6); default: none in the mass properties (a solid gear, its "
+        "shaft seat filled) and a third of the root diameter in the compliance", gt=0)
     face_width: Length | None = qfield(
         units.LENGTH, None, "face width; default gears.face_width", gt=0
     )
     material: Material | None = Field(None, description="default: the case's material")
     inertia: InertiaSpec = Field(default_factory=InertiaSpec, description="mass properties")
+
+    @model_validator(mode="after")
+    def _disc_outside_the_bore(self):
+        d, bore = self.inertia.diameter, self.bore_diameter
+        if self.inertia.model == "disc" and d is not None and bore is not None and d <= bore:
+            raise FieldError(("inertia", "diameter"), f"{d:g} mm is not larger than the bore "
+                             f"({bore:g} mm)", "a disc diameter larger than bore_diameter")
+        return self
 
 
 class Gears(Section):
@@ -89,3 +98,17 @@ class Gears(Section):
     gear: Gear
 
 
+
+
+class Accuracy(Section):
+    """ISO 1328-1:2013 flank tolerance class of both gears (docs/theory.md §10.5): seeded
+    random single pitch deviations of the class for every gear without its own
+    ``errors.pitch_deviation`` (gearcli/model/accuracy.py), and the class's tolerances in ISO
+    6336-1 Method B's K_v."""
+
+    grade: Annotated[int, Strict()] | None = Field(
+        None, ge=1, le=11, description="ISO 1328-1:2013 flank tolerance class 1..11 (none: no "
+        "deviations from a grade)")
+    seed: Annotated[int, Strict()] = Field(
+        0, ge=0, le=2**32 - 1, description="random seed of the pinion's deviations (the gear's: "
+        "seed + 1); the same seed, the same deviations (0)")

@@ -106,6 +106,8 @@ def _print_summary(doc, out: str, units: str) -> None:
     shown = shown_values(s, "simulate")
     if doc.status != "ok":
         shown["dynamic_factor"] = "not valid (see the error below)"
+    elif s.operating_state != "steady" and s.dynamic_factor is not None:
+        shown["dynamic_factor"] = f"{s.dynamic_factor:.4g} (unsteady: see the warnings)"
     rows = metric_rows(shown, shown, units) + [
         ("solver steps / RHS evaluations",
          f"{sv['accepted_steps']} (+{sv['rejected_steps']} rejected) / "

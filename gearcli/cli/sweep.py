@@ -83,8 +83,10 @@ def sweep(
         if not quiet:
             invalid = int((df["status"] == "invalid").sum())
             failed = int((df["status"] == "failed").sum())
+            unsettled = int((df["status"] == "unsettled").sum())
             typer.echo(f"{len(df)} points, {invalid} outside the model's validity, "
-                       f"{failed} failed; results in {out}/ (summary.csv, speed_curve.png)")
+                       f"{failed} failed, {unsettled} not settled; results in {out}/ "
+                       "(summary.csv, speed_curve.png)")
         for e in df.attrs["errors"]:
             typer.echo(f"warning: a direction failed: {e}", err=True)
         for note in df.attrs["notes"]:

@@ -15,9 +15,10 @@ __all__ = ["MassProperties", "disc_mass_inertia", "gear_mass_properties"]
 
 
 def disc_mass_inertia(
-    density_t_mm3: float, diameter_mm: float, face_width_mm: float
+    density_t_mm3: float, diameter_mm: float, face_width_mm: float,
+    bore_diameter_mm: float = 0.0,
 ) -> tuple[float, float]:
-    """Mass and polar mass moment of inertia of a solid disc (gear blank).
+    """Mass and polar mass moment of inertia of a disc (gear blank), solid or with a bore.
 
     Parameters
     ----------
@@ -27,11 +28,14 @@ def disc_mass_inertia(
         Disc diameter d [mm] (by default the reference diameter of the gear).
     face_width_mm : float
         Face width b [mm].
+    bore_diameter_mm : float
+        Bore d_i [mm], 0 for a solid disc (default); less than ``diameter_mm``.
 
     Returns
     -------
     (mass_t, polar_inertia_t_mm2) : tuple of float
-        m = ρ π d²/4 · b [t] and J = m d²/8 [t·mm²] (= m r²/2).
+        m = ρ π (d² − d_i²)/4 · b [t] and J = m (d² + d_i²)/8 = π ρ b (r⁴ − r_i⁴)/2 [t·mm²]
+        (a hollow cylinder, Meriam & Kraige appendix B; solid: J = m d²/8 = m r²/2).
 
     Raises
     ------
@@ -42,8 +46,11 @@ def disc_mass_inertia(
                         ("face_width_mm", face_width_mm)):
         if not (math.isfinite(value) and value > 0.0):
             raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    mass = density_t_mm3 * math.pi * diameter_mm**2 / 4.0 * face_width_mm
-    return mass, mass * diameter_mm**2 / 8.0
+    if not (math.isfinite(bore_diameter_mm) and 0.0 <= bore_diameter_mm < diameter_mm):
+        raise ValueError(f"bore_diameter_mm must lie in [0, {diameter_mm!r}), got "
+                         f"{bore_diameter_mm!r}")
+    mass = density_t_mm3 * math.pi * (diameter_mm**2 - bore_diameter_mm**2) / 4.0 * face_width_mm
+    return mass, mass * (diameter_mm**2 + bore_diameter_mm**2) / 8.0
 
 
 @dataclass(frozen=True)
@@ -63,16 +70,19 @@ def gear_mass_properties(
     inertia_t_mm2: float | None = None,
     mass_t: float | None = None,
     extra_inertia_t_mm2: float = 0.0,
+    bore_diameter_mm: float | None = None,
 ) -> MassProperties:
-    """Mass properties of a gear body (docs/theory.md §2).
+    """Mass properties of a gear body (docs/theory.md §2.6).
 
-    ``model == "disc"``: a solid disc of ``diameter_mm`` (default: the pitch diameter) and the
-    face width, from the density (:func:`disc_mass_inertia`); ``"given"``: ``inertia_t_mm2``
-    (and ``mass_t`` if known, else the disc mass). ``extra_inertia_t_mm2`` (shaft, hub) is added
-    to the polar inertia in both cases.
+    ``model == "disc"``: a disc of ``diameter_mm`` (default: the pitch diameter) and the face
+    width with the gear's given bore ``bore_diameter_mm`` (None: solid), from the density
+    (:func:`disc_mass_inertia`); ``"given"``: ``inertia_t_mm2`` (and ``mass_t`` if known, else
+    the disc mass). ``extra_inertia_t_mm2`` (shaft, hub) is added to the polar inertia in both
+    cases.
     """
     disc_d = diameter_mm if diameter_mm is not None else pitch_diameter_mm
-    disc_mass, disc_inertia = disc_mass_inertia(density_t_mm3, disc_d, face_width_mm)
+    disc_mass, disc_inertia = disc_mass_inertia(density_t_mm3, disc_d, face_width_mm,
+                                                bore_diameter_mm or 0.0)
     if model == "disc":
         return MassProperties(disc_mass, disc_inertia + extra_inertia_t_mm2)
     if model == "given" and inertia_t_mm2 is not None:

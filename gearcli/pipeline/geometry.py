@@ -133,6 +133,7 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
             m.inertia_t_mm2,
             m.mass_t,
             m.extra_inertia_t_mm2,
+            m.bore_diameter_mm,
         )
         for m, gg in ((pinion_in, geo.pinion), (gear_in, geo.gear))
     )

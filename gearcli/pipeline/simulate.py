@@ -120,7 +120,13 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
                       load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
                       progress=progress, **ki.arrays)
     wall = time.perf_counter() - t0
-    if not kr.ok:
+    from gearcli.core.layout import STATUS_RUNAWAY_PENETRATION
+    from gearcli.pipeline.validity import cut_at_table_exit
+
+    left_tables = kr.status == STATUS_RUNAWAY_PENETRATION
+    if left_tables:  # an invalid run up to where it left the tables (docs/theory.md §10.2)
+        kr, window = cut_at_table_exit(kr, window)
+    elif not kr.ok:
         t_reached = kr.extremum("t_reached_s")
         raise SolverError(
             f"{loaded.source.file}: the solver failed at t = {t_reached:.6g} s: {kr.message} "
@@ -130,8 +136,8 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     result = SimulationResult(loaded, geo, ki, kr, wall, window, modes, compiled=compiling)
     result.summary = summarize(result)
     result.warnings = collect_warnings(result)
-    result.status, result.invalid_reason = validity_of(result)
-    if zoom and ki.gear_mesh_frequency_Hz:
+    result.status, result.invalid_reason = validity_of(result, left_tables)
+    if zoom and ki.gear_mesh_frequency_Hz and not left_tables:
         with cyclic_gc_paused():
             result.zoom = dense_zoom(result, params)
     return result
@@ -182,12 +188,16 @@ def dense_zoom(res: SimulationResult, params) -> dict[str, np.ndarray]:
     return out
 
 
-def validity_of(res: SimulationResult):
-    """The run's :class:`gearcli.pipeline.validity.Validity` (docs/theory.md §10.2)."""
+def validity_of(res: SimulationResult, left_tables: bool = False):
+    """The run's :class:`gearcli.pipeline.validity.Validity` (docs/theory.md §10.2);
+    ``left_tables``: the solver stopped where a penetration left the gap tables."""
     from gearcli.core.layout import DRIVE_SPEED, P
-    from gearcli.pipeline.validity import check_validity
+    from gearcli.pipeline.validity import check_validity, table_exit
 
     k = res.kernel
+    if left_tables:
+        return table_exit(k.extremum("penetration_max_mm"), k.extremum("t_reached_s"),
+                          res.kernel_input.params[P.penetration_limit])
     w = k.column("t_s") >= res.window.t0_s
     free_pinion = res.kernel_input.params[P.drive_mode] != DRIVE_SPEED
     return check_validity(
@@ -310,6 +320,7 @@ def summarize(res: SimulationResult) -> Summary:
     omega2 = k.column("omega2_rad_s")[w]
     mm = ki.mesh
     mesh_f, mesh_zeta = mesh_mode_of(res)
+    state, change, _ = steadiness(res)
     f_static = static_force_at(res, float(omega2.mean()))
     return Summary(
         window_s=(res.window.t0_s, res.window.t1_s),
@@ -343,9 +354,31 @@ def summarize(res: SimulationResult) -> Summary:
         static_deflection_mm=mm.static_deflection_mm,
         mesh_natural_frequency_Hz=mesh_f,
         mesh_damping_ratio=mesh_zeta,
+        operating_state=state,
+        operating_change_fraction=change,
         energy_balance=energy_balance(k),
         modes=modes_summary(res.modes) if res.modes is not None else (),
     )
+
+
+def steadiness(res: SimulationResult) -> tuple[str, float, str]:
+    """The window's operating state (pipeline/validity.operating_state, docs/theory.md
+    §10.2): the pinion and gear speeds (a body counts when it turns by more than a tooth pitch
+    over the window) and the load torque."""
+    from gearcli.pipeline.validity import operating_state
+
+    k, g = res.kernel, res.geometry.geometry
+    t = k.column("t_s")
+    w = t >= res.window.t0_s
+    span = float(np.ptp(t[w])) if w.any() else 0.0
+    signals = {"pinion speed": k.column("omega1_rad_s")[w],
+               "gear speed": k.column("omega2_rad_s")[w],
+               "load torque": k.column("load_torque_Nmm")[w]}
+    turning = {"pinion speed": abs(signals["pinion speed"].mean()) * span * g.pinion.teeth
+               > 2.0 * math.pi,
+               "gear speed": abs(signals["gear speed"].mean()) * span * g.gear.teeth
+               > 2.0 * math.pi}
+    return operating_state(t[w], signals, turning)
 
 
 def mesh_mode_of(res: SimulationResult) -> tuple[float, float]:
@@ -443,6 +476,9 @@ def collect_warnings(res: SimulationResult) -> list[str]:
     elif ramp_end > res.window.t0_s:
         out.append(f"not settled: the window starts at {res.window.t0_s:g} s, before the "
                    f"ramps end ({ramp_end:g} s); its values still carry the ramp")
+    unsteady = steadiness(res)[2]
+    if unsteady:
+        out.append(unsteady)
     if res.window.reason.startswith("the whole run"):
         out.append(f"short run: fewer than {MIN_MESH_CYCLES} mesh cycles; the spectra and "
                    "steady-state values are not meaningful")

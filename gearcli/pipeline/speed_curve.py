@@ -17,6 +17,21 @@ one): dynamic factor = max F_total / F_static, DTE peak-to-peak, contact-loss fr
 level gets its own validity (gearcli/pipeline/validity.py) from the DTE, which bounds the pair
 penetrations from above for pairs without pitch errors (drive: p ≤ δ; coast: p ≤ −δ − j_n), the
 gear's speed over the level and the run's energy residual.
+
+A valid level is ``unsettled`` (docs/theory.md §10.4; its numbers kept, marked in summary.csv
+and the figure) when its measured half-dwell is not one steady state: the speed that carries the
+mesh (the gear's, and the pinion's when it is free) changes by more than 1 % over it (the
+operating-state rule of a run, pipeline/validity.operating_state) or swings by more than
+``SETTLED_SPEED`` peak to peak (not one operating speed), or the two halves of it disagree: the
+force maxima by more than ``SETTLED_FORCE`` of the static force or the DTE peak-to-peak values
+by more than ``SETTLED_DTE`` of the larger. A periodic response repeats in both halves up to
+the sampling of its maximum (0.55 %, above); a transient that has not died out (a lightly
+damped shaft mode excited by the speed step) or a beating or chaotic response does not. With
+pitch deviations or runout the halves see other tooth combinations (the pattern repeats over
+the hunting period, far longer than a level: ISO 1328-1 class 6 on cases/iso_pair.yaml measured
+7-207 % differences at every level), so there only the speed rules apply.
+A run that left the contact tables (pipeline/validity.table_exit) makes every level it did not
+finish invalid with that reason.
 """
 
 from __future__ import annotations
@@ -42,6 +57,17 @@ MEASURE_FRACTION = 0.5
 SAMPLES_PER_PERIOD = 30
 #: Time to reach the first speed from rest [s] when the base case's ramps are shorter.
 MIN_START_S = 0.05
+
+#: Largest difference of the two halves of a level's measurement for a settled level: force
+#: maxima [fraction of the static force] and DTE peak-to-peak [fraction of the larger].
+SETTLED_FORCE = 0.05
+SETTLED_DTE = 0.10
+#: Largest peak-to-peak swing of the speed that carries the mesh over a settled level
+#: [fraction of its mean]: settled levels measure 0.6-1.5 % (the mesh's own speed ripple with
+#: a soft drive shaft, cases/iso_pair.yaml at 2000-3000 Hz), unsettled ones 36-83 %.
+SETTLED_SPEED = 0.05
+#: Status of a valid level that did not settle (module notes).
+UNSETTLED = "unsettled"
 
 DIRECTIONS = ("up", "down")
 #: summary.csv's columns (gearcli.results.SpeedLevel's fields).
@@ -106,6 +132,12 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
     rows = []
     for i, (fz, (t0, t1)) in enumerate(zip(stairs.f_z_Hz, stairs.windows_s, strict=True)):
         w = (t >= t0) & (t <= t1)
+        if res.status != "ok" and t1 > t[-1]:  # stopped where it left the tables
+            rows.append(SpeedLevel(
+                point=first_point + i, direction=direction, mesh_frequency_Hz=fz,
+                pinion_speed_rpm=fz / z1 * 60.0, resonance_ratio=fz / f_n_Hz,
+                iso_resonance_ratio=math.nan, status="invalid", error=res.invalid_reason))
+            continue
         bound = float(max(delta[w].max(), (-delta[w] - j_n).max(), 0.0))
         status, reason = check_validity(
             penetration_max_mm=bound, static_deflection_mm=ki.mesh.loaded_deflection_mm,
@@ -116,6 +148,11 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
         # each level's own static force: the resisted torque at its gear speed (§7.3)
         f_static = static_force_at(res, float(omega2[w].mean()))
         valid = status == "ok"
+        if valid:
+            status, reason = settled(t[w], force[w], delta[w],
+                                     {"gear speed": omega2[w],
+                                      **({"pinion speed": omega1[w]} if free_pinion else {})},
+                                     f_static, halves=not _hunting(res.loaded.case))
         rows.append(SpeedLevel(
             point=first_point + i, direction=direction, mesh_frequency_Hz=fz,
             pinion_speed_rpm=fz / z1 * 60.0, resonance_ratio=fz / f_n_Hz,
@@ -127,6 +164,43 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
             contact_loss_fraction=float(np.mean(force[w] <= 0.0)) if valid else math.nan,
             status=status, error=reason))
     return rows
+
+
+def settled(t_s, force_N, delta_mm, speeds: dict, f_static_N: float,
+            halves: bool = True) -> tuple[str, str]:
+    """("ok", "") for a settled level, else (UNSETTLED, why) (module notes); arguments are
+    the samples of the level's measured part [s, N, mm, rad/s] and its static force [N];
+    ``halves``: compare its two halves (not with pitch deviations or runout, whose halves see
+    other tooth combinations)."""
+    from gearcli.pipeline.validity import UNSTEADY, operating_state
+
+    state, _, why = operating_state(t_s, speeds, {})
+    if state == UNSTEADY:
+        text = why.replace("unsteady:", "unsettled:").replace("steady window", "level")
+        return UNSETTLED, text.replace(
+            "the dynamic factor is not that of one steady operating point",
+            "the level has not settled")
+    for name, omega in speeds.items():
+        swing = float(np.ptp(omega) / abs(np.mean(omega))) if np.mean(omega) else 0.0
+        if swing > SETTLED_SPEED:
+            return UNSETTLED, (f"unsettled: the {name} swings by {100 * swing:.3g} % peak to "
+                               f"peak over the level (settled below {100 * SETTLED_SPEED:g} %): "
+                               "not one operating speed")
+    half = t_s.size // 2
+    if half < 2 or not halves:
+        return "ok", ""
+    f_a, f_b = float(force_N[:half].max()), float(force_N[half:].max())
+    if f_static_N > 0.0 and abs(f_a - f_b) > SETTLED_FORCE * f_static_N:
+        return UNSETTLED, (f"unsettled: the force maxima of the two halves of the level differ "
+                           f"by {100 * abs(f_a - f_b) / f_static_N:.3g} % of the static force "
+                           f"({f_a:.4g} / {f_b:.4g} N; settled below "
+                           f"{100 * SETTLED_FORCE:g} %)")
+    d_a, d_b = float(np.ptp(delta_mm[:half])), float(np.ptp(delta_mm[half:]))
+    if abs(d_a - d_b) > SETTLED_DTE * max(d_a, d_b):
+        return UNSETTLED, (f"unsettled: the DTE peak-to-peak of the two halves of the level "
+                           f"differ ({1e3 * d_a:.4g} / {1e3 * d_b:.4g} µm; settled within "
+                           f"{100 * SETTLED_DTE:g} %)")
+    return "ok", ""
 
 
 def run_direction(payload: dict) -> dict:
@@ -203,6 +277,7 @@ class SpeedCurve:
     iso: IsoResonance | None = None
     pinion_teeth: int = 0
     notes: list[str] = field(default_factory=list)  #: what limits the reading of the curve
+    accuracy: dict | None = None  #: the case's ISO 1328-1 grade and tolerances (accuracy_doc)
 
 
 def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None) -> SpeedCurve:
@@ -230,16 +305,22 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
     rows = with_level_safeties(base, rows)  # S_H, S_F at each speed (issue 28)
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
-                      _notes(base.case))
+                      _notes(base.case), accuracy_doc(base))
+
+
+def _hunting(case) -> bool:
+    """Whether the case's mesh repeats only over the hunting period (pitch deviations or
+    runout): the halves of a level then see other tooth combinations (:func:`settled`)."""
+    e = case.errors
+    return any(x is not None for x in (e.pitch_deviation.pinion, e.pitch_deviation.gear,
+                                        e.runout.pinion, e.runout.gear))
 
 
 def _notes(case) -> list[str]:
     """With pitch deviations or runout the mesh force repeats only after the hunting period
     lcm(z1, z2) mesh cycles; a level shorter than that sees other tooth combinations going up
     than going down, so part of an up/down difference is that sampling, not a jump."""
-    e = case.errors
-    if not any(x is not None for x in (e.pitch_deviation.pinion, e.pitch_deviation.gear,
-                                        e.runout.pinion, e.runout.gear)):
+    if not _hunting(case):
         return []
     hunting = math.lcm(case.gears.pinion.teeth, case.gears.gear.teeth)
     measured = MEASURE_FRACTION * DWELL_CYCLES
@@ -254,6 +335,14 @@ def _notes(case) -> list[str]:
 def iso_curve(curve: SpeedCurve, points: int = 400):
     """(N = f_z/f_n [-], K_v [-], ISO ranges) of ISO 6336-1 Method B over the curve's speeds,
     on the figure's axis (the ISO resonance ratio n1/n_E1 mapped through f_z)."""
+    n, k_v, n_iso, _ = iso_curves(curve, points)
+    return n, k_v, n_iso
+
+
+def iso_curves(curve: SpeedCurve, points: int = 400):
+    """:func:`iso_curve` and K_v without ISO's low-load factor (docs/theory.md §10.5): c′ and
+    c_γα unreduced, i.e. divided by L_f = (F_t K_A/b/100)^0.25 < 1 below 100 N/mm, so n_E1
+    rises by 1/√L_f and B_p, B_f, B_k change with c′ (equal to the first above 100 N/mm)."""
     from gearcli.model.iso_kv import dynamic_factor
     from gearcli.pipeline.mesh_input import kv_arguments
 
@@ -262,7 +351,29 @@ def iso_curve(curve: SpeedCurve, points: int = 400):
                       max(r.mesh_frequency_Hz for r in curve.rows), points)
     n_iso = f_z / curve.pinion_teeth * 60.0 / iso.resonance_speed_rpm
     kv = dynamic_factor(n_iso, **kv_arguments(iso))
-    return f_z / curve.f_n_Hz, kv.k_v, n_iso
+    l_f = iso.low_load_factor if iso.low_load_factor > 0.0 else 1.0
+    full = kv_arguments(iso) | {"c_prime_N_mm_um": iso.c_prime_N_mm_um / l_f}
+    kv_full = dynamic_factor(n_iso * math.sqrt(l_f), **full)
+    return f_z / curve.f_n_Hz, kv.k_v, n_iso, kv_full.k_v
+
+
+def accuracy_doc(base) -> dict | None:
+    """The case's ISO 1328-1 grade, seeds and tolerances per gear [µm] (model/accuracy.py),
+    for speed_curve.json; None without ``accuracy.grade``."""
+    from gearcli.model.accuracy import gear_seeds, tolerances
+    from gearcli.pipeline.geometry import run_geometry
+
+    acc = base.case.accuracy
+    if acc.grade is None:
+        return None
+    g = run_geometry(base).geometry
+    doc = {"standard": "ISO 1328-1:2013", "grade": acc.grade, "seed": acc.seed}
+    for role, seed in zip(("pinion", "gear"), gear_seeds(acc.seed), strict=True):
+        tol = tolerances(acc.grade, getattr(g, role).d_mm, g.module_mm)
+        doc[role] = {"seed": seed, "tolerances_um": {k: v for k, v in vars(tol).items()
+                                                      if k != "grade"},
+                     "tolerances_rounded_um": tol.rounded()}
+    return doc
 
 
 def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
@@ -288,6 +399,8 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
                "iso6336_method_b": curve.iso.to_dict() if curve.iso else None,
+               "iso_kv_curve": _iso_kv_doc(curve) if curve.iso else None,
+               "accuracy": curve.accuracy,
                "errors": curve.errors, "notes": curve.notes}
         doc["rating"] = write_rating_figure(curve, tmp)  # S_H, S_F against speed (issue 28)
         (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
@@ -295,8 +408,20 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
                       "study_file": str(curve.study_file), "command_line": sys.argv,
                       "resolved_case": json.loads(curve.base_case_json)}
         (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
+        curves = iso_curves(curve) if curve.iso else None
         fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name,
-                               iso=iso_curve(curve) if curve.iso else None,
+                               iso=curves[:3] if curves else None,
                                iso_factors=(curve.iso.B_p, curve.iso.B_f, curve.iso.B_k)
-                               if curve.iso else (0.0, 0.0, 1.0))
+                               if curve.iso else (0.0, 0.0, 1.0),
+                               iso_without_low_load=curves[3] if curves else None,
+                               grade=curve.accuracy["grade"] if curve.accuracy else None)
         fig.savefig(tmp / "speed_curve.png", dpi=110)
+
+
+def _iso_kv_doc(curve: SpeedCurve) -> dict:
+    """The figure's ISO lines as data (speed_curve.json ``iso_kv_curve``), 100 points."""
+    n, k_v, n_iso, k_v_full = iso_curves(curve, 100)
+    return {"resonance_ratio": n.tolist(), "iso_resonance_ratio": n_iso.tolist(),
+            "k_v": np.asarray(k_v).tolist(),
+            "k_v_without_low_load_factor": np.asarray(k_v_full).tolist(),
+            "low_load_factor": curve.iso.low_load_factor}

@@ -22,6 +22,11 @@ Checked, in this order (the first that fails is the reason):
 3. **Runaway energy** — the energy balance's relative residual (docs/theory.md §6.6) above
    ``ENERGY_RESIDUAL_LIMIT``: the integration did not conserve energy, so no number of the run
    is trustworthy (measured residuals of valid runs: 1e-9 … 1e-5).
+
+Before these, a run the solver stopped because a penetration left the gap tables (their cap
+max(0.05 m, 20 δ_s), above the limit of item 1 whenever there is a load) is ``invalid`` up to
+where it stopped (:func:`cut_at_table_exit`, :func:`table_exit`): the same status, folder and
+exit code 4 as a run that stays inside the tables but beyond item 1's limit.
 """
 
 from __future__ import annotations
@@ -94,3 +99,102 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
             f"energy balance residual {energy_relative_residual:.3g} of the largest energy term "
             f"(limit {ENERGY_RESIDUAL_LIMIT:g}): the integration is not trustworthy"))
     return Validity(OK, "")
+
+
+def table_exit(penetration_mm: float, t_s: float, cap_mm: float) -> Validity:
+    """The validity of a run the solver stopped at ``t_s`` [s] because a tooth penetration
+    (``penetration_mm``) left the gap tables, tabulated to ``cap_mm`` (module notes)."""
+    # the run's extrema start with the steady window: before it the value is not recorded
+    value = f" ({penetration_mm:.4g} mm)" if math.isfinite(penetration_mm) else ""
+    return Validity(INVALID, (
+        f"a tooth penetration{value} left the contact tables at t = {t_s:.6g} s (they reach "
+        f"{cap_mm:.4g} mm of penetration): the run is outside the contact model's range and "
+        "was stopped there"))
+
+
+def cut_at_table_exit(kr, window):
+    """(kernel result, window) of a run stopped where it left the gap tables: the samples up
+    to the stop, and the window cut there (its second half when the steady window had not
+    begun)."""
+    from gearcli.pipeline.window import Window
+
+    n = max(int(kr.n_valid), 1)
+    kr = kr._replace(series=kr.series[:n], slot_force=kr.slot_force[:n],
+                     slot_force_coast=kr.slot_force_coast[:n])
+    t_stop = float(kr.series[-1, 0]) if n > 1 else kr.extremum("t_reached_s")
+    if window.t0_s < t_stop:
+        window = Window(window.t0_s, t_stop, window.reason + ", cut where the run stopped")
+    else:
+        window = Window(0.5 * t_stop, t_stop, "the run up to where it left the contact "
+                        "tables, its second half")
+    return _sampled_extrema(kr, window.t0_s), window
+
+
+def _sampled_extrema(kr, t0_s: float):
+    """``kr`` with the window's force and DTE extrema that the solver did not record (its
+    extrema start at the planned window, after the stop) taken from the samples."""
+    from gearcli.core.layout import EXTREMA_NAMES
+
+    t = kr.column("t_s")
+    w = t >= t0_s
+    if not w.any():
+        return kr
+    extrema = kr.extrema.copy()
+    for name, column, pick in (("force_total_max", "force_total_N", np.argmax),
+                               ("force_total_min", "force_total_N", np.argmin),
+                               ("delta_max", "delta_mm", np.argmax),
+                               ("delta_min", "delta_mm", np.argmin)):
+        unit = "N" if column.endswith("_N") else "mm"
+        i = EXTREMA_NAMES.index(f"{name}_{unit}")
+        if math.isnan(extrema[i]):
+            values = kr.column(column)[w]
+            k = int(pick(values))
+            extrema[i] = values[k]
+            extrema[EXTREMA_NAMES.index(f"{name}_t_s")] = t[w][k]
+    return kr._replace(extrema=extrema)
+
+
+#: Change of a speed or of the load torque over the steady window (least-squares trend times
+#: the window's length, relative to the mean) above which the run is not at one operating
+#: point: 1 % moves the mesh frequency by less than the half-power band 2 ζ f_n of a mesh
+#: mode with ζ ≥ 0.005 (measured meshes: 0.03-0.1, docs/theory.md §4.4). Steady runs measure
+#: at most 0.12 % (seed 8e-6, cases/iso_pair.yaml 5e-6, cases/nrel5mw_sun_planet.yaml 1e-6,
+#: cases/drivetrain.yaml 1.2e-3: its motor curve still creeping to the operating point).
+UNSTEADY_FRACTION = 0.01
+#: Operating state of a run whose speeds and load hold still over the window, and of one
+#: whose do not (its dynamic factor is not that of a steady operating point).
+STEADY, UNSTEADY = "steady", "unsteady"
+
+
+def trend_change(t_s: np.ndarray, values: np.ndarray) -> float:
+    """The change of ``values`` over ``t_s`` from their least-squares straight line, relative
+    to their mean (nan without two samples or with a zero mean)."""
+    if t_s.size < 2 or np.ptp(t_s) <= 0.0:
+        return math.nan
+    mean = float(np.mean(values))
+    if mean == 0.0:
+        return math.nan
+    slope = np.polyfit(t_s - t_s[0], values, 1)[0]
+    return float(slope * (t_s[-1] - t_s[0]) / abs(mean))
+
+
+def operating_state(t_s: np.ndarray, signals: dict[str, np.ndarray],
+                    turning: dict[str, bool]) -> tuple[str, float, str]:
+    """(STEADY or UNSTEADY, the largest relative change, a one-line reason) of the steady
+    window's samples: each signal ({name: values}) changes by at most
+    :data:`UNSTEADY_FRACTION` of its mean over the window; a speed counts only when its body
+    turns (``turning[name]``: e.g. more than a tooth pitch over the window), a signal with a
+    zero mean not at all."""
+    worst, name = 0.0, ""
+    for key, values in signals.items():
+        if not turning.get(key, True):
+            continue
+        change = trend_change(t_s, values)
+        if math.isfinite(change) and abs(change) > abs(worst):
+            worst, name = change, key
+    if abs(worst) <= UNSTEADY_FRACTION:
+        return STEADY, worst, ""
+    return UNSTEADY, worst, (
+        f"unsteady: the {name} changes by {100 * worst:+.3g} % over the steady window "
+        f"(trend; steady below {100 * UNSTEADY_FRACTION:g} %): the dynamic factor is not that "
+        "of one steady operating point")

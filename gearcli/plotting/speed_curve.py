@@ -14,33 +14,46 @@ _STYLE = {"up": ("#1565c0", "^", "run-up"), "down": ("#c62828", "v", "run-down")
 
 
 def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
-                     iso_factors: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> Figure:
+                     iso_factors: tuple[float, float, float] = (0.0, 0.0, 1.0),
+                     iso_without_low_load=None, grade: int | None = None) -> Figure:
     """Dynamic factor [-] against N = f_z / f_n [-] (f_n the case's mesh mode) for the run-up
     and the run-down of gearcli/pipeline/speed_curve.py (``rows``: its levels,
-    gearcli.results.SpeedLevel); points outside the model's validity
-    are marked with a grey cross at the top of the axes, not plotted as values; dotted lines
-    at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO) arrays: ISO 6336-1 Method B's K_v on the
-    same axis (its own resonance ratio n1/n_E1 on a secondary axis), computed with
-    ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend states."""
+    gearcli.results.SpeedLevel); levels that did not settle (status "unsettled") are ringed;
+    points outside the model's validity are marked with a grey cross at the top of the axes,
+    not plotted as values; dotted lines at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO)
+    arrays: ISO 6336-1 Method B's K_v on the same axis (its own resonance ratio n1/n_E1 on a
+    secondary axis), computed with ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend
+    states; ``iso_without_low_load``: K_v [-] on the same points without the standard's low-load
+    factor (dotted); ``grade``: the ISO 1328-1 class the deviations and K_v are of."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(8.0, 4.8))
     ax = fig.add_subplot()
-    top = max((r.dynamic_factor for r in rows if r.status == "ok"), default=2.0)
+    valued = ("ok", "unsettled")  # levels with a value; unsettled ones ringed
+    top = max((r.dynamic_factor for r in rows if r.status in valued), default=2.0)
     for direction, (colour, marker, label) in _STYLE.items():
-        ok = [r for r in rows if r.direction == direction and r.status == "ok"]
+        ok = [r for r in rows if r.direction == direction and r.status in valued]
         ok.sort(key=lambda r: r.resonance_ratio)
         ax.plot([r.resonance_ratio for r in ok], [r.dynamic_factor for r in ok],
                 marker=marker, color=colour, lw=1.2, ms=4, label=f"gearcli {label}")
-        bad = [r for r in rows if r.direction == direction and r.status != "ok"]
+        loose = [r for r in ok if r.status == "unsettled"]
+        if loose:
+            ax.plot([r.resonance_ratio for r in loose], [r.dynamic_factor for r in loose], "o",
+                    mfc="none", mec=colour, ms=10, mew=1.2,
+                    label=f"{label}: not settled (status unsettled)")
+        bad = [r for r in rows if r.direction == direction and r.status not in valued]
         if bad:
             ax.plot([r.resonance_ratio for r in bad], [1.05 * top] * len(bad), "x",
                     color="0.5", label=f"{label}: outside the model's validity")
     if iso is not None:
         x_iso, k_v, n_iso = iso
+        of_grade = f", ISO 1328-1 class {grade}" if grade is not None else ""
         ax.plot(x_iso, k_v, color="0.25", lw=1.6, ls="--",
-                label="ISO 6336-1 Method B K_v (B_p = {:.3g}, B_f = {:.3g}, B_k = {:.3g})"
-                .format(*iso_factors))
+                label="ISO 6336-1 Method B K_v (B_p = {:.3g}, B_f = {:.3g}, B_k = {:.3g}{})"
+                .format(*iso_factors, of_grade))
+        if iso_without_low_load is not None:
+            ax.plot(x_iso, iso_without_low_load, color="0.45", lw=1.3, ls=":",
+                    label="ISO K_v without the low-load factor (c' unreduced)")
         ratio = x_iso[-1] / n_iso[-1] if n_iso[-1] else 1.0
         top = ax.secondary_xaxis("top", functions=(lambda x: x / ratio, lambda x: x * ratio))
         top.set_xlabel("ISO resonance ratio N = n1 / n_E1", fontsize=8)

@@ -80,6 +80,10 @@ class Summary(Document):
                                               show="simulate sweep trend_plot", required=True)
     mesh_damping_ratio: float = metric_field("mesh_damping_ratio", show="simulate sweep",
                                        required=True)
+    #: "steady", or "unsteady" when a speed or the load changes by more than 1 % over the
+    #: window (pipeline/validity.operating_state): its dynamic factor is not a steady one
+    operating_state: str = metric_field("operating_state", "steady", "simulate")
+    operating_change_fraction: float = metric_field("operating_change_fraction", 0.0, "sweep")
     energy_balance: EnergyBalance = metric_field("energy_balance", EnergyBalance(),
                                            nested=EnergyBalance)
     modes: tuple[StoredMode, ...] = metric_field("modes", (), nested=StoredMode)
