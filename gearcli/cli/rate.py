@@ -60,15 +60,16 @@ def _write(result, doc: dict, folder: Path, force: bool, overrides: list[str]) -
     """rating.json and manifest.json, all or nothing (io.outdir.atomic_dir)."""
     import json
 
+    from gearcli.io.files import write_atomic
     from gearcli.io.manifest import manifest
     from gearcli.io.outdir import atomic_dir
 
     loaded = result.source
     with atomic_dir(folder, force) as tmp:
-        (tmp / "rating.json").write_text(json.dumps(doc, indent=2) + "\n")
+        write_atomic(tmp / "rating.json", json.dumps(doc, indent=2) + "\n")
         provenance = manifest(loaded.source, json.loads(loaded.case.model_dump_json()),
                               overrides)
-        (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
+        write_atomic(tmp / "manifest.json", json.dumps(provenance, indent=2) + "\n")
 
 
 def fmt(value) -> str:

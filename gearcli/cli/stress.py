@@ -40,16 +40,19 @@ def stress(
 
     from gearcli import api
     from gearcli.io.files import check_no_earlier
+    from gearcli.io.owner import folder_lock, record_outputs
     from gearcli.pipeline.stress import save_stress_plot, stress_document, write_stress
 
     check_figure_path("--plot", plot, force)
-    check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
-    rating = api.stress(folder, option_quantities(window, "TIME", "--window"),
-                        require_limits=safety)
-    result, typed = rating, stress_document(rating)
-    doc = write_stress(result, typed.to_dict())
-    if plot is not None:
-        save_stress_plot(result, plot)
+    with folder_lock(folder):  # nothing replaces the run between reading it and writing
+        check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
+        rating = api.stress(folder, option_quantities(window, "TIME", "--window"),
+                            require_limits=safety)
+        result, typed = rating, stress_document(rating)
+        doc = write_stress(result, typed.to_dict())
+        if plot is not None:
+            save_stress_plot(result, plot)
+        record_outputs(folder, ("stress.json", "stress.csv"))
     if as_json:
         typer.echo(json.dumps(doc, indent=2))
     elif not quiet:

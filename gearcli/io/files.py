@@ -1,7 +1,15 @@
-"""Atomic file writes that never silently overwrite existing results."""
+"""The one writer of gearcli's output files (docs/theory.md §8, "Writing results").
+
+Every file is written into a temporary file in its own folder, flushed, fsync'ed, closed (each
+step checked: a full disk or a file-size limit is an error, never a short file) and renamed
+over the target in one step; a failure removes the temporary file. A target that is a symbolic
+link, or a folder on the way from ``within`` (the results folder) to it that is one, is
+refused: gearcli never writes through a link, into or out of a results folder."""
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import functools
 import os
 import tempfile
@@ -30,6 +38,10 @@ def check_no_earlier(folder: str | Path, names, force: bool, what: str) -> None:
     """Refuse to rewrite the files ``names`` of ``folder`` (an earlier ``what``) without
     ``force``: existing results are never replaced silently. Call before the work."""
     earlier = [n for n in names if (Path(folder) / n).exists()]
+    if earlier and force:
+        from gearcli.io.owner import check_owned
+
+        check_owned(folder, earlier)  # --force replaces gearcli's files only
     if earlier and not force:
         raise OutputError(f"{folder}: already holds {', '.join(earlier)} (an earlier {what}); "
                           "use --force to replace them")
@@ -52,22 +64,65 @@ def check_new_file(path: str | Path | None, force: bool, option: str) -> None:
                           "existing folder")
 
 
-def save_figure(fig, path: str | Path, dpi: int) -> None:
+def save_figure(fig, path: str | Path, dpi: int, within: str | Path | None = None) -> None:
     """Write a matplotlib figure atomically in the format of the path's suffix (.png, .svg,
-    .pdf; none: png) at ``dpi``."""
+    .pdf; none: png) at ``dpi`` (:func:`write_atomic`)."""
     import io
 
     buf = io.BytesIO()
     fig.savefig(buf, format=Path(path).suffix.lower().lstrip(".") or "png", dpi=dpi)
-    write_atomic(path, buf.getvalue())
+    write_atomic(path, buf.getvalue(), within)
 
 
-def write_atomic(path: str | Path, data: bytes | str) -> None:
-    """Write ``data`` to ``path`` via a temp file in the same folder and an atomic rename."""
+def refuse_links(path: str | Path, within: str | Path | None = None) -> Path:
+    """Refuse ``path`` when it is a symbolic link, or when a folder between ``within`` and it
+    is one (``within`` itself, the folder the user named, may be a link); returns it."""
     p = Path(path)
+    if p.is_symlink():
+        raise OutputError(f"{p}: is a symbolic link; gearcli does not write through links "
+                          "(remove it or choose another folder)")
+    if within is not None:
+        root = Path(within)
+        try:
+            rel = p.parent.relative_to(root)
+        except ValueError:
+            raise OutputError(f"{p}: is outside the results folder {root}") from None
+        q = root
+        for part in rel.parts:
+            q = q / part
+            if q.is_symlink():
+                raise OutputError(f"{q}: is a symbolic link; gearcli does not write through "
+                                  "links out of the results folder (remove it or choose "
+                                  "another folder)")
+    return p
+
+
+def make_folder(path: str | Path, within: str | Path) -> Path:
+    """Create the folder ``path`` inside ``within`` (parents too), refusing links on the
+    way (:func:`refuse_links`)."""
+    p = Path(path)
+    refuse_links(p / "x", within)
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{p}: cannot create the folder ({exc.strerror})") from None
+    refuse_links(p / "x", within)  # nothing replaced it by a link meanwhile
+    return p
+
+
+def write_atomic(path: str | Path, data: bytes | str, within: str | Path | None = None) -> None:
+    """Write ``data`` to ``path`` via a temp file in the same folder and an atomic rename;
+    links refused (:func:`refuse_links`), every step checked, no temp file left on failure."""
+    p = refuse_links(path, within)
     raw = data.encode("utf-8") if isinstance(data, str) else data
     tmp = _temp_with(p, raw)
-    os.replace(tmp, p)
+    try:
+        refuse_links(p, within)
+        os.replace(tmp, p)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
 
 
 def _temp_with(p: Path, raw: bytes) -> str:
@@ -75,11 +130,24 @@ def _temp_with(p: Path, raw: bytes) -> str:
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent or ".")
     except OSError as exc:
         raise OutputError(f"{p}: cannot write ({exc.strerror})") from None
-    with os.fdopen(fd, "wb") as fh:
-        fh.write(raw)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.chmod(tmp, 0o666 & ~umask())  # mkstemp makes 0600; results are ordinary files
+    try:
+        with os.fdopen(fd, "wb") as fh:  # the close is checked too (it raises on failure)
+            view = memoryview(raw)
+            while view:  # a short write (a file-size limit) is retried, then raises
+                n = fh.raw.write(view) if hasattr(fh, "raw") else fh.write(view)
+                if not n:
+                    raise OSError(errno.EIO, "short write", str(p))
+                view = view[n:]
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~umask())  # mkstemp makes 0600; results are ordinary files
+    except BaseException as exc:  # a full disk, a signal: no hidden leftover
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        if isinstance(exc, OSError):
+            raise OutputError(f"{p}: cannot write ({exc.strerror or exc}); nothing was "
+                              "changed") from None
+        raise
     return tmp
 
 

@@ -269,6 +269,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
     import csv
     import io
 
+    from gearcli.io.files import save_figure, write_atomic
     from gearcli.io.manifest import versions
     from gearcli.io.outdir import atomic_dir
     from gearcli.plotting.speed_curve import plot_speed_curve
@@ -280,19 +281,19 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         for r in curve.rows:
             writer.writerow({c: "" if isinstance(v, float) and math.isnan(v) else v
                              for c, v in r.to_row().items()})
-        (tmp / "summary.csv").write_text(buf.getvalue())
+        write_atomic(tmp / "summary.csv", buf.getvalue())
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
                "iso6336_method_b": curve.iso.to_dict() if curve.iso else None,
                "errors": curve.errors, "notes": curve.notes}
-        (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
+        write_atomic(tmp / "speed_curve.json", json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,
                       "resolved_case": json.loads(curve.base_case_json)}
-        (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
+        write_atomic(tmp / "manifest.json", json.dumps(provenance, indent=2) + "\n")
         fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name,
                                iso=iso_curve(curve) if curve.iso else None,
                                iso_factors=(curve.iso.B_p, curve.iso.B_f, curve.iso.B_k)
                                if curve.iso else (0.0, 0.0, 1.0))
-        fig.savefig(tmp / "speed_curve.png", dpi=110)
+        save_figure(fig, tmp / "speed_curve.png", 110)

@@ -23,6 +23,8 @@ from pathlib import Path
 
 from gearcli import guards
 from gearcli.errors import GearcliError, OutputError
+from gearcli.io.files import write_atomic
+from gearcli.io.owner import record_outputs
 from gearcli.pipeline.sweep.metrics import METRICS
 from gearcli.pipeline.sweep.study import Study
 
@@ -57,7 +59,7 @@ def run_point(payload: dict) -> dict:
         if keep:  # the resolved case beside the results: `gearcli simulate` can rerun it
             case_file = Path(f"{keep}.case.yaml")
             case_file.parent.mkdir(parents=True, exist_ok=True)
-            case_file.write_text(payload["case_json"] + "\n")
+            write_atomic(case_file, payload["case_json"] + "\n", case_file.parents[1])
             loaded = load_case(case_file)
         else:
             loaded = case_from_json(payload["case_json"], payload["name"])
@@ -207,17 +209,23 @@ def _cell(value) -> str:
 
 
 def _write_atomic(path: Path, text: str) -> None:
-    tmp = path.with_name(f".{path.name}.tmp")
-    try:
-        with open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:  # a full disk, a signal: no hidden leftover
-        with contextlib.suppress(OSError):
-            tmp.unlink()
-        raise
+    write_atomic(path, text, path.parent)  # no leftover on a full disk or a signal
+
+
+def claim_folder(out: Path, study: Study, force: bool) -> dict:
+    """Refuse links where the sweep writes and a folder of another producer (without
+    ``force``): a folder holds one study's rows (io.owner). Returns the producer record."""
+    from gearcli.io.files import refuse_links
+    from gearcli.io.owner import check_producer, producer, study_identity
+
+    for name in (SUMMARY, "points", "trends.csv", "trends.md", "speed_sweep.png"):
+        refuse_links(out / name)
+    for q in out.glob("trend_*.png"):
+        refuse_links(q)
+    prod = producer("sweep", study_identity(study.name, study.design, summary_columns(study),
+                                            study.base_case_json))
+    check_producer(out, prod, force)
+    return prod
 
 
 # --- executors ---------------------------------------------------------------------------------
@@ -367,6 +375,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise OutputError(f"{out}: exists and is not a folder")
+    prod = claim_folder(out, study, force)
     if out.is_dir() and not (out / SUMMARY).exists() and any(out.iterdir()) and not force:
         raise OutputError(f"{out}: folder holds other files and no {SUMMARY} of a sweep; "
                           "expected a new or empty folder or an earlier sweep's (--force writes "
@@ -395,6 +404,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
         raise OutputError(f"{path}: holds {foreign} result(s) of cases this study does not have "
                           "(another study, or changed settings); use --force to start over or "
                           "another output folder")
+    record_outputs(out, [SUMMARY, *(["points"] if keep_timeseries else [])], prod)
     done: dict[int, dict] = {}
     for h, rec in earlier.items():
         for p in by_hash.get(h, []):
