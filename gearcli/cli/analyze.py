@@ -15,6 +15,7 @@ from gearcli.cli.common import (
     print_checks_table,
     print_quantity_table,
 )
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -82,7 +83,7 @@ def analyze(
                                        db, display_units()), spectra, 110)
         record_outputs(folder, ANALYSIS_FILES)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
     elif not quiet:
         print_checks(typed, display_units())
     if not result.passed:

@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -69,7 +70,7 @@ def mesh(
     if plot is not None:
         save_mesh_plot(res, plot, units)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
         return
     if quiet:
         return

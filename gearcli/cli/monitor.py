@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -46,7 +47,7 @@ def monitor(
     if out is not None:
         write_monitor(doc, out, force)
     if as_json:
-        typer.echo(json.dumps(doc.to_dict(), indent=2))
+        write_stdout(json.dumps(doc.to_dict(), indent=2) + "\n")
     elif not quiet:
         print_monitor(doc)
         if out is not None:

@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -47,7 +48,7 @@ def rate(
     if out is not None:
         _write(result, doc, out, force, set_)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
     elif not quiet:
         print_rating(doc)
         if out is not None:

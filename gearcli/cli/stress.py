@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import check_figure_path, handle_errors, option_quantities
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -54,7 +55,7 @@ def stress(
             save_stress_plot(result, plot)
         record_outputs(folder, ("stress.json", "stress.csv"))
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
     elif not quiet:
         print_tables(typed)
 

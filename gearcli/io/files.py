@@ -37,6 +37,7 @@ def write_new_text(path: str | Path, text: str) -> None:
 def check_no_earlier(folder: str | Path, names, force: bool, what: str) -> None:
     """Refuse to rewrite the files ``names`` of ``folder`` (an earlier ``what``) without
     ``force``: existing results are never replaced silently. Call before the work."""
+    check_writable(Path(folder) / "x")  # before the work: a read-only folder
     earlier = [n for n in names if (Path(folder) / n).exists()]
     if earlier and force:
         from gearcli.io.owner import check_owned
@@ -62,6 +63,48 @@ def check_new_file(path: str | Path | None, force: bool, option: str) -> None:
     if not p.parent.is_dir():
         raise OutputError(f"{option} {p}: folder {p.parent} does not exist; expected an "
                           "existing folder")
+    check_writable(p)
+
+
+def check_writable(p: str | Path) -> None:
+    """Refuse, before any work, a target whose nearest existing folder cannot be written
+    (a read-only file system or folder): a probe folder is made and removed there."""
+    p = Path(p)
+    here = p.parent if str(p.parent) else Path(".")
+    while not here.exists() and here != here.parent:
+        here = here.parent
+    if not here.is_dir():
+        return  # not a folder: the caller's own checks say what is wrong
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".gearcli-probe.", dir=here))
+    except OSError as exc:
+        raise OutputError(f"{p}: cannot write in {here} ({exc.strerror}); choose a writable "
+                          "folder") from None
+
+
+def write_stdout(text: str) -> None:
+    """Write ``text`` to standard output, all of it or an error: the bytes go to the stream's
+    binary layer in a loop that checks each write's count (with ``python -u`` /
+    PYTHONUNBUFFERED the text layer writes straight to the file and drops the rest of a short
+    write: a file-size limit or a full disk gave exit 0 and a truncated file)."""
+    import sys
+
+    stream = sys.stdout
+    binary = getattr(stream, "buffer", None)
+    if binary is None:  # a text-only stream (a test's capture)
+        stream.write(text)
+        stream.flush()
+        return
+    stream.flush()
+    data = text.encode(getattr(stream, "encoding", None) or "utf-8",
+                       getattr(stream, "errors", None) or "strict")
+    view = memoryview(data)
+    while view:
+        n = binary.write(view)
+        if not n:  # None: a non-blocking stream that would block; 0: nothing written
+            raise OSError(errno.EIO, "short write to the standard output")
+        view = view[n:]
+    binary.flush()
 
 
 def save_figure(fig, path: str | Path, dpi: int, within: str | Path | None = None) -> None:

@@ -32,7 +32,7 @@ from pathlib import Path
 
 from gearcli.errors import OutputError
 from gearcli.interrupts import deferred
-from gearcli.io.files import umask
+from gearcli.io.files import check_writable, umask
 
 #: A folder holding this file is a gearcli result folder.
 MARKER = "manifest.json"
@@ -85,19 +85,6 @@ def check_target(target: str | Path, force: bool) -> Path:
         if not force:
             raise OutputError(f"{p}: already holds results; use --force to replace them")
     return p
-
-
-def check_writable(p: Path) -> None:
-    """Refuse, before any work, a target whose nearest existing folder cannot be written
-    (a read-only file system or folder): a probe folder is made and removed there."""
-    here = p.parent if str(p.parent) else Path(".")
-    while not here.exists() and here != here.parent:
-        here = here.parent
-    try:
-        os.rmdir(tempfile.mkdtemp(prefix=".gearcli-probe.", dir=here))
-    except OSError as exc:
-        raise OutputError(f"{p}: cannot write in {here} ({exc.strerror}); choose a writable "
-                          "folder") from None
 
 
 @contextlib.contextmanager
