@@ -52,8 +52,8 @@ def analyze(
 
     from gearcli import api
     from gearcli.errors import CheckFailed
-    from gearcli.io.files import check_no_earlier, save_figure
-    from gearcli.io.owner import folder_lock, record_outputs
+    from gearcli.io.files import check_no_earlier, record_outputs, save_figure
+    from gearcli.io.owner import folder_lock
     from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
 
     if (order_axis or db) and spectra is None:

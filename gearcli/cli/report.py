@@ -28,8 +28,8 @@ def report(
 
     Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError
-    from gearcli.io.files import check_new_file, check_no_earlier
-    from gearcli.io.owner import folder_lock, record_outputs
+    from gearcli.io.files import check_new_file, check_no_earlier, record_outputs
+    from gearcli.io.owner import folder_lock
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):

@@ -40,8 +40,8 @@ def stress(
     import json
 
     from gearcli import api
-    from gearcli.io.files import check_no_earlier
-    from gearcli.io.owner import folder_lock, record_outputs
+    from gearcli.io.files import check_no_earlier, record_outputs
+    from gearcli.io.owner import folder_lock
     from gearcli.pipeline.stress import save_stress_plot, stress_document, write_stress
 
     check_figure_path("--plot", plot, force)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import functools
+import json
 import os
 import tempfile
 from pathlib import Path
@@ -192,6 +193,21 @@ def _temp_with(p: Path, raw: bytes) -> str:
                               "changed") from None
         raise
     return tmp
+
+
+def record_outputs(folder: str | Path, names, prod: dict | None = None) -> None:
+    """Add ``names`` to the ``outputs`` of ``folder``'s manifest (and set its producer when
+    given); a folder without a manifest gets one naming the producer."""
+    from gearcli.io.owner import MANIFEST, RESULT_NAMES, read_manifest
+
+    doc = read_manifest(folder) or {"gearcli_manifest": 1}
+    listed = doc.get("outputs") if isinstance(doc.get("outputs"), list) else None
+    if listed is None:  # an older manifest: the result names its folder holds
+        listed = [q.name for q in Path(folder).iterdir() if q.name in RESULT_NAMES]
+    doc["outputs"] = sorted((set(listed) | {str(n) for n in names}) - {MANIFEST})
+    if prod is not None:
+        doc["producer"] = prod
+    write_atomic(Path(folder) / MANIFEST, json.dumps(doc, indent=2) + "\n", folder)
 
 
 @functools.cache

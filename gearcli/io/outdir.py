@@ -32,24 +32,12 @@ from pathlib import Path
 
 from gearcli.errors import OutputError
 from gearcli.interrupts import deferred
-from gearcli.io.files import check_writable, umask
+from gearcli.io.files import check_writable, record_outputs, umask
+from gearcli.io.owner import RESULT_NAMES  # noqa: F401  (importers: outdir.RESULT_NAMES)
 
 #: A folder holding this file is a gearcli result folder.
 MARKER = "manifest.json"
 
-#: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py),
-#: analyze (analysis_io.ANALYSIS_FILES), stress (stress.STRESS_FILES), report, mesh -o
-#: (pipeline/mesh.py), rate -o (cli/rate.py), monitor -o (pipeline/monitor.py) and speed-curve
-#: studies (pipeline/speed_curve.py).
-#: With ``force`` these go with the earlier results and everything else moves into the new folder;
-#: tests/cli/test_force_keeps_user_files.py checks the list against what the commands write
-#: (a name missing here would only be moved over, stale, never lost).
-RESULT_NAMES = frozenset({
-    MARKER, "summary.json", "timeseries.csv", "timeseries.parquet", "zoom.csv",
-    "analysis.json", "spectrum.csv", "harmonics.csv", "stress.csv", "stress.json",
-    "report.html", "report.md", "figures", "mesh.json", "mesh.csv", "mesh.png",
-    "summary.csv", "speed_curve.json", "speed_curve.png", "rating.json", "monitor.json",
-})
 
 
 def check_target(target: str | Path, force: bool) -> Path:
@@ -92,7 +80,7 @@ def atomic_dir(target: str | Path, force: bool, producer: dict | None = None):
     """Yield a temporary folder; on success it becomes ``target`` (replacing it with force).
     The manifest written into it gets the list of its files and ``producer``
     (:mod:`gearcli.io.owner`); the swap holds the target's lock."""
-    from gearcli.io.owner import MANIFEST, command, folder_lock, record_outputs
+    from gearcli.io.owner import MANIFEST, command, folder_lock
     from gearcli.io.owner import producer as make_producer
 
     p = check_target(target, force)

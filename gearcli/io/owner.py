@@ -4,9 +4,9 @@
   the study's identity (:func:`study_identity`); a different producer writing into it is
   refused without ``--force`` (:func:`check_producer`).
 - gearcli's own files: the manifest lists the names gearcli wrote at the top of the folder
-  (``outputs``, kept up to date by :func:`record_outputs`); ``--force`` replaces those and
-  nothing else (:func:`owned_names`). A manifest without the list (written before it existed)
-  owns :data:`gearcli.io.outdir.RESULT_NAMES`.
+  (``outputs``, kept up to date by :func:`gearcli.io.files.record_outputs`); ``--force``
+  replaces those and nothing else (:func:`owned_names`). A manifest without the list (written
+  before it existed) owns :data:`RESULT_NAMES`.
 - The lock: :func:`folder_lock` holds an exclusive ``flock`` on the folder's parent folder for
   the time a command reads and writes the folder (analyze, report, stress) or swaps it
   (simulate, run, sweep...). Another gearcli on the same target waits up to
@@ -25,6 +25,19 @@ from pathlib import Path
 from gearcli.errors import OutputError
 
 MANIFEST = "manifest.json"
+#: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py),
+#: analyze (analysis_io.ANALYSIS_FILES), stress (stress.STRESS_FILES), report, mesh -o
+#: (pipeline/mesh.py), rate -o (cli/rate.py), monitor -o (pipeline/monitor.py) and speed-curve
+#: studies (pipeline/speed_curve.py).
+#: With ``force`` these go with the earlier results and everything else moves into the new folder;
+#: tests/cli/test_force_keeps_user_files.py checks the list against what the commands write
+#: (a name missing here would only be moved over, stale, never lost).
+RESULT_NAMES = frozenset({
+    MANIFEST, "summary.json", "timeseries.csv", "timeseries.parquet", "zoom.csv",
+    "analysis.json", "spectrum.csv", "harmonics.csv", "stress.csv", "stress.json",
+    "report.html", "report.md", "figures", "mesh.json", "mesh.csv", "mesh.png",
+    "summary.csv", "speed_curve.json", "speed_curve.png", "rating.json", "monitor.json",
+})
 #: Longest wait for another gearcli working on the same folder [s] (GEARCLI_LOCK_WAIT_S).
 LOCK_WAIT_S = 120.0
 _POLL_S = 0.05
@@ -92,28 +105,9 @@ def owned_names(folder: str | Path, default) -> frozenset[str]:
     return frozenset(n for n in names if isinstance(n, str)) | {MANIFEST}
 
 
-def record_outputs(folder: str | Path, names, prod: dict | None = None) -> None:
-    """Add ``names`` to the ``outputs`` of ``folder``'s manifest (and set its producer when
-    given); a folder without a manifest gets one naming the producer."""
-    from gearcli.io.files import write_atomic
-
-    doc = read_manifest(folder) or {"gearcli_manifest": 1}
-    listed = doc.get("outputs") if isinstance(doc.get("outputs"), list) else None
-    if listed is None:  # an older manifest: the result names its folder holds
-        from gearcli.io.outdir import RESULT_NAMES
-
-        listed = [q.name for q in Path(folder).iterdir() if q.name in RESULT_NAMES]
-    doc["outputs"] = sorted(set(listed) | {str(n) for n in names} - {MANIFEST})
-    if prod is not None:
-        doc["producer"] = prod
-    write_atomic(Path(folder) / MANIFEST, json.dumps(doc, indent=2) + "\n", folder)
-
-
 def check_owned(folder: str | Path, names) -> None:
     """Refuse to replace, even with ``--force``, files of ``names`` in ``folder`` that its
     manifest does not list as gearcli's (the user's own ``report.md``, ``figures``...)."""
-    from gearcli.io.outdir import RESULT_NAMES
-
     owned = owned_names(folder, RESULT_NAMES)
     foreign = [n for n in names if n not in owned
                and ((Path(folder) / n).exists() or (Path(folder) / n).is_symlink())]

@@ -159,10 +159,15 @@ def test_a_second_study_into_the_folder_is_refused_and_the_rows_stay(tmp_path):
 
 def test_a_simulate_folder_refuses_a_sweep_and_a_sweep_folder_a_simulate(tmp_path, run_folder):
     run = _copy_run(run_folder, tmp_path / "run")
+    before = sorted(q.name for q in run.iterdir())
     study = write_study(tmp_path, ONE_POINT)
-    res = _invoke(["sweep", study, "-o", run, "-j", "1", "-q"], code=(1,))
-    assert "simulate" in res.output
+    _invoke(["sweep", study, "-o", run, "-j", "1", "-q"], code=(1,))
     assert owner.read_manifest(run)["producer"] == {"command": "simulate"}
+    assert sorted(q.name for q in run.iterdir()) == before
+    out = tmp_path / "sweep"
+    _invoke(["sweep", study, "-o", out, "-j", "1", "-q"])
+    res = _invoke(["simulate", SEED, "-o", out, "-q", *SHORT], code=(1,))
+    assert "--force" in res.output and (out / "summary.csv").is_file()
 
 
 def test_force_keeps_the_users_files_with_result_names(tmp_path, run_folder):
@@ -329,3 +334,18 @@ def test_a_short_write_to_stdout_is_exit_1(args):
     code, size, err = _limited(args, 2048)
     assert code == 1 and size <= 2048, (code, size, err)
     assert "error:" in err and "File too large" in err
+
+
+def test_sweep_force_does_not_delete_the_users_summary(tmp_path, run_folder):
+    study = write_study(tmp_path, ONE_POINT)
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    (plain / "summary.csv").write_text("my,own\n1,2\n")
+    res = _invoke(["sweep", study, "-o", plain, "-j", "1", "-q", "--force"], code=(1,))
+    assert "gearcli did not write" in res.output
+    assert (plain / "summary.csv").read_text() == "my,own\n1,2\n"
+    run = _copy_run(run_folder, tmp_path / "run")  # a simulate folder with the user's table
+    (run / "summary.csv").write_text("my,own\n")
+    res = _invoke(["sweep", study, "-o", run, "-j", "1", "-q", "--force"], code=(1,))
+    assert "not written by gearcli" in res.output
+    assert (run / "summary.csv").read_text() == "my,own\n"

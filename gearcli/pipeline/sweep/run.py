@@ -23,12 +23,12 @@ from pathlib import Path
 
 from gearcli import guards
 from gearcli.errors import GearcliError, OutputError
-from gearcli.io.files import write_atomic
-from gearcli.io.owner import record_outputs
+from gearcli.io.files import record_outputs, write_atomic
+from gearcli.io.owner import check_producer
+from gearcli.pipeline.sweep.folder import SUMMARY, claim_folder
 from gearcli.pipeline.sweep.metrics import METRICS
 from gearcli.pipeline.sweep.study import Study
 
-SUMMARY = "summary.csv"
 #: Largest summary.csv read back for resuming [bytes] (~1 kB a row, 100 000 points).
 MAX_SUMMARY_BYTES = 200_000_000
 #: Columns that differ between runs of the same point (timings): not compared across executors.
@@ -208,26 +208,6 @@ def _cell(value) -> str:
     return str(value)
 
 
-def _write_atomic(path: Path, text: str) -> None:
-    write_atomic(path, text, path.parent)  # no leftover on a full disk or a signal
-
-
-def claim_folder(out: Path, study: Study, force: bool) -> dict:
-    """Refuse links where the sweep writes and a folder of another producer (without
-    ``force``): a folder holds one study's rows (io.owner). Returns the producer record."""
-    from gearcli.io.files import refuse_links
-    from gearcli.io.owner import check_producer, producer, study_identity
-
-    for name in (SUMMARY, "points", "trends.csv", "trends.md", "speed_sweep.png"):
-        refuse_links(out / name)
-    for q in out.glob("trend_*.png"):
-        refuse_links(q)
-    prod = producer("sweep", study_identity(study.name, study.design, summary_columns(study),
-                                            study.base_case_json))
-    check_producer(out, prod, force)
-    return prod
-
-
 # --- executors ---------------------------------------------------------------------------------
 def _serial(payloads: list[dict], jobs: int, scheduler, fn=run_point) -> Iterator[dict]:
     _warm_up()
@@ -375,7 +355,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise OutputError(f"{out}: exists and is not a folder")
-    prod = claim_folder(out, study, force)
+    prod = claim_folder(out, study, summary_columns(study), force)
     if out.is_dir() and not (out / SUMMARY).exists() and any(out.iterdir()) and not force:
         raise OutputError(f"{out}: folder holds other files and no {SUMMARY} of a sweep; "
                           "expected a new or empty folder or an earlier sweep's (--force writes "
@@ -404,6 +384,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
         raise OutputError(f"{path}: holds {foreign} result(s) of cases this study does not have "
                           "(another study, or changed settings); use --force to start over or "
                           "another output folder")
+    check_producer(out, prod, force)  # a folder holds one study's rows
     record_outputs(out, [SUMMARY, *(["points"] if keep_timeseries else [])], prod)
     done: dict[int, dict] = {}
     for h, rec in earlier.items():
@@ -414,7 +395,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     # a case is run once: its other points copy the row (unless each keeps its time series)
     todo = todo if keep_timeseries else [p for p in todo if by_hash[p.case_hash][0] is p]
     # rewrite what is kept (drops a torn line), then append new rows one by one
-    _write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
+    write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
                   + "".join(_line(columns, done[i]) for i in sorted(done)))
     payloads = [{"index": p.index, "case_hash": p.case_hash, "case_json": p.case_json,
                  "name": study.name, "format": timeseries_format,
@@ -448,7 +429,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
                 if progress:
                     progress(len(done), n_failed, len(study.points))
     rows = [done[i] for i in sorted(done)]
-    _write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
+    write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
                   + "".join(_line(columns, r) for r in rows))
     return SweepOutcome(out, len(study.points), skipped, ran, n_failed,
                         time.perf_counter() - t_start, rows)

@@ -19,8 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.io.files import save_figure, write_atomic
-from gearcli.io.owner import record_outputs
+from gearcli.io.files import record_outputs, save_figure, write_atomic
 from gearcli.pipeline.sweep.design import MESH_FREQUENCY
 from gearcli.pipeline.sweep.study import Study
 from gearcli.results import sweep_metrics
