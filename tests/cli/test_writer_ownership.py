@@ -321,7 +321,10 @@ def _limited(args: list[str], limit: int) -> tuple[int, int, str]:
     def preexec():
         resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
 
-    env = {**os.environ, "PYTHONPATH": str(ROOT), "PYTHONDONTWRITEBYTECODE": "1"}
+    # unbuffered: the text layer wrote straight to the file and dropped a short write's rest
+    # (exit 0, a truncated file); no bytecode written under the limit (a truncated .pyc)
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "PYTHONDONTWRITEBYTECODE": "1",
+           "PYTHONUNBUFFERED": "1"}
     with tempfile.TemporaryDirectory() as d:
         path = Path(d) / "out.txt"
         with open(path, "wb") as fh:
