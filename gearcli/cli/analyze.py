@@ -15,6 +15,7 @@ from gearcli.cli.common import (
     print_checks_table,
     print_quantity_table,
 )
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -51,7 +52,8 @@ def analyze(
 
     from gearcli import api
     from gearcli.errors import CheckFailed
-    from gearcli.io.files import check_no_earlier, save_figure
+    from gearcli.io.files import check_no_earlier, record_outputs, save_figure
+    from gearcli.io.owner import folder_lock
     from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
 
     if (order_axis or db) and spectra is None:
@@ -59,27 +61,29 @@ def analyze(
 
         raise OutputError("--order-axis and --db shape the --spectra figure; give --spectra "
                           "FILE too")
-    check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
-    check_figure_path("--orders", orders, force)
-    check_figure_path("--spectra", spectra, force)
-    analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
-    result = analysis
-    doc = write_analysis(result)
-    from gearcli.results import AnalysisDocument
+    with folder_lock(folder):  # nothing replaces the run between reading it and writing
+        check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
+        check_figure_path("--orders", orders, force)
+        check_figure_path("--spectra", spectra, force)
+        analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
+        result = analysis
+        doc = write_analysis(result)
+        from gearcli.results import AnalysisDocument
 
-    typed = AnalysisDocument.from_document(doc)  # as the report reads it back
-    if orders is not None:
-        _save_order_map(result, orders, display_units())
-    if spectra is not None:
-        from gearcli.pipeline.analysis_io import spectrum_columns
-        from gearcli.report.figures import spectra_figure
+        typed = AnalysisDocument.from_document(doc)  # as the report reads it back
+        if orders is not None:
+            _save_order_map(result, orders, display_units())
+        if spectra is not None:
+            from gearcli.pipeline.analysis_io import spectrum_columns
+            from gearcli.report.figures import spectra_figure
 
-        harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
-                        .get("harmonics", 5))
-        save_figure(spectra_figure(spectrum_columns(result), typed, harmonics, order_axis, db,
-                                   display_units()), spectra, 110)
+            harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
+                            .get("harmonics", 5))
+            save_figure(spectra_figure(spectrum_columns(result), typed, harmonics, order_axis,
+                                       db, display_units()), spectra, 110)
+        record_outputs(folder, ANALYSIS_FILES)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
     elif not quiet:
         print_checks(typed, display_units())
     if not result.passed:

@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -39,7 +40,7 @@ def schema(
 
         from gearcli.pipeline.sweep.study import StudyFile
 
-        typer.echo(json.dumps(StudyFile.model_json_schema(), indent=2))
+        write_stdout(json.dumps(StudyFile.model_json_schema(), indent=2) + "\n")
         return
     if results:
         import json
@@ -49,11 +50,11 @@ def schema(
         kind = kind or "summary"
         if kind not in KINDS:
             raise OutputError(f"--kind {kind}: expected one of {', '.join(KINDS)}")
-        typer.echo(json.dumps(json_schema(kind), indent=2))
+        write_stdout(json.dumps(json_schema(kind), indent=2) + "\n")
         return
     from gearcli.case.schema_text import schema_text
 
-    typer.echo(schema_text())
+    write_stdout(schema_text() + "\n")
 
 
 @app.command()

@@ -32,6 +32,9 @@ def handle_errors(func):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        from gearcli.io import owner
+
+        owner.command[0] = func.__name__  # the producer its results folders record
         try:
             with _signals_raise():
                 result = func(*args, **kwargs)
@@ -83,6 +86,8 @@ def _signals_raise():
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    if hasattr(signal, "SIGXFSZ"):  # a file-size limit: the write raises EFBIG (exit 1)
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
     names = [n for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
     if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
         names.append("SIGINT")

@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
+from gearcli.io.files import write_stdout
 
 # (label, json key, stored unit) rows of the per-gear and per-pair tables (shown in the display
 # units, gearcli/display_units.py).
@@ -100,7 +101,7 @@ def geometry(
     if as_json:
         import json
 
-        typer.echo(json.dumps(data, indent=2))
+        write_stdout(json.dumps(data, indent=2) + "\n")
     elif not quiet:
         _print_tables(data, display_units())
         if plot is not None:

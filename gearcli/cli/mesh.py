@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -82,7 +83,7 @@ def mesh(
                             "nonzero size; expected a case with 'faults:'")
         save_revolution_plot(res, faults_plot, units)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
         return
     if quiet:
         return

@@ -16,6 +16,7 @@ from gearcli.cli.common import (
     option_quantities,
     print_checks_table,
 )
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -59,7 +60,7 @@ def modal(
     if plot is not None:
         save_campbell_plot(res, plot, units)
     if as_json:
-        typer.echo(json.dumps(typed.to_dict(), indent=2))
+        write_stdout(json.dumps(typed.to_dict(), indent=2) + "\n")
     elif not quiet:
         _print(typed, res.checks, units)
         for note in res.notes:

@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -76,7 +77,7 @@ def monitor(
     if wav is not None:
         written.append(views.write_audio(run, wav, signal)[0])
     if as_json:
-        typer.echo(json.dumps(doc.to_dict(), indent=2))
+        write_stdout(json.dumps(doc.to_dict(), indent=2) + "\n")
     elif not quiet:
         print_monitor(doc)
         for path in written:

@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -57,7 +58,7 @@ def rate(
     if out is not None:
         _write(result, doc, out, force, set_)
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
     elif not quiet:
         print_rating(doc)
         if out is not None:
@@ -70,15 +71,16 @@ def _write(result, doc: dict, folder: Path, force: bool, overrides: list[str]) -
     """rating.json and manifest.json, all or nothing (io.outdir.atomic_dir)."""
     import json
 
+    from gearcli.io.files import write_atomic
     from gearcli.io.manifest import manifest
     from gearcli.io.outdir import atomic_dir
 
     loaded = result.source
     with atomic_dir(folder, force) as tmp:
-        (tmp / "rating.json").write_text(json.dumps(doc, indent=2) + "\n")
+        write_atomic(tmp / "rating.json", json.dumps(doc, indent=2) + "\n")
         provenance = manifest(loaded.source, json.loads(loaded.case.model_dump_json()),
                               overrides)
-        (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
+        write_atomic(tmp / "manifest.json", json.dumps(provenance, indent=2) + "\n")
 
 
 def fmt(value) -> str:

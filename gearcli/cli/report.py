@@ -28,18 +28,21 @@ def report(
 
     Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError
-    from gearcli.io.files import check_new_file, check_no_earlier
+    from gearcli.io.files import check_new_file, check_no_earlier, record_outputs
+    from gearcli.io.owner import folder_lock
     from gearcli.pipeline.monitor import write_run_monitor
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):
         raise OutputError(f"--format {fmt}: expected html or md")
     target = out if out is not None else folder / f"report.{fmt}"
-    check_new_file(target, force, "-o" if out is not None else "the report")
-    if out is None:
-        check_no_earlier(folder, ("figures",), force, "report's figures")
-    _note_monitor(write_run_monitor(folder), quiet)  # faults: the monitoring section
-    path = build_report(folder, fmt, out, display_units(), svg)
+    with folder_lock(folder):  # nothing replaces the run between reading it and writing
+        check_new_file(target, force, "-o" if out is not None else "the report")
+        if out is None:
+            check_no_earlier(folder, ("figures", target.name), force, "report's figures")
+        _note_monitor(write_run_monitor(folder), quiet)  # faults: the monitoring section
+        path = build_report(folder, fmt, out, display_units(), svg)
+        record_outputs(folder, ["figures", *([path.name] if out is None else [])])
     if not quiet:
         typer.echo(f"report written to {path}")
 

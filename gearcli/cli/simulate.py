@@ -13,6 +13,7 @@ from gearcli.cli.common import (
     print_quantity_table,
     status_reporter,
 )
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -59,12 +60,12 @@ def simulate(
                            progress=status.progress if status else None)
     result = sim
     if to_stdout:
-        typer.echo(timeseries_csv(result), nl=False)
+        write_stdout(timeseries_csv(result))
     else:
         sim.save(out, force, fmt)
     doc = summary_document(result)
     if as_json:
-        typer.echo(json.dumps(doc.to_dict(), indent=2))
+        write_stdout(json.dumps(doc.to_dict(), indent=2) + "\n")
     elif not quiet and not to_stdout:
         print_input_digest(doc.input_digest)
         _print_summary(doc, out, display_units())

@@ -8,6 +8,7 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import check_figure_path, handle_errors, option_quantities
+from gearcli.io.files import write_stdout
 
 
 @app.command()
@@ -39,19 +40,22 @@ def stress(
     import json
 
     from gearcli import api
-    from gearcli.io.files import check_no_earlier
+    from gearcli.io.files import check_no_earlier, record_outputs
+    from gearcli.io.owner import folder_lock
     from gearcli.pipeline.stress import save_stress_plot, stress_document, write_stress
 
     check_figure_path("--plot", plot, force)
-    check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
-    rating = api.stress(folder, option_quantities(window, "TIME", "--window"),
-                        require_limits=safety)
-    result, typed = rating, stress_document(rating)
-    doc = write_stress(result, typed.to_dict())
-    if plot is not None:
-        save_stress_plot(result, plot)
+    with folder_lock(folder):  # nothing replaces the run between reading it and writing
+        check_no_earlier(folder, ("stress.json", "stress.csv"), force, "stress rating")
+        rating = api.stress(folder, option_quantities(window, "TIME", "--window"),
+                            require_limits=safety)
+        result, typed = rating, stress_document(rating)
+        doc = write_stress(result, typed.to_dict())
+        if plot is not None:
+            save_stress_plot(result, plot)
+        record_outputs(folder, ("stress.json", "stress.csv"))
     if as_json:
-        typer.echo(json.dumps(doc, indent=2))
+        write_stdout(json.dumps(doc, indent=2) + "\n")
     elif not quiet:
         print_tables(typed)
 

@@ -32,27 +32,12 @@ from pathlib import Path
 
 from gearcli.errors import OutputError
 from gearcli.interrupts import deferred
-from gearcli.io.files import umask
+from gearcli.io.files import check_writable, record_outputs, umask
+from gearcli.io.owner import RESULT_NAMES  # noqa: F401  (importers: outdir.RESULT_NAMES)
 
 #: A folder holding this file is a gearcli result folder.
 MARKER = "manifest.json"
 
-#: What gearcli writes at the top of a results folder: simulate and run (pipeline/outputs.py;
-#: sensors.* with a sensors: section), analyze (analysis_io.ANALYSIS_FILES), stress
-#: (stress.STRESS_FILES), report, mesh -o (pipeline/mesh.py; mesh_faults.* with faults), rate -o
-#: (cli/rate.py), monitor -o (pipeline/monitor.py) and speed-curve studies
-#: (pipeline/speed_curve.py).
-#: With ``force`` these go with the earlier results and everything else moves into the new folder;
-#: tests/cli/test_force_keeps_user_files.py checks the list against what the commands write
-#: (a name missing here would only be moved over, stale, never lost).
-RESULT_NAMES = frozenset({
-    MARKER, "summary.json", "timeseries.csv", "timeseries.parquet", "zoom.csv",
-    "analysis.json", "spectrum.csv", "harmonics.csv", "stress.csv", "stress.json",
-    "report.html", "report.md", "figures", "mesh.json", "mesh.csv", "mesh.png",
-    "summary.csv", "speed_curve.json", "speed_curve.png", "rating.json", "monitor.json",
-    "speed_curve_rating.png",
-    "sensors.csv", "sensors.parquet", "sensors.json", "mesh_faults.csv", "mesh_faults.png",
-})
 
 
 def check_target(target: str | Path, force: bool) -> Path:
@@ -80,6 +65,7 @@ def check_target(target: str | Path, force: bool) -> Path:
                           "folder (an interrupted or failed --force write moved the folder "
                           "aside); move them where they belong, delete that folder, then run "
                           "again")
+    check_writable(p)
     if p.is_dir() and any(p.iterdir()):
         if not (p / MARKER).exists():
             raise OutputError(f"{p}: folder holds other files; expected a new or empty folder "
@@ -90,8 +76,13 @@ def check_target(target: str | Path, force: bool) -> Path:
 
 
 @contextlib.contextmanager
-def atomic_dir(target: str | Path, force: bool):
-    """Yield a temporary folder; on success it becomes ``target`` (replacing it with force)."""
+def atomic_dir(target: str | Path, force: bool, producer: dict | None = None):
+    """Yield a temporary folder; on success it becomes ``target`` (replacing it with force).
+    The manifest written into it gets the list of its files and ``producer``
+    (:mod:`gearcli.io.owner`); the swap holds the target's lock."""
+    from gearcli.io.owner import MANIFEST, command, folder_lock
+    from gearcli.io.owner import producer as make_producer
+
     p = check_target(target, force)
     parent = p.parent if str(p.parent) else Path(".")
     try:
@@ -104,8 +95,12 @@ def atomic_dir(target: str | Path, force: bool):
         raise OutputError(f"{p}: cannot create the results folder ({exc.strerror})") from None
     try:
         yield tmp
-        check_target(p, force)  # nothing else appeared there meanwhile
-        _install(tmp, p)
+        if (tmp / MANIFEST).is_file():
+            record_outputs(tmp, [q.name for q in tmp.iterdir()],
+                           producer or make_producer(command[0]))
+        with folder_lock(p):
+            check_target(p, force)  # nothing else appeared there meanwhile
+            _install(tmp, p)
     except BaseException:
         _discard(tmp)
         raise
@@ -204,15 +199,19 @@ def _alive(pid: int) -> bool:
 
 def user_entries(folder: Path) -> list[Path]:
     """The entries at the top of a results folder that gearcli did not write (sorted): not
-    in :data:`RESULT_NAMES`, nor the temporary ``.NAME.XXXXXXXX.tmp`` of one of them
-    (io.files.write_atomic, left by a killed write)."""
+    listed in its manifest's ``outputs`` (:func:`gearcli.io.owner.owned_names`; without the
+    list, not in :data:`RESULT_NAMES`), nor the temporary ``.NAME.XXXXXXXX.tmp`` of one of
+    them (io.files.write_atomic, left by a killed write)."""
+    from gearcli.io.owner import owned_names
+
+    owned = owned_names(folder, RESULT_NAMES)
     return sorted(q for q in folder.iterdir()
-                  if q.name not in RESULT_NAMES and not _result_temporary(q.name))
+                  if q.name not in owned and not _result_temporary(q.name, owned))
 
 
-def _result_temporary(name: str) -> bool:
+def _result_temporary(name: str, owned=RESULT_NAMES) -> bool:
     m = re.fullmatch(r"\.(.+)\.[a-z0-9_]{8}\.tmp", name)  # tempfile.mkstemp's 8 characters
-    return m is not None and m.group(1) in RESULT_NAMES
+    return m is not None and m.group(1) in owned
 
 
 def _move_user_entries(old: Path, new: Path) -> list[str]:
@@ -295,8 +294,11 @@ def _empty_out(old: Path, new: Path, passes: int = 3) -> list[str]:
     """Delete gearcli's earlier results in ``old``, move over what appeared there since (a
     program working inside the folder), and remove ``old`` once it is empty; returns the
     names still left in it (then it stays, named by the caller and by :func:`stranded`)."""
+    from gearcli.io.owner import owned_names
+
+    owned = owned_names(old, RESULT_NAMES)
     for q in old.iterdir():
-        if q.name in RESULT_NAMES or _result_temporary(q.name):
+        if q.name in owned or _result_temporary(q.name, owned):
             if q.is_dir() and not q.is_symlink():
                 _remove_tree(q)
             else:

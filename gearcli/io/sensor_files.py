@@ -36,21 +36,17 @@ def read_sensors(folder: str | Path) -> dict[str, np.ndarray]:
 
 def write_wav(path: str | Path, rate_Hz: int, samples: np.ndarray) -> Path:
     """A mono 16-bit PCM WAV file (scipy.io.wavfile) of int16 ``samples`` at ``rate_Hz``,
-    written atomically (a temporary file renamed into place)."""
-    import os
-    import tempfile
+    written atomically through the one writer (io/files.write_atomic)."""
+    import io
 
     from scipy.io import wavfile
+
+    from gearcli.io.files import write_atomic
 
     target = Path(path)
     if not target.parent.is_dir():
         raise OutputError(f"--wav {target}: folder {target.parent} does not exist")
-    fd, tmp = tempfile.mkstemp(dir=target.parent, suffix=".wav.tmp")
-    os.close(fd)
-    try:
-        wavfile.write(tmp, int(rate_Hz), np.asarray(samples, dtype=np.int16))
-        os.replace(tmp, target)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    buf = io.BytesIO()
+    wavfile.write(buf, int(rate_Hz), np.asarray(samples, dtype=np.int16))
+    write_atomic(target, buf.getvalue())  # links refused, atomic, checked (io/files.py)
     return target

@@ -30,12 +30,19 @@ def columns_to_frame(columns: dict[str, np.ndarray], index: str):
 
 def columns_to_parquet(columns: dict[str, np.ndarray], path: str | Path) -> None:
     """Equal-length float64 columns as one Parquet table at ``path`` (pyarrow, imported here:
-    only this format needs it). Full float64 precision; zstd-compressed columns."""
+    only this format needs it). Full float64 precision; zstd-compressed columns; written
+    through the one writer (io/files.write_atomic: links refused, atomic, checked)."""
+    import io
+
     import pyarrow as pa
     import pyarrow.parquet as pq
 
+    from gearcli.io.files import write_atomic
+
     table = pa.table({n: np.asarray(c, dtype=float) for n, c in columns.items()})
-    pq.write_table(table, path, compression="zstd")
+    buf = io.BytesIO()
+    pq.write_table(table, buf, compression="zstd")
+    write_atomic(path, buf.getvalue())
 
 
 def parquet_to_columns(path: str | Path) -> dict[str, np.ndarray]:

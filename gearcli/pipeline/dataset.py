@@ -97,6 +97,8 @@ def labels_table(out: Path, rows: list[dict], signal: str) -> list[dict]:
 
 def write_labels(out: Path, table: list[dict]) -> tuple[Path, Path]:
     """labels.csv and labels.parquet in ``out`` (all rows, the union of their columns)."""
+    import io
+
     import pandas as pd
 
     from gearcli.io.files import write_atomic
@@ -104,7 +106,9 @@ def write_labels(out: Path, table: list[dict]) -> tuple[Path, Path]:
     frame = pd.DataFrame(table)
     csv_path, parquet_path = out / f"{LABELS}.csv", out / f"{LABELS}.parquet"
     write_atomic(csv_path, frame.to_csv(index=False))
-    frame.to_parquet(parquet_path, index=False)
+    buf = io.BytesIO()
+    frame.to_parquet(buf, index=False)
+    write_atomic(parquet_path, buf.getvalue())
     return csv_path, parquet_path
 
 

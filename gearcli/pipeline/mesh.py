@@ -261,19 +261,20 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
     (io.outdir.atomic_dir)."""
     import json
 
+    from gearcli.io.files import write_atomic
     from gearcli.io.manifest import manifest
     from gearcli.io.outdir import atomic_dir
     from gearcli.io.tables import columns_to_csv
 
     case_json = json.loads(res.source.case.model_dump_json())
     with atomic_dir(folder, force) as tmp:
-        (tmp / "mesh.json").write_text(
-            json.dumps(doc or mesh_document(res).to_dict(), indent=2) + "\n")
-        (tmp / "mesh.csv").write_text(columns_to_csv(mesh_table(res)))
+        write_atomic(tmp / "mesh.json",
+                     json.dumps(doc or mesh_document(res).to_dict(), indent=2) + "\n")
+        write_atomic(tmp / "mesh.csv", columns_to_csv(mesh_table(res)))
         save_mesh_plot(res, tmp / "mesh.png", units)
         if res.revolution is not None:  # faults: the faulted revolution, its table and figure
-            (tmp / "mesh_faults.csv").write_text(columns_to_csv(res.revolution.columns()))
+            write_atomic(tmp / "mesh_faults.csv", columns_to_csv(res.revolution.columns()))
             save_revolution_plot(res, tmp / "mesh_faults.png", units)
         provenance = manifest(res.source.source, case_json, overrides)
-        (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
+        write_atomic(tmp / "manifest.json", json.dumps(provenance, indent=2) + "\n")
     return Path(folder)

@@ -166,6 +166,7 @@ def write_monitor(doc: MonitorDocument, folder: str | Path, force: bool) -> Path
     nothing (io.outdir.atomic_dir); an existing folder is replaced only with ``force``."""
     import json
 
+    from gearcli.io.files import write_atomic
     from gearcli.io.manifest import manifest
     from gearcli.io.outdir import atomic_dir
     from gearcli.io.results import read_json
@@ -174,9 +175,9 @@ def write_monitor(doc: MonitorDocument, folder: str | Path, force: bool) -> Path
     case_json = read_json(source)["resolved_case"]
     loaded = load_case_text(json.dumps(case_json), str(source))
     with atomic_dir(folder, force) as tmp:
-        (tmp / "monitor.json").write_text(json.dumps(doc.to_dict(), indent=2) + "\n")
+        write_atomic(tmp / "monitor.json", json.dumps(doc.to_dict(), indent=2) + "\n")
         provenance = manifest(loaded.source, case_json, [])
-        (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
+        write_atomic(tmp / "manifest.json", json.dumps(provenance, indent=2) + "\n")
     return Path(folder)
 
 

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.errors import OutputError
+from gearcli.io.files import write_atomic
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION, manifest
 from gearcli.io.outdir import atomic_dir
 from gearcli.results import SummaryDocument
@@ -62,7 +63,7 @@ def write_timeseries(res, folder: Path, fmt: str = "csv") -> Path:
                           f"{', '.join(TIMESERIES_FORMATS)}")
     path = folder / f"timeseries.{fmt}"
     if fmt == "csv":
-        path.write_text(timeseries_csv(res))
+        write_atomic(path, timeseries_csv(res))
     else:
         from gearcli.io.tables import columns_to_parquet
 
@@ -87,13 +88,13 @@ def write_simulation_files(res, folder: Path,
     if res.zoom:  # the dense output for the figures' zooms (pipeline/simulate.dense_zoom)
         from gearcli.io.tables import columns_to_csv
 
-        (folder / ZOOM_FILE).write_text(columns_to_csv(res.zoom))
+        write_atomic(folder / ZOOM_FILE, columns_to_csv(res.zoom))
     if res.loaded.case.sensors is not None:
         write_sensors(res, folder, fmt)
     summary = summary_document(res).to_dict()
-    (folder / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    write_atomic(folder / "summary.json", json.dumps(summary, indent=2) + "\n")
     doc = manifest(res.loaded.source, case_json, overrides)
-    (folder / "manifest.json").write_text(json.dumps(doc, indent=2) + "\n")
+    write_atomic(folder / "manifest.json", json.dumps(doc, indent=2) + "\n")
 
 
 def write_sensors(res, folder: Path, fmt: str = "csv") -> Path:
@@ -106,10 +107,10 @@ def write_sensors(res, folder: Path, fmt: str = "csv") -> Path:
     if fmt == "csv":
         from gearcli.io.tables import columns_to_csv
 
-        path.write_text(columns_to_csv(columns))
+        write_atomic(path, columns_to_csv(columns))
     else:
         from gearcli.io.tables import columns_to_parquet
 
         columns_to_parquet(columns, path)
-    (folder / "sensors.json").write_text(json.dumps(doc.to_dict(), indent=2) + "\n")
+    write_atomic(folder / "sensors.json", json.dumps(doc.to_dict(), indent=2) + "\n")
     return path

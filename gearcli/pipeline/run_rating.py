@@ -178,6 +178,7 @@ def write_rating_figure(curve, folder: Path) -> dict | None:
     of a finished speed curve (pipeline.speed_curve.SpeedCurve) into ``folder`` when its rows
     were rated; returns speed_curve.json's ``rating`` (:func:`speed_curve_rating`) or None."""
     from gearcli.case.load import load_case_text
+    from gearcli.io.files import save_figure
     from gearcli.plotting.speed_curve_rating import plot_speed_curve_rating
 
     loaded = load_case_text(curve.base_case_json, f"{curve.name} (resolved case)")
@@ -189,6 +190,6 @@ def write_rating_figure(curve, folder: Path) -> dict | None:
               ("S_F", m["bending"], _points(curve.rows, lambda r: r.safety_bending_min))]
     fig = plot_speed_curve_rating(panels, curve.f_n_Hz,
                                   title=f"{curve.name}: safeties against speed")
-    fig.savefig(Path(folder) / "speed_curve_rating.png", dpi=110)
+    save_figure(fig, Path(folder) / "speed_curve_rating.png", 110)
     info["figure"] = "speed_curve_rating.png"
     return info

@@ -382,6 +382,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
     import csv
     import io
 
+    from gearcli.io.files import save_figure, write_atomic
     from gearcli.io.manifest import versions
     from gearcli.io.outdir import atomic_dir
     from gearcli.pipeline.run_rating import write_rating_figure
@@ -394,7 +395,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
         for r in curve.rows:
             writer.writerow({c: "" if isinstance(v, float) and math.isnan(v) else v
                              for c, v in r.to_row().items()})
-        (tmp / "summary.csv").write_text(buf.getvalue())
+        write_atomic(tmp / "summary.csv", buf.getvalue())
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,
                "measured_fraction": MEASURE_FRACTION, "samples_per_period": SAMPLES_PER_PERIOD,
@@ -403,11 +404,11 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
                "accuracy": curve.accuracy,
                "errors": curve.errors, "notes": curve.notes}
         doc["rating"] = write_rating_figure(curve, tmp)  # S_H, S_F against speed (issue 28)
-        (tmp / "speed_curve.json").write_text(json.dumps(doc, indent=2) + "\n")
+        write_atomic(tmp / "speed_curve.json", json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,
                       "resolved_case": json.loads(curve.base_case_json)}
-        (tmp / "manifest.json").write_text(json.dumps(provenance, indent=2) + "\n")
+        write_atomic(tmp / "manifest.json", json.dumps(provenance, indent=2) + "\n")
         curves = iso_curves(curve) if curve.iso else None
         fig = plot_speed_curve(curve.rows, curve.f_n_Hz, title=curve.name,
                                iso=curves[:3] if curves else None,
@@ -415,7 +416,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
                                if curve.iso else (0.0, 0.0, 1.0),
                                iso_without_low_load=curves[3] if curves else None,
                                grade=curve.accuracy["grade"] if curve.accuracy else None)
-        fig.savefig(tmp / "speed_curve.png", dpi=110)
+        save_figure(fig, tmp / "speed_curve.png", 110)
 
 
 def _iso_kv_doc(curve: SpeedCurve) -> dict:

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.io.files import write_atomic
+from gearcli.io.files import make_folder, write_atomic
 from gearcli.model.gap import Modifications, Relief, modification_gaps
 from gearcli.plotting import results as plots
 from gearcli.plotting.campbell import plot_campbell_summary
@@ -45,8 +45,9 @@ class FigureFile:
 
 def build_figures(data: ReportData, out_dir: Path, svg: bool = False) -> list[FigureFile]:
     """Draw every figure of the report into ``out_dir`` (created) as PNG, and as SVG too when
-    ``svg`` (saving an SVG costs about as much as drawing the figure: issue 29)."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+    ``svg`` (saving an SVG costs about as much as drawing the figure: issue 29). A link on
+    the way out of the results folder is refused (io.files.make_folder)."""
+    make_folder(out_dir, out_dir.parent)
     c = data.run.columns
     t = c["t_s"]
     f_z = data.f_z_Hz
@@ -218,7 +219,7 @@ def _save(name: str, caption: str, fig, out_dir: Path, svg: bool = False) -> Fig
             buf = io.BytesIO()
             fig.savefig(buf, format=fmt, dpi=PNG_DPI, metadata=_metadata(fmt))
             paths[fmt] = out_dir / f"{name}.{fmt}"
-            write_atomic(paths[fmt], buf.getvalue())
+            write_atomic(paths[fmt], buf.getvalue(), out_dir.parent)
             if fmt == "png":  # the layout is done: keep it for the SVG instead of redoing it
                 fig.set_layout_engine("none")
     if not svg:  # an SVG of an earlier report would no longer match its PNG

@@ -23,10 +23,12 @@ from pathlib import Path
 
 from gearcli import guards
 from gearcli.errors import GearcliError, OutputError
+from gearcli.io.files import record_outputs, write_atomic
+from gearcli.io.owner import check_producer
+from gearcli.pipeline.sweep.folder import SUMMARY, claim_folder
 from gearcli.pipeline.sweep.metrics import METRICS
 from gearcli.pipeline.sweep.study import Study
 
-SUMMARY = "summary.csv"
 #: Largest summary.csv read back for resuming [bytes] (~1 kB a row, 100 000 points).
 MAX_SUMMARY_BYTES = 200_000_000
 #: Columns that differ between runs of the same point (timings): not compared across executors.
@@ -57,7 +59,7 @@ def run_point(payload: dict) -> dict:
         if keep:  # the resolved case beside the results: `gearcli simulate` can rerun it
             case_file = Path(f"{keep}.case.yaml")
             case_file.parent.mkdir(parents=True, exist_ok=True)
-            case_file.write_text(payload["case_json"] + "\n")
+            write_atomic(case_file, payload["case_json"] + "\n", case_file.parents[1])
             loaded = load_case(case_file)
         else:
             loaded = case_from_json(payload["case_json"], payload["name"])
@@ -204,20 +206,6 @@ def _cell(value) -> str:
     if isinstance(value, float):
         return repr(value)
     return str(value)
-
-
-def _write_atomic(path: Path, text: str) -> None:
-    tmp = path.with_name(f".{path.name}.tmp")
-    try:
-        with open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:  # a full disk, a signal: no hidden leftover
-        with contextlib.suppress(OSError):
-            tmp.unlink()
-        raise
 
 
 # --- executors ---------------------------------------------------------------------------------
@@ -367,6 +355,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise OutputError(f"{out}: exists and is not a folder")
+    prod = claim_folder(out, study, summary_columns(study), force)
     if out.is_dir() and not (out / SUMMARY).exists() and any(out.iterdir()) and not force:
         raise OutputError(f"{out}: folder holds other files and no {SUMMARY} of a sweep; "
                           "expected a new or empty folder or an earlier sweep's (--force writes "
@@ -395,6 +384,8 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
         raise OutputError(f"{path}: holds {foreign} result(s) of cases this study does not have "
                           "(another study, or changed settings); use --force to start over or "
                           "another output folder")
+    check_producer(out, prod, force)  # a folder holds one study's rows
+    record_outputs(out, [SUMMARY, *(["points"] if keep_timeseries else [])], prod)
     done: dict[int, dict] = {}
     for h, rec in earlier.items():
         for p in by_hash.get(h, []):
@@ -404,7 +395,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     # a case is run once: its other points copy the row (unless each keeps its time series)
     todo = todo if keep_timeseries else [p for p in todo if by_hash[p.case_hash][0] is p]
     # rewrite what is kept (drops a torn line), then append new rows one by one
-    _write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
+    write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
                   + "".join(_line(columns, done[i]) for i in sorted(done)))
     payloads = [{"index": p.index, "case_hash": p.case_hash, "case_json": p.case_json,
                  "name": study.name, "format": timeseries_format,
@@ -438,7 +429,7 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
                 if progress:
                     progress(len(done), n_failed, len(study.points))
     rows = [done[i] for i in sorted(done)]
-    _write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
+    write_atomic(path, _line(columns, dict(zip(columns, columns, strict=True)))
                   + "".join(_line(columns, r) for r in rows))
     return SweepOutcome(out, len(study.points), skipped, ran, n_failed,
                         time.perf_counter() - t_start, rows)

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from gearcli.io.files import record_outputs, save_figure, write_atomic
 from gearcli.pipeline.sweep.design import MESH_FREQUENCY
 from gearcli.pipeline.sweep.study import Study
 from gearcli.results import sweep_metrics
@@ -153,12 +154,13 @@ def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Pat
     trends = trend_rows(df, study)
     tdf = pd.DataFrame(trends, columns=list(TREND_COLUMNS))
     paths = [out / "trends.csv", out / "trends.md"]
-    tdf.to_csv(paths[0], index=False, float_format="%.6g")
-    paths[1].write_text(_markdown(study, df, trends))
+    write_atomic(paths[0], tdf.to_csv(index=False, float_format="%.6g"), out)
+    write_atomic(paths[1], _markdown(study, df, trends), out)
     for m in (*TREND_METRICS, *PLOT_METRICS):  # metrics the study left out: empty panels
         if m not in df.columns:
             df[m] = np.nan
     paths += _plots(out, study, df)
+    record_outputs(out, [p.name for p in paths])
     return paths
 
 
@@ -225,7 +227,7 @@ def _plots(out: Path, study: Study, df) -> list[Path]:
             ax.grid(alpha=0.3)
         fig.suptitle(f"{study.name}: effect of {p.column}")
         path = out / f"trend_{_slug(p.column)}.png"
-        fig.savefig(path, dpi=100)
+        save_figure(fig, path, 100, path.parent)
         paths.append(path)
     speed = next((p for p in study.parameters if p.key == MESH_FREQUENCY), None)
     if speed is not None:
@@ -293,5 +295,5 @@ def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N8
             ax.legend(fontsize=7)
     fig.suptitle(f"{study.name}: speed sweep")
     path = out / "speed_sweep.png"
-    fig.savefig(path, dpi=100)
+    save_figure(fig, path, 100, path.parent)
     return path
