@@ -32,8 +32,6 @@ def columns_to_parquet(columns: dict[str, np.ndarray], path: str | Path) -> None
     """Equal-length float64 columns as one Parquet table at ``path`` (pyarrow, imported here:
     only this format needs it). Full float64 precision; zstd-compressed columns; written
     through the one writer (io/files.write_atomic: links refused, atomic, checked)."""
-    import io
-
     import pyarrow as pa
     import pyarrow.parquet as pq
 
