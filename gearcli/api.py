@@ -397,7 +397,8 @@ def rate(case_or_run, set=None):  # noqa: A002
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,
           scheduler: str | None = None, force: bool = False, keep_timeseries: bool = False,
-          timeseries_format: str = "csv", progress=None, allow_large: bool = False):
+          timeseries_format: str = "csv", progress=None, allow_large: bool = False,
+          point_timeout: float | None = None):
     """Run a study (`gearcli sweep`) and return its summary as a DataFrame (one row per
     point; a ``design: speed_curve`` study: one row per speed and direction).
 
@@ -418,6 +419,9 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
         Called as points finish.
     allow_large : bool
         Accept studies of more than 1000 points (the command line's ``--yes``).
+    point_timeout : float, optional
+        Seconds a point may run before it is recorded as failed ("timed out", retried by a
+        resume); default from the solver's step limit (pipeline/sweep/workers.py).
 
     Returns
     -------
@@ -440,6 +444,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
         raise CaseError(f"sweep({study!r:.60}): expected the path of a study file (str or "
                         "Path) or a loaded Study")
     _callable_or_none(progress, "progress")
+    _timeout_or_none(point_timeout)
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
     with contextlib.ExitStack() as stack:
         if out is None:
@@ -449,7 +454,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
             from gearcli.pipeline.speed_curve import COLUMNS, run_speed_curve, write_speed_curve
 
             check_target(out, force)  # before the runs, not after
-            curve = run_speed_curve(spec, jobs, scheduler)
+            curve = run_speed_curve(spec, jobs, scheduler, point_timeout=point_timeout)
             write_speed_curve(curve, out, force)
             df = pd.DataFrame([r.to_row() for r in curve.rows], columns=list(COLUMNS))
             df.attrs.update(kind="speed_curve", errors=list(curve.errors),
@@ -458,10 +463,22 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
         from gearcli.pipeline.sweep.trends import write_trends
 
         outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
-                            timeseries_format=timeseries_format)
+                            timeseries_format=timeseries_format,
+                            point_timeout=point_timeout)
         write_trends(Path(out), spec, outcome.rows)
         df = rows_as_table(outcome.rows, summary_columns(spec))
         df.attrs.update(kind="sweep", total=outcome.total, ran=outcome.ran,
                         skipped=outcome.skipped, failed=outcome.failed,
                         wall_time_s=outcome.wall_time_s)
         return df
+
+
+def _timeout_or_none(value) -> None:
+    import math
+
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) \
+            or value <= 0:
+        raise CaseError(f"point_timeout {value!r:.60}: expected a number of seconds > 0 "
+                        "(or None: the default)")

@@ -54,6 +54,11 @@ def sweep(
     force: bool = typer.Option(False, "--force", help="Start over (discard summary.csv)."),
     yes: bool = typer.Option(False, "--yes", "-y", help="Run studies of more than 1000 points."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar, no summary line."),
+    point_timeout: float = typer.Option(
+        None, "--point-timeout", min=0.001,
+        help="Seconds a point may run before it is recorded as failed (timed out; a resume "
+             "retries it). Default: from the solver's step limit, at least 20x the slowest "
+             "point so far."),
 ) -> None:
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
     failed points are recorded, never abort the study.
@@ -79,7 +84,8 @@ def sweep(
         if not quiet:
             typer.echo(f"speed curve: {len(spec.points)} speeds, run up and down (2 runs)",
                        err=True)
-        df = api.sweep(spec, out, jobs or None, scheduler, force)
+        df = api.sweep(spec, out, jobs or None, scheduler, force,
+                       point_timeout=point_timeout)
         if not quiet:
             invalid = int((df["status"] == "invalid").sum())
             failed = int((df["status"] == "failed").sum())
@@ -93,7 +99,7 @@ def sweep(
         return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         df = api.sweep(spec, out, jobs or None, scheduler, force, keep_timeseries, fmt,
-                       progress)
+                       progress, point_timeout=point_timeout)
     checks_failed = int(df["checks"].astype(str).str.startswith("fail").sum()) \
         if "checks" in df.columns else 0
     if not quiet:

@@ -141,16 +141,21 @@ def run_direction(payload: dict) -> dict:
     try:
         res = run_simulation(case_from_json(payload["case_json"], payload["name"]), zoom=False)
     except GearcliError as exc:  # every level of this direction is a failed row, with the reason
-        error = str(exc).splitlines()[0]
-        teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
-        rows = [SpeedLevel(point=payload["first"] + i, direction=payload["direction"],
-                           mesh_frequency_Hz=fz, pinion_speed_rpm=fz / teeth * 60.0,
-                           status="failed", error=error)
-                for i, fz in enumerate(stairs.f_z_Hz)]
-        return {"rows": rows, "f_n_Hz": math.nan, "error": error}
+        return failed_direction(payload, str(exc).splitlines()[0])
     f_n = res.summary.mesh_natural_frequency_Hz
     return {"rows": measure_levels(res, stairs, payload["direction"], f_n, payload["first"]),
             "f_n_Hz": f_n, "error": ""}
+
+
+def failed_direction(payload: dict, error: str) -> dict:
+    """Every level of a direction as a failed row (its solver failed, its worker was killed
+    or timed out: pipeline/sweep/workers.py)."""
+    teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
+    rows = [SpeedLevel(point=payload["first"] + i, direction=payload["direction"],
+                       mesh_frequency_Hz=fz, pinion_speed_rpm=fz / teeth * 60.0,
+                       status="failed", error=error)
+            for i, fz in enumerate(payload["f_z_Hz"])]
+    return {"rows": rows, "f_n_Hz": math.nan, "error": error}
 
 
 def plan(study) -> list[dict]:
@@ -205,13 +210,16 @@ class SpeedCurve:
     notes: list[str] = field(default_factory=list)  #: what limits the reading of the curve
 
 
-def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None) -> SpeedCurve:
-    """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow)."""
+def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None,
+                    point_timeout: float | None = None) -> SpeedCurve:
+    """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow);
+    ``point_timeout`` [s] per direction (pipeline/sweep/workers.py)."""
     from gearcli.pipeline.geometry import run_geometry
     from gearcli.pipeline.mesh_input import iso_dynamic
     from gearcli.pipeline.sweep.run import case_from_json, execute
 
-    results = list(execute(run_direction, plan(study), jobs, scheduler))
+    results = list(execute(run_direction, plan(study), jobs, scheduler, failed_direction,
+                           point_timeout))
     rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r.point)
     base = case_from_json(study.base_case_json, study.name)
     geo = run_geometry(base)

@@ -148,7 +148,7 @@ def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Pat
     columns = summary_columns(study)
     df = pd.DataFrame([{c: r.get(c) for c in columns} for r in rows], columns=columns)
     for c in df.columns:
-        if c not in ("status", "error", "warnings", "case_hash", "checks"):
+        if c not in ("status", "error", "cause", "warnings", "case_hash", "checks"):
             df[c] = pd.to_numeric(df[c], errors="coerce")
     trends = trend_rows(df, study)
     tdf = pd.DataFrame(trends, columns=list(TREND_COLUMNS))
