@@ -451,12 +451,12 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
             out = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="gearcli-"))) / "s"
         if spec.design == "speed_curve":
             from gearcli.io.outdir import check_target
-            from gearcli.pipeline.speed_curve import COLUMNS, run_speed_curve, write_speed_curve
+            from gearcli.pipeline.speed_curve import run_speed_curve, write_speed_curve
 
             check_target(out, force)  # before the runs, not after
             curve = run_speed_curve(spec, jobs, scheduler, point_timeout=point_timeout)
             write_speed_curve(curve, out, force)
-            df = pd.DataFrame([r.to_row() for r in curve.rows], columns=list(COLUMNS))
+            df = pd.DataFrame(curve.table(), columns=curve.columns)
             df.attrs.update(kind="speed_curve", errors=list(curve.errors),
                             notes=list(curve.notes))
             return df

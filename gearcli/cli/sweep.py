@@ -95,6 +95,7 @@ def sweep(
             typer.echo(f"warning: a direction failed: {e}", err=True)
         for note in df.attrs["notes"]:
             typer.echo(f"note: {note}", err=True)
+        _raise_if_checks_failed(df, out)
         _raise_if_points_failed(df, out)
         return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
@@ -109,12 +110,19 @@ def sweep(
         typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
                    f"{a['failed']} failed, {invalid} outside the model's validity{checked} "
                    f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
+    _raise_if_checks_failed(df, out)
+    _raise_if_points_failed(df, out)
+
+
+def _raise_if_checks_failed(df, out) -> None:
+    if "checks" not in df.columns:
+        return
+    checks_failed = int(df["checks"].astype(str).str.startswith("fail").sum())
     if checks_failed:
         from gearcli.errors import CheckFailed
 
         raise CheckFailed(f"{out}: {checks_failed} of {len(df)} points failed the study's "
                           "checks (column 'checks' of summary.csv)")
-    _raise_if_points_failed(df, out)
 
 
 def _raise_if_points_failed(df, out) -> None:

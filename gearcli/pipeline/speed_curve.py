@@ -46,6 +46,10 @@ MIN_START_S = 0.05
 DIRECTIONS = ("up", "down")
 #: summary.csv's columns (gearcli.results.SpeedLevel's fields).
 COLUMNS = SPEED_CURVE_COLUMNS
+#: What each level measures: the metrics a speed-curve study's ``metrics:`` and ``checks:``
+#: may name (``metrics:`` keeps these columns of summary.csv; ``checks:`` adds a column
+#: ``checks`` as in other studies: gearcli/pipeline/sweep/run.py).
+METRICS = ("dynamic_factor", "force_max_N", "dte_peak_to_peak_mm", "contact_loss_fraction")
 
 
 @dataclass(frozen=True)
@@ -208,6 +212,28 @@ class SpeedCurve:
     iso: IsoResonance | None = None
     pinion_teeth: int = 0
     notes: list[str] = field(default_factory=list)  #: what limits the reading of the curve
+    metrics: list[str] | None = None  #: the study's ``metrics:`` (None: all of METRICS)
+    checks: list = field(default_factory=list)  #: the study's ``checks:``
+
+    @property
+    def columns(self) -> list[str]:
+        """summary.csv's columns: the kept metrics, and ``checks`` when the study has any."""
+        kept = [c for c in COLUMNS if c not in METRICS or c in (self.metrics or METRICS)]
+        if self.checks:
+            kept.insert(kept.index("status"), "checks")
+        return kept
+
+    def table(self) -> list[dict]:
+        """summary.csv's rows ({column: value}) with the checks' verdicts."""
+        from gearcli.pipeline.sweep.run import check_verdict
+
+        out = []
+        for r in self.rows:
+            row = r.to_row()
+            if self.checks:
+                row["checks"] = check_verdict(self.checks, row)
+            out.append({c: row[c] for c in self.columns})
+        return out
 
 
 def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None,
@@ -236,7 +262,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
         else r.mesh_frequency_Hz / f_n) for r in rows]
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
-                      _notes(base.case))
+                      _notes(base.case), study.metrics, list(study.checks))
 
 
 def _notes(case) -> list[str]:
@@ -283,11 +309,11 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
 
     with atomic_dir(out, force) as tmp:
         buf = io.StringIO()
-        writer = csv.DictWriter(buf, fieldnames=list(COLUMNS), lineterminator="\n")
+        writer = csv.DictWriter(buf, fieldnames=curve.columns, lineterminator="\n")
         writer.writeheader()
-        for r in curve.rows:
+        for r in curve.table():
             writer.writerow({c: "" if isinstance(v, float) and math.isnan(v) else v
-                             for c, v in r.to_row().items()})
+                             for c, v in r.items()})
         (tmp / "summary.csv").write_text(buf.getvalue())
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,

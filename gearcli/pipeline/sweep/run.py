@@ -292,21 +292,25 @@ def _param_cells(point) -> dict:
 
 
 def _apply_checks(study: Study, row: dict) -> None:
-    if not study.checks:
-        return
+    if study.checks:
+        row["checks"] = check_verdict(study.checks, row)
+
+
+def check_verdict(checks, row: dict) -> str:
+    """The ``checks`` cell of a row: "pass", "fail: <what>", or "" for a row that is not
+    ``ok`` (no results to check). A missing or NaN metric fails its check."""
     if row["status"] != "ok":
-        row["checks"] = ""
-        return
+        return ""
     failed = []
-    for c in study.checks:
+    for c in checks:
         v = row.get(c.metric)
-        if v is None:
+        if v is None or v != v:
             failed.append(f"{c.metric} missing")
         elif c.max is not None and v > c.max:
             failed.append(f"{c.metric} {v:.6g} > {c.max:g}")
         elif c.min is not None and v < c.min:
             failed.append(f"{c.metric} {v:.6g} < {c.min:g}")
-    row["checks"] = "pass" if not failed else "fail: " + "; ".join(failed)
+    return "pass" if not failed else "fail: " + "; ".join(failed)
 
 
 def rows_as_table(rows: Iterable[dict], columns: list[str]):

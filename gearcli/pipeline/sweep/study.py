@@ -207,18 +207,22 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
 
 
 def _check_metrics(src: Source, spec: StudyFile) -> None:
-    """Kept metrics and the metrics of checks must exist (and checks must be kept)."""
-    from gearcli.pipeline.sweep.metrics import METRICS
+    """Kept metrics and the metrics of checks must exist (and checks must be kept); a speed
+    curve's are what each of its levels measures (pipeline/speed_curve.py)."""
+    from gearcli.pipeline.speed_curve import METRICS as CURVE_METRICS
+    from gearcli.pipeline.sweep.metrics import METRICS as POINT_METRICS
 
+    known = CURVE_METRICS if spec.design == "speed_curve" else POINT_METRICS
+    which = "a speed curve measures: " if spec.design == "speed_curve" else ""
     for k, m in enumerate(spec.metrics or ()):
-        if m not in METRICS:
-            raise src.error(("metrics", k), f"unknown metric '{m}'; expected one of: "
-                            + ", ".join(METRICS))
-    kept = spec.metrics or METRICS
+        if m not in known:
+            raise src.error(("metrics", k), f"unknown metric '{m}'; expected one of "
+                            f"({which or 'the metrics of a point'}): " + ", ".join(known))
+    kept = spec.metrics or known
     for k, c in enumerate(spec.checks):
-        if c.metric not in METRICS:
+        if c.metric not in known:
             raise src.error(("checks", k, "metric"), f"unknown metric '{c.metric}'; expected "
-                            "one of: " + ", ".join(METRICS))
+                            f"one of ({which or 'the metrics of a point'}): " + ", ".join(known))
         if c.metric not in kept:
             raise src.error(("checks", k, "metric"), f"'{c.metric}' is not among the study's "
                             "metrics; add it to 'metrics' or drop the check")
