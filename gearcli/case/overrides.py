@@ -13,8 +13,32 @@ from gearcli.case.keypaths import model_in
 from gearcli.errors import CaseError
 
 
+def text_name(name: str) -> str:
+    """A name as valid text: bytes of a file name that are not UTF-8 (Python keeps them as
+    lone surrogates, e.g. a Latin-1 'é') become U+FFFD, so the name can be printed and
+    written as UTF-8 (reports, JSON, figures)."""
+    return _raw(name).decode("utf-8", "replace")
+
+
+def _raw(text: str) -> bytes:
+    try:
+        return text.encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # surrogates other than those of undecodable bytes
+        return text.encode("utf-8", "surrogatepass")
+
+
+def check_text(text: str, what: str) -> str:
+    """Refuse text with bytes that are not UTF-8 (a command-line argument decoded by Python
+    with surrogateescape): a one-line CaseError showing the bytes as \\xNN."""
+    if text_name(text) != text:
+        shown = _raw(text).decode("utf-8", "backslashreplace")
+        raise CaseError(f"{what} {shown}: not UTF-8 text; expected names and values in UTF-8")
+    return text
+
+
 def parse_override(text: str) -> tuple[tuple[str, ...], object]:
     """Split ``'gears.module=12'`` into (('gears', 'module'), 12); the value is YAML."""
+    check_text(text, "--set")
     key, sep, raw = text.partition("=")
     path = tuple(p.strip() for p in key.strip().split("."))
     if not sep or not all(path):

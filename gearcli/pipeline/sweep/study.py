@@ -48,7 +48,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from gearcli import guards, units
 from gearcli.case.keypaths import field_at
 from gearcli.case.load import data_loc, validate_source
-from gearcli.case.overrides import apply_overrides, check_path
+from gearcli.case.overrides import apply_overrides, check_path, text_name
 from gearcli.case.schema import Case
 from gearcli.case.types import checked_quantity
 from gearcli.case.yamlsrc import Source, parse_source, read_source
@@ -146,7 +146,7 @@ class Study:
 def load_study(path: str | Path, allow_large: bool = False) -> Study:
     """Read, validate and resolve a study file; every input problem is a located CaseError."""
     src = read_source(path)
-    return _build(src, Path(path).resolve().parent, Path(path).stem, allow_large)
+    return _build(src, Path(path).resolve().parent, text_name(Path(path).stem), allow_large)
 
 
 def load_study_text(text: str, name: str = "<study>", folder: str | Path = ".",

@@ -21,6 +21,7 @@ import numpy as np
 
 from gearcli.pipeline.sweep.design import MESH_FREQUENCY
 from gearcli.pipeline.sweep.study import Study
+from gearcli.plotting.text import plain
 from gearcli.results import sweep_metrics
 
 #: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results/).
@@ -217,13 +218,13 @@ def _plots(out: Path, study: Study, df) -> list[Path]:
         for ax, m in zip(axes.flat, TREND_METRICS, strict=True):
             lines = _trend_lines(df, study, p, m)
             for label, x, y in lines:
-                ax.plot(x, y, "o-", ms=3, label=label or None)
+                ax.plot(x, y, "o-", ms=3, label=plain(label) if label else None)
             if any(label for label, _, _ in lines):
                 ax.legend(fontsize=7)
             ax.set_xlabel(p.column)
             ax.set_ylabel(m)
             ax.grid(alpha=0.3)
-        fig.suptitle(f"{study.name}: effect of {p.column}")
+        fig.suptitle(plain(f"{study.name}: effect of {p.column}"))
         path = out / f"trend_{_slug(p.column)}.png"
         fig.savefig(path, dpi=100)
         paths.append(path)
@@ -291,7 +292,7 @@ def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N8
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
-    fig.suptitle(f"{study.name}: speed sweep")
+    fig.suptitle(plain(f"{study.name}: speed sweep"))
     path = out / "speed_sweep.png"
     fig.savefig(path, dpi=100)
     return path
