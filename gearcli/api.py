@@ -16,6 +16,7 @@ units out (mm, N, s, t, rad; every name and column carries its unit, docs/theory
 from __future__ import annotations
 
 import json
+import numbers
 import os
 import tempfile
 from collections.abc import Mapping
@@ -70,8 +71,38 @@ def __getattr__(name: str):
 
 def _callable_or_none(value, what: str):
     if value is not None and not callable(value):
-        raise TypeError(f"{what}={value!r:.60}: expected a callable or None")
+        raise CaseError(f"{what}={value!r:.60}: expected a callable or None")
     return value
+
+
+def _flag(value, what: str) -> bool:
+    """A yes/no argument: True or False only (a text "no" is truthy)."""
+    if not isinstance(value, bool):
+        raise CaseError(f"{what}={value!r:.60}: expected True or False")
+    return value
+
+
+def _path_or_none(value, what: str):
+    if value is not None and not isinstance(value, str | os.PathLike):
+        raise CaseError(f"{what}={value!r:.60}: expected the path of a folder (str or Path)")
+    return value
+
+
+#: The Python API's bounds of `mesh`'s options (the command line uses the defaults 2 and
+#: 200): at most 10 x 1000 = 10 000 roll positions, 25x the default's (~10 s).
+MESH_OPTIONS = {"cycles": (1, 10), "points_per_cycle": (20, 1000)}
+
+
+def _mesh_options(options: dict) -> dict:
+    for key, value in options.items():
+        if key not in MESH_OPTIONS:
+            raise CaseError(f"mesh({key}=...): unknown option; expected one of: "
+                            + ", ".join(MESH_OPTIONS))
+        lo, hi = MESH_OPTIONS[key]
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
+                or not lo <= value <= hi:
+            raise CaseError(f"{key}={value!r:.60}: expected a whole number from {lo} to {hi}")
+    return {k: int(v) for k, v in options.items()}
 
 
 def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the CLI's --set)
@@ -180,6 +211,7 @@ def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
     from gearcli.pipeline.simulate import run_simulation
 
     _callable_or_none(progress, "progress")
+    _flag(zoom, "zoom")
     if _callable_or_none(status, "status"):
         status("loading the case")
     sim = run_simulation(load_case(case, set), progress=progress, zoom=zoom, status=status)
@@ -226,12 +258,18 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
 
     if window is not None:
         window = quantity_arguments(window, units.TIME, "window", 2)
+    _flag(strict, "strict")
     with contextlib.ExitStack() as stack:
         return run_analysis(_folder_of(run, stack), window, strict)
 
 
 def spectra_frame(analysis):
     """The analysis' spectra as a DataFrame indexed by frequency [Hz] (spectrum.csv)."""
+    from gearcli.pipeline.analyze import Analysis
+
+    if not isinstance(analysis, Analysis):
+        raise CaseError(f"spectra_frame({analysis!r:.60}): expected the Analysis that "
+                        "analyze() returns")
     return analysis.spectra
 
 
@@ -324,10 +362,11 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
 
     if load_N is not None:
         (load_N,) = quantity_arguments(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
-    if not isinstance(harris, bool):
-        raise CaseError(f"harris={harris!r:.60}: expected True or False")
+    _flag(harris, "harris")
+    if not isinstance(method, str) or method not in ("pe", "fe"):
+        raise CaseError(f"method {method!r:.40}: expected 'pe' or 'fe'")
     return run_mesh(load_case(case, set), load_N=load_N, harris=harris, method=method,
-                    **options)
+                    **_mesh_options(options))
 
 
 def stress(run, window: tuple[float, float] | None = None, require_limits: bool = False):
@@ -356,6 +395,7 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
 
     if window is not None:
         window = quantity_arguments(window, units.TIME, "window", 2)
+    _flag(require_limits, "require_limits")
     with contextlib.ExitStack() as stack:
         return compute_stress(_folder_of(run, stack), window, require_limits=require_limits)
 
@@ -434,8 +474,14 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
 
     import pandas as pd
 
-    from gearcli.pipeline.sweep.run import rows_as_table, run_study, summary_columns
+    from gearcli.pipeline.sweep.run import (
+        check_timeseries_format,
+        rows_as_table,
+        run_study,
+        summary_columns,
+    )
     from gearcli.pipeline.sweep.study import Study, load_study
+    from gearcli.pipeline.sweep.workers import check_scheduler
 
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise CaseError(f"jobs {jobs!r}: expected a whole number of worker processes >= 1 "
@@ -445,6 +491,12 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
                         "Path) or a loaded Study")
     _callable_or_none(progress, "progress")
     _timeout_or_none(point_timeout)
+    for value, what in ((force, "force"), (keep_timeseries, "keep_timeseries"),
+                        (allow_large, "allow_large")):
+        _flag(value, what)
+    _path_or_none(out, "out")
+    check_scheduler(scheduler)
+    check_timeseries_format(timeseries_format, keep_timeseries)
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
     with contextlib.ExitStack() as stack:
         if out is None:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -11,17 +10,16 @@ import typer
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors, rich_progress
 
-_ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.-]+):(\d{1,5})$")
-
 
 def _check_scheduler(value: str | None) -> str | None:
     """'local' or PROTOCOL://HOST:PORT (a usage error, exit 2, otherwise)."""
-    if value is None or value == "local":
-        return value
-    m = _ADDRESS.match(value)
-    if m is None or not 0 < int(m.group(3)) < 65536:
-        raise typer.BadParameter(f"{value!r}: expected 'local' or tcp://HOST:PORT (or tls://)")
-    return value
+    from gearcli.errors import OutputError
+    from gearcli.pipeline.sweep.workers import check_scheduler
+
+    try:
+        return check_scheduler(value)
+    except OutputError as exc:
+        raise typer.BadParameter(str(exc)) from None
 
 
 #: At most this many worker processes per CPU (more only costs memory).
@@ -68,14 +66,10 @@ def sweep(
     Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2
     """
     from gearcli import api
-    from gearcli.errors import OutputError
+    from gearcli.pipeline.sweep.run import check_timeseries_format
     from gearcli.pipeline.sweep.study import load_study
 
-    if fmt not in ("csv", "parquet"):
-        raise OutputError(f"--format {fmt}: expected csv or parquet")
-    if fmt != "csv" and not keep_timeseries:
-        raise OutputError(f"--format {fmt}: the format of the time series --keep-timeseries "
-                          "keeps; expected --keep-timeseries with it (summary.csv is CSV)")
+    check_timeseries_format(fmt, keep_timeseries)
     spec = load_study(study, allow_large=yes)
     if spec.design == "speed_curve":
         from gearcli.io.outdir import check_target

@@ -50,6 +50,15 @@ def summary_columns(study: Study) -> list[str]:
             "cause", "warnings", *TIMING_COLUMNS, "case_hash"]
 
 
+def check_timeseries_format(fmt, keep_timeseries: bool) -> None:
+    """The kept time series' format: 'csv' or 'parquet', the latter only with them kept."""
+    if fmt not in ("csv", "parquet"):
+        raise OutputError(f"--format {str(fmt):.40}: expected csv or parquet")
+    if fmt != "csv" and not keep_timeseries:
+        raise OutputError(f"--format {fmt}: the format of the time series --keep-timeseries "
+                          "keeps; expected --keep-timeseries with it (summary.csv is CSV)")
+
+
 def run_point(payload: dict) -> dict:
     """Simulate one resolved case and measure its metrics; failures become a 'failed' row.
 

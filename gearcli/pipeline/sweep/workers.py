@@ -20,6 +20,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import re
 import time
 from collections import deque
 from collections.abc import Callable, Iterator
@@ -326,6 +327,20 @@ def _dask_results(client, payloads, fn, lost: Lost, timeout: PointTimeout) -> It
                 f"internal error: {exc!r}"
             yield {**lost(futures[fut], reason),
                    "cause": ENVIRONMENT if reason == KILLED else failure_cause(exc)}
+
+
+_ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.-]+):(\d{1,5})$")
+
+
+def check_scheduler(value) -> str | None:
+    """None, 'local' or PROTOCOL://HOST:PORT; anything else an OutputError (the command
+    line's usage error, exit 2)."""
+    if value is None or value == "local":
+        return value
+    m = _ADDRESS.match(value) if isinstance(value, str) else None
+    if m is None or not 0 < int(m.group(3)) < 65536:
+        raise OutputError(f"{value!r:.60}: expected 'local' or tcp://HOST:PORT (or tls://)")
+    return value
 
 
 def tls_security(address: str):
