@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from gearcli.pipeline.sweep.design import SPEED_CURVE_METRICS
 from gearcli.results import SpeedLevel
 from gearcli.results.models import IsoResonance
 from gearcli.results.run import SPEED_CURVE_COLUMNS
@@ -46,10 +47,9 @@ MIN_START_S = 0.05
 DIRECTIONS = ("up", "down")
 #: summary.csv's columns (gearcli.results.SpeedLevel's fields).
 COLUMNS = SPEED_CURVE_COLUMNS
-#: What each level measures: the metrics a speed-curve study's ``metrics:`` and ``checks:``
-#: may name (``metrics:`` keeps these columns of summary.csv; ``checks:`` adds a column
-#: ``checks`` as in other studies: gearcli/pipeline/sweep/run.py).
-METRICS = ("dynamic_factor", "force_max_N", "dte_peak_to_peak_mm", "contact_loss_fraction")
+#: What each level measures (``metrics:`` keeps these columns of summary.csv; ``checks:`` adds
+#: a column ``checks`` as in other studies: gearcli/pipeline/sweep/run.py).
+METRICS = SPEED_CURVE_METRICS
 
 
 @dataclass(frozen=True)

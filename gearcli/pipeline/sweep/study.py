@@ -55,6 +55,7 @@ from gearcli.case.yamlsrc import Source, parse_source, read_source
 from gearcli.errors import CaseError
 from gearcli.pipeline.sweep.design import (
     MESH_FREQUENCY,
+    SPEED_CURVE_METRICS,
     Parameter,
     check_design,
     design_points,
@@ -209,10 +210,9 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
 def _check_metrics(src: Source, spec: StudyFile) -> None:
     """Kept metrics and the metrics of checks must exist (and checks must be kept); a speed
     curve's are what each of its levels measures (pipeline/speed_curve.py)."""
-    from gearcli.pipeline.speed_curve import METRICS as CURVE_METRICS
     from gearcli.pipeline.sweep.metrics import METRICS as POINT_METRICS
 
-    known = CURVE_METRICS if spec.design == "speed_curve" else POINT_METRICS
+    known = SPEED_CURVE_METRICS if spec.design == "speed_curve" else POINT_METRICS
     which = "a speed curve measures: " if spec.design == "speed_curve" else ""
     for k, m in enumerate(spec.metrics or ()):
         if m not in known:
