@@ -16,14 +16,21 @@ units out (mm, N, s, t, rad; every name and column carries its unit, docs/theory
 from __future__ import annotations
 
 import json
-import numbers
 import os
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from gearcli.case.overrides import overrides_from_set, quantity_arguments
+from gearcli.case.overrides import (
+    callable_argument,
+    flag_argument,
+    folder_argument,
+    mesh_options,
+    overrides_from_set,
+    quantity_arguments,
+    timeout_argument,
+)
 from gearcli.errors import CaseError
 
 if TYPE_CHECKING:
@@ -67,42 +74,6 @@ def __getattr__(name: str):
         module, cls = _CLASSES[name]
         return getattr(importlib.import_module(f"gearcli.pipeline.{module}"), cls)
     raise AttributeError(f"module 'gearcli.api' has no attribute {name!r}")
-
-
-def _callable_or_none(value, what: str):
-    if value is not None and not callable(value):
-        raise CaseError(f"{what}={value!r:.60}: expected a callable or None")
-    return value
-
-
-def _flag(value, what: str) -> bool:
-    """A yes/no argument: True or False only (a text "no" is truthy)."""
-    if not isinstance(value, bool):
-        raise CaseError(f"{what}={value!r:.60}: expected True or False")
-    return value
-
-
-def _path_or_none(value, what: str):
-    if value is not None and not isinstance(value, str | os.PathLike):
-        raise CaseError(f"{what}={value!r:.60}: expected the path of a folder (str or Path)")
-    return value
-
-
-#: The Python API's bounds of `mesh`'s options (the command line uses the defaults 2 and
-#: 200): at most 10 x 1000 = 10 000 roll positions, 25x the default's (~10 s).
-MESH_OPTIONS = {"cycles": (1, 10), "points_per_cycle": (20, 1000)}
-
-
-def _mesh_options(options: dict) -> dict:
-    for key, value in options.items():
-        if key not in MESH_OPTIONS:
-            raise CaseError(f"mesh({key}=...): unknown option; expected one of: "
-                            + ", ".join(MESH_OPTIONS))
-        lo, hi = MESH_OPTIONS[key]
-        if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
-                or not lo <= value <= hi:
-            raise CaseError(f"{key}={value!r:.60}: expected a whole number from {lo} to {hi}")
-    return {k: int(v) for k, v in options.items()}
 
 
 def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the CLI's --set)
@@ -210,9 +181,9 @@ def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
     """
     from gearcli.pipeline.simulate import run_simulation
 
-    _callable_or_none(progress, "progress")
-    _flag(zoom, "zoom")
-    if _callable_or_none(status, "status"):
+    callable_argument(progress, "progress")
+    flag_argument(zoom, "zoom")
+    if callable_argument(status, "status"):
         status("loading the case")
     sim = run_simulation(load_case(case, set), progress=progress, zoom=zoom, status=status)
     sim.overrides = overrides_from_set(set)
@@ -258,7 +229,7 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
 
     if window is not None:
         window = quantity_arguments(window, units.TIME, "window", 2)
-    _flag(strict, "strict")
+    flag_argument(strict, "strict")
     with contextlib.ExitStack() as stack:
         return run_analysis(_folder_of(run, stack), window, strict)
 
@@ -362,11 +333,11 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
 
     if load_N is not None:
         (load_N,) = quantity_arguments(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
-    _flag(harris, "harris")
+    flag_argument(harris, "harris")
     if not isinstance(method, str) or method not in ("pe", "fe"):
         raise CaseError(f"method {method!r:.40}: expected 'pe' or 'fe'")
     return run_mesh(load_case(case, set), load_N=load_N, harris=harris, method=method,
-                    **_mesh_options(options))
+                    **mesh_options(options))
 
 
 def stress(run, window: tuple[float, float] | None = None, require_limits: bool = False):
@@ -395,7 +366,7 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
 
     if window is not None:
         window = quantity_arguments(window, units.TIME, "window", 2)
-    _flag(require_limits, "require_limits")
+    flag_argument(require_limits, "require_limits")
     with contextlib.ExitStack() as stack:
         return compute_stress(_folder_of(run, stack), window, require_limits=require_limits)
 
@@ -489,12 +460,12 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     if not isinstance(study, Study | str | os.PathLike):
         raise CaseError(f"sweep({study!r:.60}): expected the path of a study file (str or "
                         "Path) or a loaded Study")
-    _callable_or_none(progress, "progress")
-    _timeout_or_none(point_timeout)
+    callable_argument(progress, "progress")
+    timeout_argument(point_timeout)
     for value, what in ((force, "force"), (keep_timeseries, "keep_timeseries"),
                         (allow_large, "allow_large")):
-        _flag(value, what)
-    _path_or_none(out, "out")
+        flag_argument(value, what)
+    folder_argument(out, "out")
     check_scheduler(scheduler)
     check_timeseries_format(timeseries_format, keep_timeseries)
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
@@ -524,13 +495,3 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
                         wall_time_s=outcome.wall_time_s)
         return df
 
-
-def _timeout_or_none(value) -> None:
-    import math
-
-    if value is None:
-        return
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) \
-            or value <= 0:
-        raise CaseError(f"point_timeout {value!r:.60}: expected a number of seconds > 0 "
-                        "(or None: the default)")
