@@ -126,8 +126,11 @@ def _raise_if_points_failed(df, out) -> None:
     if failed:
         from gearcli.errors import CheckFailed
 
+        retry = int((df["cause"] == "environment").sum()) if "cause" in df.columns else 0
+        again = (f"; {retry} failed for their environment (full disk, killed worker, timeout): "
+                 "the same command again retries them") if retry else ""
         raise CheckFailed(f"{out}: {failed} of {len(df)} points failed (status 'failed', the "
-                          "reason in column 'error' of summary.csv)")
+                          f"reason in column 'error' of summary.csv){again}")
 
 
 def _sweep_columns():

@@ -240,3 +240,21 @@ def _kill_when(proc, marker):
     t = threading.Thread(target=kill, daemon=True)
     t.start()
     return t
+
+
+def test_the_command_line_says_a_rerun_retries_environment_failures(tmp_path, monkeypatch):
+    from typer.testing import CliRunner
+
+    import gearcli.pipeline.outputs as outputs
+    from gearcli.cli import app
+
+    def full_disk(res, target, *args, **kw):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(outputs, "write_simulation", full_disk)
+    path = write_study(tmp_path, 'parameters:\n  gears.face_width: ["80 mm"]\n')
+    r = CliRunner().invoke(app, ["sweep", str(path), "-o", str(tmp_path / "o"), "-j", "1",
+                                 "--keep-timeseries", "-q"])
+    assert r.exit_code == 4, r.output
+    assert "1 failed for their environment" in r.stderr
+    assert "the same command again retries them" in r.stderr
