@@ -4,7 +4,7 @@ Each yields one result per payload, in completion order, and no worker fault end
 
 - A local worker process that dies (killed from outside, the kernel's out-of-memory killer)
   breaks its pool (``BrokenProcessPool``). The payloads in flight then are the suspects (at most
-  ``jobs``: no more are submitted than there are workers); when there are several, each is run
+  two a worker: IN_FLIGHT_PER_WORKER); when there are several, each is run
   again alone in a new pool, so only the one that ends its worker again is given up. A given-up
   payload becomes ``lost(payload, reason)`` (a failed row, reason "worker killed"), the others
   go on in a new pool.
@@ -184,20 +184,30 @@ def _new_pool(jobs: int):
                                initargs=(os.getpid(),))
 
 
+#: Payloads in flight per worker: one running, one queued, so that a worker that finishes
+#: never waits for the sweep (writing its row) to hand it the next point.
+IN_FLIGHT_PER_WORKER = 2
+
+
 def _pool_pass(queue: deque, jobs: int, fn, lost: Lost, timeout: PointTimeout):
-    """Run payloads taken from ``queue`` in one pool, at most ``jobs`` in flight, until the
-    queue is empty (returns []) or the pool breaks (returns the payloads in flight then)."""
+    """Run payloads taken from ``queue`` in one pool, at most IN_FLIGHT_PER_WORKER x ``jobs``
+    in flight, until the queue is empty (returns []) or the pool breaks (returns the payloads
+    in flight then). A payload's clock starts when it is among the ``jobs`` oldest in flight
+    (a worker is free for it)."""
     from concurrent.futures import FIRST_COMPLETED, wait
 
     pool = _new_pool(jobs)
-    flight: dict = {}  # future -> (payload, start [s])
+    flight: dict = {}  # future -> [payload, start [s] or None], in submission order
     try:
         while queue or flight:
-            while queue and len(flight) < jobs:
+            while queue and len(flight) < IN_FLIGHT_PER_WORKER * jobs:
                 p = queue.popleft()
-                flight[pool.submit(fn, p)] = (p, time.monotonic())
-            oldest = min(t for _, t in flight.values())
-            wait_s = max(0.0, oldest + timeout.seconds - time.monotonic())
+                flight[pool.submit(fn, p)] = [p, None]
+            now = time.monotonic()
+            for entry in list(flight.values())[:jobs]:
+                entry[1] = now if entry[1] is None else entry[1]
+            oldest = min(t for _, t in flight.values() if t is not None)
+            wait_s = max(0.0, oldest + timeout.seconds - now)
             done, _ = wait(list(flight), timeout=wait_s, return_when=FIRST_COMPLETED)
             if not done:  # a point past its time: stop the pool, rerun the others
                 yield from _expire(flight, queue, lost, timeout)
@@ -232,7 +242,8 @@ def _collect(done, flight: dict, timeout: PointTimeout, lost: Lost):
         elif exc is not None:  # fn catches the case's errors: this is the machinery's
             yield {**lost(p, f"internal error: {exc!r}"), "cause": failure_cause(exc)}
         else:
-            timeout.observe(time.monotonic() - t0)
+            if t0 is not None:
+                timeout.observe(time.monotonic() - t0)
             yield fut.result()
     return broken
 
@@ -240,13 +251,15 @@ def _collect(done, flight: dict, timeout: PointTimeout, lost: Lost):
 def _expire(flight: dict, queue: deque, lost: Lost, timeout: PointTimeout):
     """The points past their time fail; the others go back to the front of the queue."""
     now = time.monotonic()
-    for fut, (p, t0) in list(flight.items()):
-        if now - t0 >= timeout.seconds:
+    back = []
+    for fut, (p, t0) in flight.items():
+        if t0 is not None and now - t0 >= timeout.seconds:
             yield lost(p, timed_out(timeout.seconds))
         elif fut.done() and fut.exception() is None:
             yield fut.result()
         else:
-            queue.appendleft(p)
+            back.append(p)
+    queue.extendleft(reversed(back))  # in their order, before the rest
     flight.clear()
 
 
