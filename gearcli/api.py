@@ -22,7 +22,15 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from gearcli.case.overrides import overrides_from_set, quantity_arguments
+from gearcli.case.overrides import (
+    callable_argument,
+    flag_argument,
+    folder_argument,
+    mesh_options,
+    overrides_from_set,
+    quantity_arguments,
+    timeout_argument,
+)
 from gearcli.errors import CaseError
 
 if TYPE_CHECKING:
@@ -66,12 +74,6 @@ def __getattr__(name: str):
         module, cls = _CLASSES[name]
         return getattr(importlib.import_module(f"gearcli.pipeline.{module}"), cls)
     raise AttributeError(f"module 'gearcli.api' has no attribute {name!r}")
-
-
-def _callable_or_none(value, what: str):
-    if value is not None and not callable(value):
-        raise TypeError(f"{what}={value!r:.60}: expected a callable or None")
-    return value
 
 
 def load_case(source, set: Mapping[str, Any] | None = None):  # noqa: A002  (the CLI's --set)
@@ -179,8 +181,9 @@ def simulate(case, set=None, progress=None, zoom: bool = False,  # noqa: A002
     """
     from gearcli.pipeline.simulate import run_simulation
 
-    _callable_or_none(progress, "progress")
-    if _callable_or_none(status, "status"):
+    callable_argument(progress, "progress")
+    flag_argument(zoom, "zoom")
+    if callable_argument(status, "status"):
         status("loading the case")
     sim = run_simulation(load_case(case, set), progress=progress, zoom=zoom, status=status)
     sim.overrides = overrides_from_set(set)
@@ -226,12 +229,18 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
 
     if window is not None:
         window = quantity_arguments(window, units.TIME, "window", 2)
+    flag_argument(strict, "strict")
     with contextlib.ExitStack() as stack:
         return run_analysis(_folder_of(run, stack), window, strict)
 
 
 def spectra_frame(analysis):
     """The analysis' spectra as a DataFrame indexed by frequency [Hz] (spectrum.csv)."""
+    from gearcli.pipeline.analyze import Analysis
+
+    if not isinstance(analysis, Analysis):
+        raise CaseError(f"spectra_frame({analysis!r:.60}): expected the Analysis that "
+                        "analyze() returns")
     return analysis.spectra
 
 
@@ -327,10 +336,11 @@ def mesh(case, set=None, load_N: float | None = None, harris: bool = False,  # n
 
     if load_N is not None:
         (load_N,) = quantity_arguments(load_N, units.FORCE, "load_N", 1)  # > 0: run_mesh checks it
-    if not isinstance(harris, bool):
-        raise CaseError(f"harris={harris!r:.60}: expected True or False")
+    flag_argument(harris, "harris")
+    if not isinstance(method, str) or method not in ("pe", "fe"):
+        raise CaseError(f"method {method!r:.40}: expected 'pe' or 'fe'")
     return run_mesh(load_case(case, set), load_N=load_N, harris=harris, method=method,
-                    **options)
+                    **mesh_options(options))
 
 
 def stress(run, window: tuple[float, float] | None = None, require_limits: bool = False):
@@ -359,6 +369,7 @@ def stress(run, window: tuple[float, float] | None = None, require_limits: bool 
 
     if window is not None:
         window = quantity_arguments(window, units.TIME, "window", 2)
+    flag_argument(require_limits, "require_limits")
     with contextlib.ExitStack() as stack:
         return compute_stress(_folder_of(run, stack), window, require_limits=require_limits)
 
@@ -401,7 +412,8 @@ def rate(case_or_run, set=None):  # noqa: A002
 
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,
           scheduler: str | None = None, force: bool = False, keep_timeseries: bool = False,
-          timeseries_format: str = "csv", progress=None, allow_large: bool = False):
+          timeseries_format: str = "csv", progress=None, allow_large: bool = False,
+          point_timeout: float | None = None):
     """Run a study (`gearcli sweep`) and return its summary as a DataFrame (one row per
     point; a ``design: speed_curve`` study: one row per speed and direction).
 
@@ -422,6 +434,9 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
         Called as points finish.
     allow_large : bool
         Accept studies of more than 1000 points (the command line's ``--yes``).
+    point_timeout : float, optional
+        Seconds a point may run before it is recorded as failed ("timed out", retried by a
+        resume); default from the solver's step limit (pipeline/sweep/workers.py).
 
     Returns
     -------
@@ -434,8 +449,14 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
 
     import pandas as pd
 
-    from gearcli.pipeline.sweep.run import rows_as_table, run_study, summary_columns
+    from gearcli.pipeline.sweep.run import (
+        check_timeseries_format,
+        rows_as_table,
+        run_study,
+        summary_columns,
+    )
     from gearcli.pipeline.sweep.study import Study, load_study
+    from gearcli.pipeline.sweep.workers import check_scheduler
 
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise CaseError(f"jobs {jobs!r}: expected a whole number of worker processes >= 1 "
@@ -443,29 +464,38 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     if not isinstance(study, Study | str | os.PathLike):
         raise CaseError(f"sweep({study!r:.60}): expected the path of a study file (str or "
                         "Path) or a loaded Study")
-    _callable_or_none(progress, "progress")
+    callable_argument(progress, "progress")
+    timeout_argument(point_timeout)
+    for value, what in ((force, "force"), (keep_timeseries, "keep_timeseries"),
+                        (allow_large, "allow_large")):
+        flag_argument(value, what)
+    folder_argument(out, "out")
+    check_scheduler(scheduler)
+    check_timeseries_format(timeseries_format, keep_timeseries)
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
     with contextlib.ExitStack() as stack:
         if out is None:
             out = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="gearcli-"))) / "s"
         if spec.design == "speed_curve":
             from gearcli.io.outdir import check_target
-            from gearcli.pipeline.speed_curve import COLUMNS, run_speed_curve, write_speed_curve
+            from gearcli.pipeline.speed_curve import run_speed_curve, write_speed_curve
 
             check_target(out, force)  # before the runs, not after
-            curve = run_speed_curve(spec, jobs, scheduler)
+            curve = run_speed_curve(spec, jobs, scheduler, point_timeout=point_timeout)
             write_speed_curve(curve, out, force)
-            df = pd.DataFrame([r.to_row() for r in curve.rows], columns=list(COLUMNS))
+            df = pd.DataFrame(curve.table(), columns=curve.columns)
             df.attrs.update(kind="speed_curve", errors=list(curve.errors),
                             notes=list(curve.notes))
             return df
         from gearcli.pipeline.sweep.trends import write_trends
 
         outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
-                            timeseries_format=timeseries_format)
+                            timeseries_format=timeseries_format,
+                            point_timeout=point_timeout)
         write_trends(Path(out), spec, outcome.rows)
         df = rows_as_table(outcome.rows, summary_columns(spec))
         df.attrs.update(kind="sweep", total=outcome.total, ran=outcome.ran,
                         skipped=outcome.skipped, failed=outcome.failed,
                         wall_time_s=outcome.wall_time_s)
         return df
+

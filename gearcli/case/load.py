@@ -16,7 +16,7 @@ from pydantic import ValidationError
 from gearcli import units
 from gearcli.case.bounds import magnitude_errors
 from gearcli.case.keypaths import allowed_keys, field_at
-from gearcli.case.overrides import apply_overrides
+from gearcli.case.overrides import apply_overrides, text_name
 from gearcli.case.schema import Case
 from gearcli.case.section import FieldError, FieldErrors, compose
 from gearcli.case.yamlsrc import Loc, Source, parse_source, read_source
@@ -71,7 +71,7 @@ def validate_source(src: Source, stem: str) -> LoadedCase:
              for loc, _, message in magnitude_errors(case, case.units)]
     if found:
         raise CaseErrors.of(found)
-    return LoadedCase(case, src, case.name or stem)
+    return LoadedCase(case, src, case.name or text_name(stem))
 
 
 class CaseErrors(CaseError):

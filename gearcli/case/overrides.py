@@ -5,6 +5,9 @@ from __future__ import annotations
 import copy
 import difflib
 import json
+import math
+import numbers
+import os
 from collections.abc import Mapping
 
 import yaml
@@ -13,8 +16,32 @@ from gearcli.case.keypaths import model_in
 from gearcli.errors import CaseError
 
 
+def text_name(name: str) -> str:
+    """A name as valid text: bytes of a file name that are not UTF-8 (Python keeps them as
+    lone surrogates, e.g. a Latin-1 'é') become U+FFFD, so the name can be printed and
+    written as UTF-8 (reports, JSON, figures)."""
+    return _raw(name).decode("utf-8", "replace")
+
+
+def _raw(text: str) -> bytes:
+    try:
+        return text.encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # surrogates other than those of undecodable bytes
+        return text.encode("utf-8", "surrogatepass")
+
+
+def check_text(text: str, what: str) -> str:
+    """Refuse text with bytes that are not UTF-8 (a command-line argument decoded by Python
+    with surrogateescape): a one-line CaseError showing the bytes as \\xNN."""
+    if text_name(text) != text:
+        shown = _raw(text).decode("utf-8", "backslashreplace")
+        raise CaseError(f"{what} {shown}: not UTF-8 text; expected names and values in UTF-8")
+    return text
+
+
 def parse_override(text: str) -> tuple[tuple[str, ...], object]:
     """Split ``'gears.module=12'`` into (('gears', 'module'), 12); the value is YAML."""
+    check_text(text, "--set")
     key, sep, raw = text.partition("=")
     path = tuple(p.strip() for p in key.strip().split("."))
     if not sep or not all(path):
@@ -117,3 +144,50 @@ def quantity_arguments(values, dim, what: str, count: int) -> tuple[float, ...]:
         return units.parse_quantities(items, dim)
     except (units.UnitError, TypeError, ValueError) as exc:
         raise CaseError(f"{what} {exc}") from None
+
+
+# --- the Python API's other arguments (gearcli/api.py) -----------------------------------
+def callable_argument(value, what: str):
+    if value is not None and not callable(value):
+        raise CaseError(f"{what}={value!r:.60}: expected a callable or None")
+    return value
+
+
+def flag_argument(value, what: str) -> bool:
+    """A yes/no argument: True or False only (a text "no" is truthy)."""
+    if not isinstance(value, bool):
+        raise CaseError(f"{what}={value!r:.60}: expected True or False")
+    return value
+
+
+def folder_argument(value, what: str):
+    if value is not None and not isinstance(value, str | os.PathLike):
+        raise CaseError(f"{what}={value!r:.60}: expected the path of a folder (str or Path)")
+    return value
+
+
+#: The Python API's bounds of `mesh`'s options (the command line uses the defaults 2 and
+#: 200): at most 10 x 1000 = 10 000 roll positions, 25x the default's (~10 s).
+MESH_OPTIONS = {"cycles": (1, 10), "points_per_cycle": (20, 1000)}
+
+
+def mesh_options(options: dict) -> dict:
+    for key, value in options.items():
+        if key not in MESH_OPTIONS:
+            raise CaseError(f"mesh({key}=...): unknown option; expected one of: "
+                            + ", ".join(MESH_OPTIONS))
+        lo, hi = MESH_OPTIONS[key]
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
+                or not lo <= value <= hi:
+            raise CaseError(f"{key}={value!r:.60}: expected a whole number from {lo} to {hi}")
+    return {k: int(v) for k, v in options.items()}
+
+
+def timeout_argument(value) -> None:
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) \
+            or value <= 0:
+        raise CaseError(f"point_timeout {value!r:.60}: expected a number of seconds > 0 "
+                        "(or None: the default)")
+

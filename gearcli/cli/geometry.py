@@ -112,12 +112,13 @@ def geometry(
 
 def _print_tables(data: dict, units: str) -> None:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     from gearcli.display_units import convert
 
     console = Console()
-    t = Table(title=f"Gear geometry — {data['case']}", title_justify="left")
+    t = Table(title=escape(f"Gear geometry — {data['case']}"), title_justify="left")
     t.add_column("quantity")
     t.add_column("pinion", justify="right")
     t.add_column("gear", justify="right")

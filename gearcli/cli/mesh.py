@@ -110,9 +110,10 @@ def _table(title: str, rows: list[tuple[str, float, str]], units: str):
 
 def _print(doc, units: str) -> None:
     from rich.console import Console
+    from rich.markup import escape
 
     console = Console()
-    console.print(f"[bold]{doc.case}[/bold]: loaded contact at "
+    console.print(f"[bold]{escape(doc.case)}[/bold]: loaded contact at "
                   f"{format_value(doc.force_N)} N, {doc.contact_law}")
     ste, st = doc.ste, doc.stiffness
     console.print(_table("Static transmission error", [
@@ -171,7 +172,7 @@ def _print(doc, units: str) -> None:
             ("share of the revolution without a carrying pair", r.no_contact_share, "–"),
         ], units))
     for note in doc.notes:
-        console.print(f"note: {note}")
+        console.print(f"note: {escape(note)}")
 
 
 def _fe_table(fe, units: str):

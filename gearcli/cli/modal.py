@@ -89,7 +89,7 @@ def _print(doc, checks, units: str) -> None:
         return f"{x:.4g} {u}"
 
     console.print(
-        f"[bold]{doc.case}[/bold]: {doc.model} model, drive '{doc.drive}', "
+        f"[bold]{escape(doc.case)}[/bold]: {doc.model} model, drive '{escape(doc.drive)}', "
         f"linearised at F = {lin['static_force_N']:.1f} N: k_mesh = "
         f"{q(lin['mesh_stiffness_N_mm'], 'N/mm')} (single pair "
         f"{q(lin['single_pair_stiffness_N_mm'], 'N/mm', 'single-pair')}, double pair "
@@ -106,7 +106,7 @@ def _print(doc, checks, units: str) -> None:
         z = format_value(zeta) if zeta is None or zeta <= 1.0 else \
             f"{format_value(zeta)} (overdamped)"
         shape = ", ".join(f"{v:+.3f}" for v in m.shape.values())
-        t.add_row(str(m.mode), f, z, m.description, shape)
+        t.add_row(str(m.mode), f, z, escape(m.description), shape)
     console.print(t)
     (lo, hi), unit = convert(list(doc.speed_range_deg_s), "deg/s", units)
     c = Table(title=f"Crossings (pinion speed, {lo:.4g}-{hi:.4g} {unit})", title_justify="left")
@@ -114,7 +114,7 @@ def _print(doc, checks, units: str) -> None:
         c.add_column(escape(col))  # rich would read "[rpm]" as markup and drop it
     for x in doc.crossings:
         if x.in_range:
-            c.add_row(x.order, str(x.mode), format_value(x.frequency_Hz),
+            c.add_row(escape(x.order), str(x.mode), format_value(x.frequency_Hz),
                       format_value(convert(x.pinion_speed_deg_s, "deg/s", units)[0]))
     console.print(c)
     print_checks_table(checks)

@@ -121,10 +121,11 @@ def gear_rows(doc: dict) -> list[tuple[str, str, str, str, str, str]]:
 def print_rating(doc: dict) -> None:
     """The rating as tables: pair factors, the gears' factors side by side, the verdicts."""
     from rich.console import Console
+    from rich.markup import escape
 
     console = Console()
     iso, load = doc["iso"], doc["load"]
-    console.print(f"[bold]{doc['case']}[/bold]: ISO 6336:{iso['edition']} Method B, pinion "
+    console.print(f"[bold]{escape(doc['case'])}[/bold]: ISO 6336:{iso['edition']} Method B, pinion "
                   f"torque {fmt(load['pinion_torque_Nm'])} N·m per mesh path at "
                   f"{fmt(load['pinion_speed_rpm'])} rpm, life {fmt(load['life_h'])} h; K_v "
                   f"{load['dynamic_factor_source']}")
@@ -144,7 +145,7 @@ def print_rating(doc: dict) -> None:
     if doc.get("editions"):
         console.print(edition_table(doc["editions"], iso["edition"]))
     for note in doc["notes"]:
-        console.print(f"note: {note}")
+        console.print(f"note: {escape(note)}")
     console.print(f"verdict: {doc['verdict'].upper()}")
 
 

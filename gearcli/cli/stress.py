@@ -71,12 +71,13 @@ def _tooth(tooth) -> str:
 def print_tables(doc) -> None:
     """One table per gear: ISO static values, dynamic peaks, ratios, safety factors."""
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     console = Console()
     st = doc.static
     w = doc.window_s
-    console.print(f"{doc.case}: static load F_n = {st.force_normal_N:.6g} N "
+    console.print(f"{escape(doc.case)}: static load F_n = {st.force_normal_N:.6g} N "
                   f"(F_t = {st.force_tangential_N:.6g} N), σ_H0 (pitch point, Z_H Z_E) = "
                   f"{st.sigma_H0_MPa:.4g} MPa; window {w[0]:.4g}-{w[1]:.4g} s "
                   f"({doc.window_reason})")
@@ -114,4 +115,4 @@ def print_tables(doc) -> None:
             t.add_row(*row)
         console.print(t)
     for text in doc.warnings:
-        console.print(f"[yellow]warning:[/yellow] {text}")
+        console.print(f"[yellow]warning:[/yellow] {escape(text)}")

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -11,17 +10,16 @@ import typer
 from gearcli.cli.app import app
 from gearcli.cli.common import handle_errors, rich_progress
 
-_ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.-]+):(\d{1,5})$")
-
 
 def _check_scheduler(value: str | None) -> str | None:
     """'local' or PROTOCOL://HOST:PORT (a usage error, exit 2, otherwise)."""
-    if value is None or value == "local":
-        return value
-    m = _ADDRESS.match(value)
-    if m is None or not 0 < int(m.group(3)) < 65536:
-        raise typer.BadParameter(f"{value!r}: expected 'local' or tcp://HOST:PORT (or tls://)")
-    return value
+    from gearcli.errors import OutputError
+    from gearcli.pipeline.sweep.workers import check_scheduler
+
+    try:
+        return check_scheduler(value)
+    except OutputError as exc:
+        raise typer.BadParameter(str(exc)) from None
 
 
 #: At most this many worker processes per CPU (more only costs memory).
@@ -54,6 +52,11 @@ def sweep(
     force: bool = typer.Option(False, "--force", help="Start over (discard summary.csv)."),
     yes: bool = typer.Option(False, "--yes", "-y", help="Run studies of more than 1000 points."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar, no summary line."),
+    point_timeout: float = typer.Option(
+        None, "--point-timeout", min=0.001,
+        help="Seconds a point may run before it is recorded as failed (timed out; a resume "
+             "retries it). Default: from the solver's step limit, at least 20x the slowest "
+             "point so far."),
 ) -> None:
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
     failed points are recorded, never abort the study.
@@ -63,14 +66,10 @@ def sweep(
     Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2
     """
     from gearcli import api
-    from gearcli.errors import OutputError
+    from gearcli.pipeline.sweep.run import check_timeseries_format
     from gearcli.pipeline.sweep.study import load_study
 
-    if fmt not in ("csv", "parquet"):
-        raise OutputError(f"--format {fmt}: expected csv or parquet")
-    if fmt != "csv" and not keep_timeseries:
-        raise OutputError(f"--format {fmt}: the format of the time series --keep-timeseries "
-                          "keeps; expected --keep-timeseries with it (summary.csv is CSV)")
+    check_timeseries_format(fmt, keep_timeseries)
     spec = load_study(study, allow_large=yes)
     if spec.design == "speed_curve":
         from gearcli.io.outdir import check_target
@@ -79,7 +78,8 @@ def sweep(
         if not quiet:
             typer.echo(f"speed curve: {len(spec.points)} speeds, run up and down (2 runs)",
                        err=True)
-        df = api.sweep(spec, out, jobs or None, scheduler, force)
+        df = api.sweep(spec, out, jobs or None, scheduler, force,
+                       point_timeout=point_timeout)
         if not quiet:
             invalid = int((df["status"] == "invalid").sum())
             failed = int((df["status"] == "failed").sum())
@@ -91,11 +91,12 @@ def sweep(
             typer.echo(f"warning: a direction failed: {e}", err=True)
         for note in df.attrs["notes"]:
             typer.echo(f"note: {note}", err=True)
+        _raise_if_checks_failed(df, out)
         _raise_if_points_failed(df, out)
         return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         df = api.sweep(spec, out, jobs or None, scheduler, force, keep_timeseries, fmt,
-                       progress)
+                       progress, point_timeout=point_timeout)
     checks_failed = int(df["checks"].astype(str).str.startswith("fail").sum()) \
         if "checks" in df.columns else 0
     if not quiet:
@@ -105,12 +106,19 @@ def sweep(
         typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
                    f"{a['failed']} failed, {invalid} outside the model's validity{checked} "
                    f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
+    _raise_if_checks_failed(df, out)
+    _raise_if_points_failed(df, out)
+
+
+def _raise_if_checks_failed(df, out) -> None:
+    if "checks" not in df.columns:
+        return
+    checks_failed = int(df["checks"].astype(str).str.startswith("fail").sum())
     if checks_failed:
         from gearcli.errors import CheckFailed
 
         raise CheckFailed(f"{out}: {checks_failed} of {len(df)} points failed the study's "
                           "checks (column 'checks' of summary.csv)")
-    _raise_if_points_failed(df, out)
 
 
 def _raise_if_points_failed(df, out) -> None:
@@ -120,8 +128,11 @@ def _raise_if_points_failed(df, out) -> None:
     if failed:
         from gearcli.errors import CheckFailed
 
+        retry = int((df["cause"] == "environment").sum()) if "cause" in df.columns else 0
+        again = (f"; {retry} failed for their environment (full disk, killed worker, timeout): "
+                 "the same command again retries them") if retry else ""
         raise CheckFailed(f"{out}: {failed} of {len(df)} points failed (status 'failed', the "
-                          "reason in column 'error' of summary.csv)")
+                          f"reason in column 'error' of summary.csv){again}")
 
 
 def _sweep_columns():

@@ -249,10 +249,39 @@ def read_stress(path: Path) -> StressDocument:
                            "again") from None
 
 
+#: Most values (rows x columns) of a Parquet time series that are decoded: 2e8 float64 are
+#: 1.6 GB, and the analysis holds about two more copies. A compressed file can expand ~2000x
+#: (29 MB to 51 GB seen), so the size is read from the file's metadata before any decoding.
+MAX_PARQUET_VALUES = 200_000_000
+
+
+def check_parquet_size(path: Path, rows: int, limit: int | None = None) -> None:
+    """Refuse, from its metadata alone, a Parquet table larger than ``limit`` values or with
+    another row count than summary.json's ``rows``."""
+    import pyarrow.parquet as pq
+
+    try:
+        meta = pq.ParquetFile(path).metadata
+    except Exception as exc:  # pyarrow's errors: ArrowInvalid, OSError, ...
+        raise ResultsError(f"{path}: unreadable Parquet ({exc}); expected a table written by "
+                           "gearcli") from None
+    limit = MAX_PARQUET_VALUES if limit is None else limit
+    values = meta.num_rows * meta.num_columns
+    if values > limit:
+        raise ResultsError(f"{path}: {meta.num_rows:,} rows x {meta.num_columns} columns = "
+                           f"{values:,} values; expected at most {limit:,} (the memory the "
+                           "analysis may take); simulate with a lower run.output_rate")
+    if meta.num_rows != rows:
+        raise ResultsError(f"{path}: {meta.num_rows:,} rows, but summary.json says {rows:,}; "
+                           "the file is truncated or was edited")
+
+
 def read_parquet_columns(path: Path, key: str, rows: int) -> dict[str, np.ndarray]:
-    """The float64 columns of a Parquet time series, checked like :func:`read_columns`."""
+    """The float64 columns of a Parquet time series, checked like :func:`read_columns`
+    (its size first, from the metadata: :func:`check_parquet_size`)."""
     from gearcli.io.tables import parquet_to_columns
 
+    check_parquet_size(path, rows)
     try:
         columns = parquet_to_columns(path)
     except Exception as exc:  # pyarrow's errors: ArrowInvalid, OSError, ...

@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from gearcli.pipeline.sweep.design import SPEED_CURVE_METRICS
 from gearcli.results import SpeedLevel
 from gearcli.results.models import IsoResonance
 from gearcli.results.run import SPEED_CURVE_COLUMNS
@@ -72,6 +73,9 @@ UNSETTLED = "unsettled"
 DIRECTIONS = ("up", "down")
 #: summary.csv's columns (gearcli.results.SpeedLevel's fields).
 COLUMNS = SPEED_CURVE_COLUMNS
+#: What each level measures (``metrics:`` keeps these columns of summary.csv; ``checks:`` adds
+#: a column ``checks`` as in other studies: gearcli/pipeline/sweep/run.py).
+METRICS = SPEED_CURVE_METRICS
 
 
 @dataclass(frozen=True)
@@ -215,16 +219,21 @@ def run_direction(payload: dict) -> dict:
     try:
         res = run_simulation(case_from_json(payload["case_json"], payload["name"]), zoom=False)
     except GearcliError as exc:  # every level of this direction is a failed row, with the reason
-        error = str(exc).splitlines()[0]
-        teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
-        rows = [SpeedLevel(point=payload["first"] + i, direction=payload["direction"],
-                           mesh_frequency_Hz=fz, pinion_speed_rpm=fz / teeth * 60.0,
-                           status="failed", error=error)
-                for i, fz in enumerate(stairs.f_z_Hz)]
-        return {"rows": rows, "f_n_Hz": math.nan, "error": error}
+        return failed_direction(payload, str(exc).splitlines()[0])
     f_n = res.summary.mesh_natural_frequency_Hz
     return {"rows": measure_levels(res, stairs, payload["direction"], f_n, payload["first"]),
             "f_n_Hz": f_n, "error": ""}
+
+
+def failed_direction(payload: dict, error: str) -> dict:
+    """Every level of a direction as a failed row (its solver failed, its worker was killed
+    or timed out: pipeline/sweep/workers.py)."""
+    teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
+    rows = [SpeedLevel(point=payload["first"] + i, direction=payload["direction"],
+                       mesh_frequency_Hz=fz, pinion_speed_rpm=fz / teeth * 60.0,
+                       status="failed", error=error)
+            for i, fz in enumerate(payload["f_z_Hz"])]
+    return {"rows": rows, "f_n_Hz": math.nan, "error": error}
 
 
 def plan(study) -> list[dict]:
@@ -278,16 +287,41 @@ class SpeedCurve:
     pinion_teeth: int = 0
     notes: list[str] = field(default_factory=list)  #: what limits the reading of the curve
     accuracy: dict | None = None  #: the case's ISO 1328-1 grade and tolerances (accuracy_doc)
+    metrics: list[str] | None = None  #: the study's ``metrics:`` (None: all of METRICS)
+    checks: list = field(default_factory=list)  #: the study's ``checks:``
+
+    @property
+    def columns(self) -> list[str]:
+        """summary.csv's columns: the kept metrics, and ``checks`` when the study has any."""
+        kept = [c for c in COLUMNS if c not in METRICS or c in (self.metrics or METRICS)]
+        if self.checks:
+            kept.insert(kept.index("status"), "checks")
+        return kept
+
+    def table(self) -> list[dict]:
+        """summary.csv's rows ({column: value}) with the checks' verdicts."""
+        from gearcli.pipeline.sweep.run import check_verdict
+
+        out = []
+        for r in self.rows:
+            row = r.to_row()
+            if self.checks:
+                row["checks"] = check_verdict(self.checks, row)
+            out.append({c: row[c] for c in self.columns})
+        return out
 
 
-def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None) -> SpeedCurve:
-    """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow)."""
+def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None,
+                    point_timeout: float | None = None) -> SpeedCurve:
+    """Run both directions of a ``design: speed_curve`` study (in parallel when jobs allow);
+    ``point_timeout`` [s] per direction (pipeline/sweep/workers.py)."""
     from gearcli.pipeline.geometry import run_geometry
     from gearcli.pipeline.mesh_input import iso_dynamic
     from gearcli.pipeline.run_rating import with_level_safeties
     from gearcli.pipeline.sweep.run import case_from_json, execute
 
-    results = list(execute(run_direction, plan(study), jobs, scheduler))
+    results = list(execute(run_direction, plan(study), jobs, scheduler, failed_direction,
+                           point_timeout))
     rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r.point)
     base = case_from_json(study.base_case_json, study.name)
     geo = run_geometry(base)
@@ -305,7 +339,8 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
     rows = with_level_safeties(base, rows)  # S_H, S_F at each speed (issue 28)
     return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
-                      _notes(base.case), accuracy_doc(base))
+                      _notes(base.case), accuracy_doc(base), study.metrics,
+                      list(study.checks))
 
 
 def _hunting(case) -> bool:
@@ -390,11 +425,11 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
 
     with atomic_dir(out, force) as tmp:
         buf = io.StringIO()
-        writer = csv.DictWriter(buf, fieldnames=list(COLUMNS), lineterminator="\n")
+        writer = csv.DictWriter(buf, fieldnames=curve.columns, lineterminator="\n")
         writer.writeheader()
-        for r in curve.rows:
+        for r in curve.table():
             writer.writerow({c: "" if isinstance(v, float) and math.isnan(v) else v
-                             for c, v in r.to_row().items()})
+                             for c, v in r.items()})
         write_atomic(tmp / "summary.csv", buf.getvalue())
         doc = {"name": curve.name, "mesh_natural_frequency_Hz": curve.f_n_Hz,
                "dwell_cycles": DWELL_CYCLES, "transition_cycles": TRANSITION_CYCLES,

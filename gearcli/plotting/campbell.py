@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli.plotting.text import plain
+
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
@@ -93,7 +95,7 @@ def plot_campbell(result: ModalResult, orders: tuple[Order, ...],
 
     _plot_shapes(axs, result, _MODE_COLOURS)
     if title:
-        fig.suptitle(title)
+        fig.suptitle(plain(title))
     return fig
 
 
@@ -173,7 +175,7 @@ def plot_campbell_summary(modes, pinion_teeth: int, case_speed_rpm: float,
         ax.axvline(k_n * case_speed_rpm, color="#2e7d32", lw=1.2, ls=":",
                    label=f"case speed {k_n * case_speed_rpm:.4g} {unit}")
     ax.set(xlim=(0.0, k_n * top_speed), ylim=(0.0, f_top), xlabel=f"pinion speed [{unit}]",
-           ylabel="frequency [Hz]", title=title)
+           ylabel="frequency [Hz]", title=plain(title))
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="upper left")
     fig.tight_layout()

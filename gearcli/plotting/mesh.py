@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli.plotting.text import plain
+
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
@@ -59,5 +61,5 @@ def plot_mesh(roll_mm, ste, unloaded, pair_force_N, mesh_stiffness, *,
         ax.set_ylabel(f"STE peak-to-peak [{te_unit}]")
         ax.set_title("Harris map", fontsize=9, loc="left")
         ax.grid(alpha=0.3)
-    fig.suptitle(title, fontsize=10)
+    fig.suptitle(plain(title), fontsize=10)
     return fig

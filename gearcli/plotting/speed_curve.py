@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from gearcli.plotting.text import plain
+
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
@@ -67,7 +69,7 @@ def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
     ax.set_xlabel("N = f_z / f_n  (gear-mesh frequency over the mesh natural frequency"
                   + (f", f_n = {f_n_Hz:.0f} Hz)" if math.isfinite(f_n_Hz) else ")"))
     ax.set_ylabel("dynamic factor  max F / F_static")
-    ax.set_title(title)
+    ax.set_title(plain(title))
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()

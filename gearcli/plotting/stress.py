@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli.plotting.text import plain
+
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
@@ -80,7 +82,7 @@ def plot_stress(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, wi
     loaded = np.asarray(force_N, float) > 0.0
     fig = Figure(figsize=(10.0, 12.0), layout="constrained")
     ax_h, ax_f, px_h, px_f = fig.subplots(4, 1)
-    fig.suptitle(title)
+    fig.suptitle(plain(title))
     zoom = (t >= zoom_s[0]) & (t <= zoom_s[1])
     ms = (t[zoom] - zoom_s[0]) * 1e3
     for j in range(x.shape[1]):

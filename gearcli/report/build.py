@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from gearcli.case.overrides import text_name
 from gearcli.errors import OutputError
 from gearcli.io.files import write_atomic
 from gearcli.report.data import load_report_data
@@ -60,5 +61,5 @@ def build_report(folder: str | Path, fmt: str = "html", out_file: str | Path | N
     doc = build_document(data, figures)
     add_monitoring(doc, data, data.folder / "figures", svg)  # with monitor.json (faults)
     text = render_html(doc) if fmt == "html" else render_markdown(doc, out.parent)
-    write_atomic(out, text)
+    write_atomic(out, text_name(text))  # a file name's non-UTF-8 bytes (manifest) as U+FFFD
     return out

@@ -264,9 +264,9 @@ def test_api_takes_quantities_with_units_like_the_command_line():
     assert m.summary.force_N == pytest.approx(2000.0)
     modal = gearcli.modal(SEED, speed_range_deg_s=("0 rpm", "6000 rpm"))
     assert modal.speed_range_deg_s == pytest.approx((0.0, 36000.0))
-    with pytest.raises(TypeError, match="progress=1: expected a callable"):
+    with pytest.raises(CaseError, match="progress=1: expected a callable"):
         gearcli.simulate(SEED, progress=1)
-    with pytest.raises(TypeError, match="progress=1: expected a callable"):
+    with pytest.raises(CaseError, match="progress=1: expected a callable"):
         gearcli.sweep(ROOT / "cases" / "studies" / "table5.yaml", progress=1)
     import numpy as np  # numpy scalars are numbers (np.int64 from a DataFrame, say)
 

@@ -136,7 +136,7 @@ def test_refused_connection_is_exit_1():
 
 WORKER = """
 import os, sys, time
-from gearcli.pipeline.sweep import run as sweep_run
+from gearcli.pipeline.sweep import workers as sweep_run
 sweep_run.PARENT_POLL_S = 0.05
 parent = os.getpid()
 pid = os.fork()
@@ -182,7 +182,7 @@ def _running(pid: int) -> bool:
 def test_watching_the_own_process_does_nothing():
     """A LocalCluster's nannies run in the sweep's process: watching "the sweep" from there
     must not end the sweep (it did when the sweep itself was an orphan, e.g. run with &)."""
-    from gearcli.pipeline.sweep.run import watch_parent
+    from gearcli.pipeline.sweep.workers import watch_parent
 
     watch_parent(os.getpid())
     assert not any(t.name == "gearcli-parent-watch" for t in threading.enumerate())

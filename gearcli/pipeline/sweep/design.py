@@ -15,6 +15,10 @@ MESH_FREQUENCY = "mesh_frequency"
 #: Most speeds per direction of a speed curve (its staircase is one time-function expression,
 #: at most 2000 characters: gearcli/pipeline/speed_curve.py).
 MAX_SPEEDS = 40
+#: What each level of a speed curve measures: the metrics its ``metrics:`` and ``checks:`` may
+#: name (gearcli/pipeline/speed_curve.py).
+SPEED_CURVE_METRICS = ("dynamic_factor", "force_max_N", "dte_peak_to_peak_mm",
+                       "contact_loss_fraction")
 
 
 @dataclass(frozen=True)

@@ -26,8 +26,17 @@ from gearcli.errors import GearcliError, OutputError
 from gearcli.io.files import record_outputs, write_atomic
 from gearcli.io.owner import check_producer
 from gearcli.pipeline.sweep.folder import SUMMARY, claim_folder
+from gearcli.pipeline.sweep import workers
 from gearcli.pipeline.sweep.metrics import METRICS
 from gearcli.pipeline.sweep.study import Study
+from gearcli.pipeline.sweep.workers import (
+    ENVIRONMENT,
+    Lost,
+    PointTimeout,
+    failure_cause,
+    lost_point,
+    probe_scheduler,  # noqa: F401  (where it was)
+)
 
 #: Largest summary.csv read back for resuming [bytes] (~1 kB a row, 100 000 points).
 MAX_SUMMARY_BYTES = 200_000_000
@@ -40,7 +49,16 @@ def summary_columns(study: Study) -> list[str]:
     metrics = list(study.metrics or METRICS)
     check_col = ["checks"] if study.checks else []
     return ["point", *study.parameter_columns, *metrics, *check_col, "status", "error",
-            "warnings", *TIMING_COLUMNS, "case_hash"]
+            "cause", "warnings", *TIMING_COLUMNS, "case_hash"]
+
+
+def check_timeseries_format(fmt, keep_timeseries: bool) -> None:
+    """The kept time series' format: 'csv' or 'parquet', the latter only with them kept."""
+    if fmt not in ("csv", "parquet"):
+        raise OutputError(f"--format {str(fmt):.40}: expected csv or parquet")
+    if fmt != "csv" and not keep_timeseries:
+        raise OutputError(f"--format {fmt}: the format of the time series --keep-timeseries "
+                          "keeps; expected --keep-timeseries with it (summary.csv is CSV)")
 
 
 def run_point(payload: dict) -> dict:
@@ -74,9 +92,12 @@ def run_point(payload: dict) -> dict:
 
             write_simulation(res, keep, True, fmt=payload.get("format", "csv"))
     except GearcliError as exc:
-        row.update(status="failed", error=str(exc).splitlines()[0])
+        row.update(status="failed", error=str(exc).splitlines()[0], cause=failure_cause(exc))
+    except OSError as exc:  # writing the point's files: a full disk, a quota
+        row.update(status="failed", error=f"cannot write the point's results "
+                   f"({exc.strerror or exc})", cause=failure_cause(exc))
     except Exception as exc:  # a bug in one point must not end the study
-        row.update(status="failed", error=f"internal error: {exc!r}")
+        row.update(status="failed", error=f"internal error: {exc!r}", cause=failure_cause(exc))
     row["wall_time_s"] = time.perf_counter() - t0
     return row
 
@@ -91,72 +112,18 @@ def case_from_json(text: str, name: str):
     return validate_source(Source(name, json.loads(text), text.splitlines()), name)
 
 
-def execute(fn, payloads: list[dict], jobs: int | None, scheduler: str | None) -> Iterator[dict]:
+def execute(fn, payloads: list[dict], jobs: int | None, scheduler: str | None,
+            lost: Lost = lost_point, point_timeout: float | None = None) -> Iterator:
     """``fn(payload)`` for every payload, serially, in ``jobs`` local processes, or on Dask
-    (``scheduler``: "local" or an address); results in completion order."""
-    jobs = jobs or os.cpu_count() or 1
+    (``scheduler``: "local" or an address); results in completion order. A payload whose
+    worker died or that timed out gives ``lost(payload, reason)`` (pipeline/sweep/workers.py)."""
+    jobs = min(jobs or os.cpu_count() or 1, max(len(payloads), 1))
+    timeout = PointTimeout(point_timeout)
     if scheduler:
-        return _dask(payloads, min(jobs, len(payloads)), scheduler, fn)
-    if jobs == 1 or len(payloads) <= 1:
-        return _serial(payloads, 1, None, fn)
-    return _processes(payloads, min(jobs, len(payloads)), None, fn)
-
-
-def _warm_up(parent_pid: int | None = None) -> None:
-    """Worker initializer: import the pipeline (and load the compiled solver) once; with
-    ``parent_pid``, end the worker when that process (the sweep) is gone."""
-    if parent_pid is not None:
-        watch_parent(parent_pid)
-        _default_signals()
-    import gearcli.pipeline.simulate  # noqa: F401
-
-
-def _default_signals() -> None:
-    """In a forked worker: SIGTERM/SIGHUP end it (not the CLI's handler inherited from the
-    sweep, which would only fail the point in flight); Ctrl-C is the sweep's to handle."""
-    import signal
-    import threading
-
-    if threading.current_thread() is not threading.main_thread():
-        return
-    for name in ("SIGTERM", "SIGHUP"):
-        if hasattr(signal, name):
-            signal.signal(getattr(signal, name), signal.SIG_DFL)
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-#: How often a worker checks that the sweep that started it still runs [s].
-PARENT_POLL_S = 0.5
-
-
-def watch_parent(pid: int) -> None:
-    """End this process soon after process ``pid`` ends, even by kill -9 (which runs no
-    cleanup in the sweep): a daemon thread polls it. Idempotent per process; nothing to do
-    in the process ``pid`` itself."""
-    import threading
-
-    if pid == os.getpid() or getattr(watch_parent, "watching", None) == pid:
-        return
-    watch_parent.watching = pid
-    direct = os.getppid() == pid  # then re-parenting tells at once, whatever the pid reuse
-
-    def watch() -> None:
-        while True:
-            time.sleep(PARENT_POLL_S)
-            if (direct and os.getppid() != pid) or not _alive(pid):
-                os._exit(1)
-
-    threading.Thread(target=watch, name="gearcli-parent-watch", daemon=True).start()
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
+        return workers.dask(payloads, jobs, scheduler, fn, lost, timeout)
+    if jobs == 1:
+        return workers.serial(payloads, fn)
+    return workers.processes(payloads, jobs, fn, lost, timeout)
 
 
 # --- summary.csv -------------------------------------------------------------------------------
@@ -182,6 +149,12 @@ def read_summary(path: Path, columns: list[str]) -> dict[str, dict]:
     if not lines:
         return {}
     header = next(csv.reader([lines[0]]))
+    if header == [c for c in columns if c != "cause"]:  # before failures had a cause
+        old = [r for r in csv.DictReader(io.StringIO("".join(lines)))
+               if None not in r and all(v is not None for v in r.values())]
+        lines = [_line(columns, dict(zip(columns, columns, strict=True)))]
+        lines += [_line(columns, r) for r in old]
+        header = columns
     if header != columns:
         raise OutputError(f"{path}: written by a different study (other columns); use "
                           "--force to start over or another output folder")
@@ -208,124 +181,6 @@ def _cell(value) -> str:
     return str(value)
 
 
-# --- executors ---------------------------------------------------------------------------------
-def _serial(payloads: list[dict], jobs: int, scheduler, fn=run_point) -> Iterator[dict]:
-    _warm_up()
-    for p in payloads:
-        yield fn(p)
-
-
-def _processes(payloads: list[dict], jobs: int, scheduler, fn=run_point) -> Iterator[dict]:
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-
-    ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else None
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_warm_up,
-                               initargs=(os.getpid(),))
-    futures = [pool.submit(fn, p) for p in payloads]
-    try:
-        for fut in as_completed(futures):
-            yield fut.result()
-    except BaseException:  # Ctrl-C, SIGTERM, a closed generator: points in flight are lost
-        procs = list((getattr(pool, "_processes", None) or {}).values())  # shutdown drops them
-        pool.shutdown(wait=False, cancel_futures=True)
-        _terminate(procs)
-        raise
-    pool.shutdown(wait=True)
-
-
-def _terminate(procs: list) -> None:
-    """Stop worker processes now (the pool's shutdown alone waits for running points)."""
-    for proc in procs:
-        with contextlib.suppress(Exception):
-            proc.terminate()
-    for proc in procs:
-        with contextlib.suppress(Exception):
-            proc.join(5.0)
-
-
-def _dask(payloads: list[dict], jobs: int, scheduler: str, fn=run_point) -> Iterator[dict]:
-    try:
-        from distributed import Client, LocalCluster, as_completed
-    except ImportError:
-        raise OutputError("--scheduler needs Dask: pip install 'dask[distributed]'") from None
-    cluster = None
-    timeout = guards.NETWORK_TIMEOUT_S
-    if scheduler == "local":
-        cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
-        client = Client(cluster)
-    else:
-        probe_scheduler(scheduler, timeout)
-        client = _bounded(lambda: Client(scheduler, timeout=f"{timeout}s"), timeout * 2,
-                          f"--scheduler {scheduler}")
-    try:
-        try:
-            client.wait_for_workers(1, timeout=timeout * 3)
-        except (TimeoutError, OSError) as exc:
-            raise OutputError(f"--scheduler {scheduler}: no worker joined within "
-                              f"{3 * timeout:g} s ({exc.__class__.__name__})") from None
-        # local workers end with the sweep (a LocalCluster's nannies run in this process:
-        # they are not watched, they end with it)
-        client.run(_warm_up, os.getpid() if cluster is not None else None)
-        futures = [client.submit(fn, p, pure=False) for p in payloads]
-        for fut in as_completed(futures):
-            yield fut.result()
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
-
-
-def probe_scheduler(address: str, timeout: float) -> None:
-    """Connect to a ``tcp://host:port`` scheduler and wait for the first bytes of its Dask
-    handshake (a scheduler writes it as soon as it accepts): a peer that accepts but never
-    speaks Dask is refused after ``timeout`` instead of hanging the client forever."""
-    import socket
-    from urllib.parse import urlsplit
-
-    if not address.startswith("tcp://"):
-        return  # tls:// and others: the client's own timeouts
-    parts = urlsplit(address)
-    try:
-        with socket.create_connection((parts.hostname, parts.port), timeout=timeout) as sock:
-            sock.settimeout(timeout)
-            if not sock.recv(1):
-                raise OutputError(f"--scheduler {address}: the peer closed the connection; "
-                                  "expected a Dask scheduler")
-    except TimeoutError:
-        raise OutputError(f"--scheduler {address}: accepts connections but sent no Dask "
-                          f"handshake within {timeout:g} s; expected a Dask scheduler") from None
-    except (OSError, ValueError) as exc:
-        reason = getattr(exc, "strerror", None) or str(exc)
-        raise OutputError(f"--scheduler {address}: cannot connect ({reason})") from None
-
-
-def _bounded(make, timeout: float, what: str):
-    """``make()`` in a daemon thread, given up after ``timeout`` s (an OutputError naming
-    ``what``). A connection that hangs past its own timeouts then cannot hang the sweep."""
-    import threading
-
-    box: dict = {}
-
-    def target() -> None:
-        try:
-            box["value"] = make()
-        except BaseException as exc:  # re-raised in the caller
-            box["error"] = exc
-
-    thread = threading.Thread(target=target, name="gearcli-dask-connect", daemon=True)
-    thread.start()
-    thread.join(timeout)
-    if thread.is_alive():
-        raise OutputError(f"{what}: no Dask handshake within {timeout:g} s; expected a Dask "
-                          "scheduler")
-    if "error" in box:
-        exc = box["error"]
-        if isinstance(exc, OSError | TimeoutError | ValueError):
-            raise OutputError(f"{what}: cannot connect ({exc})") from None
-        raise exc
-    return box["value"]
 
 
 @dataclass
@@ -345,10 +200,13 @@ Progress = Callable[[int, int, int], None]  # (done, failed, total)
 def run_study(study: Study, folder: str | Path, jobs: int | None = None,
               scheduler: str | None = None, keep_timeseries: bool = False,
               force: bool = False, progress: Progress | None = None,
-              timeseries_format: str = "csv") -> SweepOutcome:
+              timeseries_format: str = "csv",
+              point_timeout: float | None = None) -> SweepOutcome:
     """Run the points of ``study`` that have no row yet; returns all rows, sorted by point.
     With ``keep_timeseries`` each point's results folder is written too, its time series as
-    ``timeseries_format`` (pipeline.outputs.TIMESERIES_FORMATS)."""
+    ``timeseries_format`` (pipeline.outputs.TIMESERIES_FORMATS). A point that failed for its
+    environment (cause ``environment``: full disk, killed worker, timeout) has no row yet.
+    ``point_timeout`` [s]: a point without a result by then fails (default: workers.py)."""
     t_start = time.perf_counter()
     if str(folder).strip() == "":
         raise OutputError("-o '': empty path; expected the name of an output folder")
@@ -388,6 +246,8 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     record_outputs(out, [SUMMARY, *(["points"] if keep_timeseries else [])], prod)
     done: dict[int, dict] = {}
     for h, rec in earlier.items():
+        if rec["status"] == "failed" and rec.get("cause") == ENVIRONMENT:
+            continue  # the disk was full, the worker killed: run it again
         for p in by_hash.get(h, []):
             done[p.index] = {**rec, "point": p.index, **_param_cells(p)}
     skipped = len(done)
@@ -404,17 +264,11 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     n_failed = sum(1 for r in done.values() if r["status"] == "failed")
     if progress:
         progress(len(done), n_failed, len(study.points))
-    jobs = jobs or os.cpu_count() or 1
-    if scheduler:
-        execute = _dask
-    elif jobs == 1 or len(payloads) <= 1:
-        execute = _serial
-    else:
-        execute = _processes
     ran = 0
     if payloads:
         with open(path, "a", encoding="utf-8") as fh:
-            for row in execute(payloads, min(jobs, len(payloads)), scheduler):
+            for row in execute(run_point, payloads, jobs, scheduler,
+                               point_timeout=point_timeout):
                 first = study.points[row["point"]]
                 ran += 1
                 same = [first] if keep_timeseries else by_hash[first.case_hash]
@@ -440,21 +294,25 @@ def _param_cells(point) -> dict:
 
 
 def _apply_checks(study: Study, row: dict) -> None:
-    if not study.checks:
-        return
+    if study.checks:
+        row["checks"] = check_verdict(study.checks, row)
+
+
+def check_verdict(checks, row: dict) -> str:
+    """The ``checks`` cell of a row: "pass", "fail: <what>", or "" for a row that is not
+    ``ok`` (no results to check). A missing or NaN metric fails its check."""
     if row["status"] != "ok":
-        row["checks"] = ""
-        return
+        return ""
     failed = []
-    for c in study.checks:
+    for c in checks:
         v = row.get(c.metric)
-        if v is None:
+        if v is None or v != v:
             failed.append(f"{c.metric} missing")
         elif c.max is not None and v > c.max:
             failed.append(f"{c.metric} {v:.6g} > {c.max:g}")
         elif c.min is not None and v < c.min:
             failed.append(f"{c.metric} {v:.6g} < {c.min:g}")
-    row["checks"] = "pass" if not failed else "fail: " + "; ".join(failed)
+    return "pass" if not failed else "fail: " + "; ".join(failed)
 
 
 def rows_as_table(rows: Iterable[dict], columns: list[str]):
@@ -463,7 +321,7 @@ def rows_as_table(rows: Iterable[dict], columns: list[str]):
 
     df = pd.DataFrame([{c: r.get(c) for c in columns} for r in rows], columns=columns)
     for c in df.columns:
-        if c not in ("status", "error", "warnings", "case_hash", "checks"):
+        if c not in ("status", "error", "cause", "warnings", "case_hash", "checks"):
             try:  # pandas 3 dropped errors="ignore": a column of text stays text
                 df[c] = pd.to_numeric(df[c].replace("", None))
             except (ValueError, TypeError):

@@ -48,13 +48,14 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from gearcli import guards, units
 from gearcli.case.keypaths import field_at
 from gearcli.case.load import data_loc, validate_source
-from gearcli.case.overrides import apply_overrides, check_path
+from gearcli.case.overrides import apply_overrides, check_path, text_name
 from gearcli.case.schema import Case
 from gearcli.case.types import checked_quantity
 from gearcli.case.yamlsrc import Source, parse_source, read_source
 from gearcli.errors import CaseError
 from gearcli.pipeline.sweep.design import (
     MESH_FREQUENCY,
+    SPEED_CURVE_METRICS,
     Parameter,
     check_design,
     design_points,
@@ -146,7 +147,7 @@ class Study:
 def load_study(path: str | Path, allow_large: bool = False) -> Study:
     """Read, validate and resolve a study file; every input problem is a located CaseError."""
     src = read_source(path)
-    return _build(src, Path(path).resolve().parent, Path(path).stem, allow_large)
+    return _build(src, Path(path).resolve().parent, text_name(Path(path).stem), allow_large)
 
 
 def load_study_text(text: str, name: str = "<study>", folder: str | Path = ".",
@@ -207,18 +208,21 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
 
 
 def _check_metrics(src: Source, spec: StudyFile) -> None:
-    """Kept metrics and the metrics of checks must exist (and checks must be kept)."""
-    from gearcli.pipeline.sweep.metrics import METRICS
+    """Kept metrics and the metrics of checks must exist (and checks must be kept); a speed
+    curve's are what each of its levels measures (pipeline/speed_curve.py)."""
+    from gearcli.pipeline.sweep.metrics import METRICS as POINT_METRICS
 
+    known = SPEED_CURVE_METRICS if spec.design == "speed_curve" else POINT_METRICS
+    which = "a speed curve measures: " if spec.design == "speed_curve" else ""
     for k, m in enumerate(spec.metrics or ()):
-        if m not in METRICS:
-            raise src.error(("metrics", k), f"unknown metric '{m}'; expected one of: "
-                            + ", ".join(METRICS))
-    kept = spec.metrics or METRICS
+        if m not in known:
+            raise src.error(("metrics", k), f"unknown metric '{m}'; expected one of "
+                            f"({which or 'the metrics of a point'}): " + ", ".join(known))
+    kept = spec.metrics or known
     for k, c in enumerate(spec.checks):
-        if c.metric not in METRICS:
+        if c.metric not in known:
             raise src.error(("checks", k, "metric"), f"unknown metric '{c.metric}'; expected "
-                            "one of: " + ", ".join(METRICS))
+                            f"one of ({which or 'the metrics of a point'}): " + ", ".join(known))
         if c.metric not in kept:
             raise src.error(("checks", k, "metric"), f"'{c.metric}' is not among the study's "
                             "metrics; add it to 'metrics' or drop the check")

@@ -22,6 +22,7 @@ import numpy as np
 from gearcli.io.files import record_outputs, save_figure, write_atomic
 from gearcli.pipeline.sweep.design import MESH_FREQUENCY
 from gearcli.pipeline.sweep.study import Study
+from gearcli.plotting.text import plain
 from gearcli.results import sweep_metrics
 
 #: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results/).
@@ -149,7 +150,7 @@ def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Pat
     columns = summary_columns(study)
     df = pd.DataFrame([{c: r.get(c) for c in columns} for r in rows], columns=columns)
     for c in df.columns:
-        if c not in ("status", "error", "warnings", "case_hash", "checks"):
+        if c not in ("status", "error", "cause", "warnings", "case_hash", "checks"):
             df[c] = pd.to_numeric(df[c], errors="coerce")
     trends = trend_rows(df, study)
     tdf = pd.DataFrame(trends, columns=list(TREND_COLUMNS))
@@ -219,13 +220,13 @@ def _plots(out: Path, study: Study, df) -> list[Path]:
         for ax, m in zip(axes.flat, TREND_METRICS, strict=True):
             lines = _trend_lines(df, study, p, m)
             for label, x, y in lines:
-                ax.plot(x, y, "o-", ms=3, label=label or None)
+                ax.plot(x, y, "o-", ms=3, label=plain(label) if label else None)
             if any(label for label, _, _ in lines):
                 ax.legend(fontsize=7)
             ax.set_xlabel(p.column)
             ax.set_ylabel(m)
             ax.grid(alpha=0.3)
-        fig.suptitle(f"{study.name}: effect of {p.column}")
+        fig.suptitle(plain(f"{study.name}: effect of {p.column}"))
         path = out / f"trend_{_slug(p.column)}.png"
         save_figure(fig, path, 100, path.parent)
         paths.append(path)
@@ -293,7 +294,7 @@ def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N8
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
-    fig.suptitle(f"{study.name}: speed sweep")
+    fig.suptitle(plain(f"{study.name}: speed sweep"))
     path = out / "speed_sweep.png"
     save_figure(fig, path, 100, path.parent)
     return path

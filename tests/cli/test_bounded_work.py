@@ -1,0 +1,84 @@
+"""Issue 32: drawing and analysis sizes are limited up front. `geometry --plot` took 180 s at
+3000 teeth; a 29 MB Parquet time series that decodes to 51 GB took `analyze` past 3 GB."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from gearcli.cli import app
+from gearcli.plotting.geometry import MAX_DRAWN_TEETH
+from tests.conftest import ROOT
+
+runner = CliRunner()
+SEED = str(ROOT / "cases" / "seed.yaml")
+
+
+def test_plot_of_too_many_teeth_is_refused_before_drawing(tmp_path):
+    fig = tmp_path / "g.png"
+    t0 = time.perf_counter()
+    r = runner.invoke(app, ["geometry", SEED, "--set", "gears.gear.teeth=3000",
+                            "--set", "gears.pinion.teeth=3000", "--plot", str(fig)])
+    elapsed = time.perf_counter() - t0
+    assert r.exit_code == 1, r.output
+    assert f"at most {MAX_DRAWN_TEETH} teeth" in r.stderr and "z2 = 3000" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert not fig.exists()
+    assert elapsed < 60  # refused, not drawn (180 s before); a loose bound on a loaded machine
+
+
+def test_plot_at_the_limit_is_drawn(tmp_path, monkeypatch):
+    # the check itself, at the limit (drawing 500 teeth takes seconds: a smaller pair with the
+    # limit lowered stands for it)
+    import gearcli.plotting.geometry as geo
+
+    monkeypatch.setattr(geo, "MAX_DRAWN_TEETH", 25)
+    fig = tmp_path / "g.png"
+    assert runner.invoke(app, ["geometry", SEED, "--plot", str(fig)]).exit_code == 0
+    r = runner.invoke(app, ["geometry", SEED, "--set", "gears.gear.teeth=26", "--plot",
+                            str(tmp_path / "h.png")])
+    assert r.exit_code == 1 and "z2 = 26" in r.stderr and "z1" not in r.stderr
+
+
+@pytest.fixture(scope="module")
+def parquet_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("pq") / "run"
+    r = runner.invoke(app, ["simulate", SEED, "-o", str(out), "-q", "--format", "parquet",
+                            "--set", "run.end_time=0.3"])
+    assert r.exit_code == 0, r.output
+    return out
+
+
+def test_a_parquet_series_above_the_bound_is_refused_from_its_metadata(parquet_run,
+                                                                       monkeypatch):
+    import gearcli.io.results as results
+    import gearcli.io.tables as tables
+
+    decoded = []
+    monkeypatch.setattr(tables, "parquet_to_columns", lambda p: decoded.append(p))
+    monkeypatch.setattr(results, "MAX_PARQUET_VALUES", 1000)
+    r = runner.invoke(app, ["analyze", str(parquet_run)])
+    assert r.exit_code == 1, r.output
+    assert "values; expected at most 1,000" in r.stderr
+    assert decoded == []  # refused before any decoding
+
+
+def test_a_parquet_series_with_more_rows_than_its_summary_is_refused(parquet_run, tmp_path):
+    import shutil
+
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    copy = tmp_path / "run"
+    shutil.copytree(parquet_run, copy)
+    path = copy / "timeseries.parquet"
+    table = pq.read_table(path)
+    n = 10 * table.num_rows  # a file that decodes to more than summary.json says
+    pq.write_table(pa.table({c: np.zeros(n) for c in table.column_names}), path,
+                   compression="zstd")
+    r = runner.invoke(app, ["analyze", str(copy)])
+    assert r.exit_code == 1, r.output
+    assert "but summary.json says" in r.stderr
