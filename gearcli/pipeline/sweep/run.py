@@ -12,7 +12,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import io
 import os
@@ -25,8 +24,8 @@ from gearcli import guards
 from gearcli.errors import GearcliError, OutputError
 from gearcli.io.files import record_outputs, write_atomic
 from gearcli.io.owner import check_producer
-from gearcli.pipeline.sweep.folder import SUMMARY, claim_folder
 from gearcli.pipeline.sweep import workers
+from gearcli.pipeline.sweep.folder import SUMMARY, claim_folder
 from gearcli.pipeline.sweep.metrics import METRICS
 from gearcli.pipeline.sweep.study import Study
 from gearcli.pipeline.sweep.workers import (
