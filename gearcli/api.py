@@ -427,8 +427,11 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     -------
     pandas.DataFrame
         ``attrs`` holds the outcome: ``kind`` ("sweep" or "speed_curve"), for a sweep
-        ``total``, ``ran``, ``skipped``, ``failed``, ``wall_time_s``; for a speed curve
-        ``errors`` (a direction whose solver failed).
+        ``total``, ``ran``, ``skipped``, ``failed``, ``wall_time_s`` and ``labels`` (a
+        study with ``dataset:``: the labels table's rows, a list of dicts, also written to
+        labels.csv/.parquet, every point's
+        signals kept as Parquet — docs/theory.md "Fault datasets"; else None); for a speed
+        curve ``errors`` (a direction whose solver failed).
     """
     import contextlib
 
@@ -461,11 +464,17 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
             return df
         from gearcli.pipeline.sweep.trends import write_trends
 
+        if spec.dataset is not None:  # every point's signals as Parquet (pipeline/dataset.py)
+            keep_timeseries, timeseries_format = True, "parquet"
         outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
                             timeseries_format=timeseries_format)
         write_trends(Path(out), spec, outcome.rows)
         df = rows_as_table(outcome.rows, summary_columns(spec))
         df.attrs.update(kind="sweep", total=outcome.total, ran=outcome.ran,
                         skipped=outcome.skipped, failed=outcome.failed,
-                        wall_time_s=outcome.wall_time_s)
+                        wall_time_s=outcome.wall_time_s, labels=None)
+        if spec.dataset is not None:
+            from gearcli.pipeline.dataset import write_dataset
+
+            df.attrs["labels"] = write_dataset(Path(out), outcome.rows, spec.dataset.signal)
         return df

@@ -15,6 +15,7 @@ A study file (YAML)::
     samples: 50                   # lhs only: number of points
     seed: 1                       # lhs only
     metrics: [force_max_N, dynamic_factor]  # optional: columns kept (default: all)
+    dataset: {signal: accel_m_s2} # optional: a labelled dataset (pipeline/dataset.py)
     checks:                       # optional: per-point limits, reported in the summary
       - {metric: dynamic_factor, max: 2.0}
 
@@ -102,6 +103,22 @@ class Check(_Strict):
     max: float | None = None
 
 
+class DatasetSpec(_Strict):
+    """``dataset:``: the study is a labelled dataset (docs/theory.md, "Fault datasets"): each
+    point's signals kept as Parquet, one labels table with the monitoring metrics of
+    ``signal`` (a sensors-table column, or "te")."""
+
+    signal: str = "accel_m_s2"
+
+    @model_validator(mode="after")
+    def _known_signal(self):
+        from gearcli.pipeline.monitor import SIGNALS
+
+        if self.signal not in SIGNALS:
+            raise ValueError(f"signal {self.signal!r}: expected one of {', '.join(SIGNALS)}")
+        return self
+
+
 class StudyFile(_Strict):
     name: str | None = None
     description: str | None = None
@@ -113,6 +130,7 @@ class StudyFile(_Strict):
     parameters: dict[str, list[Any] | Range] = Field(min_length=1)
     metrics: list[str] | None = Field(None, min_length=1)
     checks: list[Check] = Field(default_factory=list)
+    dataset: DatasetSpec | None = None
 
 
 @dataclass
@@ -137,6 +155,7 @@ class Study:
     checks: list[Check]
     base_case_json: str
     base_values: dict[str, Any] = field(default_factory=dict)
+    dataset: DatasetSpec | None = None
 
     @property
     def parameter_columns(self) -> list[str]:
@@ -191,6 +210,9 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         raise src.error(where, f"the {spec.design} has {size} points "
                         f"(> {MAX_POINTS}); pass --yes to run it")
     _check_metrics(src, spec)
+    if spec.dataset is not None and spec.design == "speed_curve":
+        raise src.error(("dataset",), "a speed_curve runs one simulation per direction; "
+                        "expected design grid, zip, lhs or one_at_a_time for a dataset")
     combos = design_points(spec, params)
     base_values = {p.column: _base_value(base_src.data, p) for p in params}
     points = []
@@ -203,7 +225,7 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         points.append(_resolve(src, base_src, i, values, overrides, stem))
     metrics = spec.metrics
     return Study(spec.name or stem, src.file, spec.design, params, points, metrics, spec.checks,
-                 _canonical(base), base_values)
+                 _canonical(base), base_values, spec.dataset)
 
 
 def _check_metrics(src: Source, spec: StudyFile) -> None:
