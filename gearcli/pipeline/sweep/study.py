@@ -21,7 +21,9 @@ A study file (YAML)::
 
 Values with units are passed to the case as strings ("9.5 mm"); ranges keep the unit of their
 first end. ``mesh_frequency`` is not a case key: it sets the final value of the drive-speed ramp
-(``drive.speed``) so that the gear-mesh frequency f_z = z1 n1 takes the given value.
+(``drive.speed`` written as "STEP(time, ...)" or as ``{function: "STEP(time, ...)", unit: ...}``,
+kept in its unit; any other drive speed becomes that constant speed) so that the gear-mesh
+frequency f_z = z1 n1 takes the given value.
 
 ``design: speed_curve`` takes the one parameter ``mesh_frequency`` (2 to 40 values) and runs the
 speeds up and then down, each speed starting from the previous one's state
@@ -436,9 +438,24 @@ def _speed_override(src: Source, data: dict, overrides: list, value) -> str:
                         "which a torque drive does not prescribe: expected a base case with "
                         "drive type 'speed' or 'shaft'")
     speed = data.get("drive", {}).get("speed")
-    m = _RAMP.match(speed) if isinstance(speed, str) else None
-    if m:
-        name, t0, h0, t1, _ = m.groups()
-        return (f"drive.speed={name}(time,{t0.strip()},{h0.strip()},{t1.strip()},"
-                f"{n1_deg_s:.12g})")
-    return f"drive.speed={n1_deg_s:.12g} deg/s"
+    ramp = _ramp_to(speed, n1_deg_s, data.get("units"))
+    return f"drive.speed={ramp}" if ramp else f"drive.speed={n1_deg_s:.12g} deg/s"
+
+
+def _ramp_to(speed, n1_deg_s: float, system) -> str:
+    """``speed`` (a case's drive.speed: "STEP(time, t0, h0, t1, h1)" or ``{function: ...,
+    unit: ...}``) ramping to ``n1_deg_s`` [deg/s] instead of h1, in the form and unit it was
+    written in (a mapping's ``unit``, else the unit of the case's bare numbers: its ``units:``
+    system); "" when it is not such a ramp."""
+    expression, unit = (speed.get("function"), speed.get("unit")) if isinstance(speed, dict) \
+        else (speed, None)
+    m = _RAMP.match(expression) if isinstance(expression, str) else None
+    if m is None:
+        return ""
+    dim = units.ANGULAR_VELOCITY
+    own = units.in_system(dim, system if system in units.UNIT_SYSTEMS else None)
+    n1 = units.parse_quantity(f"{n1_deg_s!r} deg/s", dim) / units.unit_factor(
+        str(unit or own.default), dim)
+    name, t0, h0, t1, _ = m.groups()
+    text = f"{name}(time,{t0.strip()},{h0.strip()},{t1.strip()},{n1:.12g})"
+    return json.dumps({"function": text, "unit": unit}) if unit else text
