@@ -442,19 +442,14 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     -------
     pandas.DataFrame
         ``attrs`` holds the outcome: ``kind`` ("sweep" or "speed_curve"), for a sweep
-        ``total``, ``ran``, ``skipped``, ``failed``, ``wall_time_s``; for a speed curve
-        ``errors`` (a direction whose solver failed).
+        ``total``, ``ran``, ``skipped``, ``failed``, ``wall_time_s`` and ``labels`` (a
+        study with ``dataset:``: the labels table's rows, a list of dicts, also written to
+        labels.csv/.parquet, every point's
+        signals kept as Parquet — docs/theory.md "Fault datasets"; else None); for a speed
+        curve ``errors`` (a direction whose solver failed).
     """
-    import contextlib
-
-    import pandas as pd
-
-    from gearcli.pipeline.sweep.run import (
-        check_timeseries_format,
-        rows_as_table,
-        run_study,
-        summary_columns,
-    )
+    from gearcli.pipeline.sweep.frame import study_frame
+    from gearcli.pipeline.sweep.run import check_timeseries_format
     from gearcli.pipeline.sweep.study import Study, load_study
     from gearcli.pipeline.sweep.workers import check_scheduler
 
@@ -471,31 +466,8 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
         flag_argument(value, what)
     folder_argument(out, "out")
     check_scheduler(scheduler)
-    check_timeseries_format(timeseries_format, keep_timeseries)
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
-    with contextlib.ExitStack() as stack:
-        if out is None:
-            out = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="gearcli-"))) / "s"
-        if spec.design == "speed_curve":
-            from gearcli.io.outdir import check_target
-            from gearcli.pipeline.speed_curve import run_speed_curve, write_speed_curve
-
-            check_target(out, force)  # before the runs, not after
-            curve = run_speed_curve(spec, jobs, scheduler, point_timeout=point_timeout)
-            write_speed_curve(curve, out, force)
-            df = pd.DataFrame(curve.table(), columns=curve.columns)
-            df.attrs.update(kind="speed_curve", errors=list(curve.errors),
-                            notes=list(curve.notes))
-            return df
-        from gearcli.pipeline.sweep.trends import write_trends
-
-        outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
-                            timeseries_format=timeseries_format,
-                            point_timeout=point_timeout)
-        write_trends(Path(out), spec, outcome.rows)
-        df = rows_as_table(outcome.rows, summary_columns(spec))
-        df.attrs.update(kind="sweep", total=outcome.total, ran=outcome.ran,
-                        skipped=outcome.skipped, failed=outcome.failed,
-                        wall_time_s=outcome.wall_time_s)
-        return df
+    check_timeseries_format(timeseries_format, keep_timeseries or spec.dataset is not None)
+    return study_frame(spec, out, jobs, scheduler, force, keep_timeseries, timeseries_format,
+                       progress, point_timeout)
 

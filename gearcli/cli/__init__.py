@@ -11,8 +11,7 @@ from __future__ import annotations
 # registration is the order of `gearcli --help`: the workflow first.
 # isort: off
 from gearcli.cli import (  # noqa: F401
-    geometry, simulate, analyze, report, stress, rate, modal, mesh, sweep, monitor, dataset,
-    casefile,
+    geometry, simulate, analyze, report, stress, rate, modal, mesh, sweep, monitor, casefile,
 )
 # isort: on
 from gearcli.cli.app import app

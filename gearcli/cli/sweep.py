@@ -45,7 +45,8 @@ def sweep(
     scheduler: str = typer.Option(None, "--scheduler", callback=_check_scheduler,
                                   help="Dask: 'local' (embedded LocalCluster) or tcp://host:port."),
     keep_timeseries: bool = typer.Option(False, "--keep-timeseries",
-                                         help="Also write each point's results folder."),
+                                         help="Also write each point's results folder (always for "
+                                         "a study with dataset:)."),
     fmt: str = typer.Option("csv", "--format",
                             help="Kept time series as 'csv' or 'parquet' (full precision, "
                                  "compressed)."),
@@ -61,16 +62,22 @@ def sweep(
     """Run every point of STUDY (resumable: points already in DIR/summary.csv are skipped);
     failed points are recorded, never abort the study.
 
+    A study with ``dataset: {signal: NAME}`` is a labelled dataset: every point's signals
+    (time series and sensors table) kept as Parquet in DIR/points/, and labels.csv/.parquet with
+    each point's fault, speed, load, noise seed and the monitoring metrics of NAME
+    (docs/theory.md, "Fault datasets").
+
     Exit codes: 0 ok, 4 a point failed the study's checks or could not be run, 1 bad input.
 
-    Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2
+    Example: gearcli sweep cases/studies/speed_curve.yaml -o out/speed_curve -j 2;
+    gearcli sweep cases/studies/fault_dataset.yaml -o out/faults -j 2
     """
     from gearcli import api
     from gearcli.pipeline.sweep.run import check_timeseries_format
     from gearcli.pipeline.sweep.study import load_study
 
-    check_timeseries_format(fmt, keep_timeseries)
     spec = load_study(study, allow_large=yes)
+    check_timeseries_format(fmt, keep_timeseries or spec.dataset is not None)  # a dataset keeps
     if spec.design == "speed_curve":
         from gearcli.io.outdir import check_target
 
@@ -106,6 +113,11 @@ def sweep(
         typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
                    f"{a['failed']} failed, {invalid} outside the model's validity{checked} "
                    f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
+        if a["labels"] is not None:
+            kinds = sorted({r.get("fault_kind", "") for r in a["labels"]})
+            typer.echo(f"dataset: fault kinds {', '.join(kinds)}; each point's signals "
+                       f"(Parquet) in {out}/points/, labels in {out}/labels.csv and "
+                       "labels.parquet")
     _raise_if_checks_failed(df, out)
     _raise_if_points_failed(df, out)
 

@@ -1,9 +1,11 @@
-"""`gearcli dataset STUDY -o DIR`: a labelled fault dataset (docs/theory.md, "Fault datasets").
+"""A labelled fault dataset: `gearcli sweep` of a study file with ``dataset:`` (docs/theory.md,
+"Fault datasets").
 
-A study file of `gearcli sweep` (any design; typically a grid crossing ``faults`` — whole
-fault lists as values — with speed, load and ``sensors.noise.seed``) is run on the sweep's
-machinery (serial, worker processes or Dask: pipeline/sweep/run.run_study) keeping every point's
-results folder with its time series and sensors table as Parquet (``points/NNNNN/``). Then one
+A study file with a top-level ``dataset: {signal: ...}`` (any design but speed_curve; typically
+a grid crossing ``faults`` — whole fault lists as values — with speed, load and
+``sensors.noise.seed``) is run on the sweep's machinery (serial, worker processes or Dask:
+pipeline/sweep/run.run_study, called by api.sweep) keeping every point's results folder with its
+time series and sensors table as Parquet (``points/NNNNN/``). Then one
 labels table (``labels.csv`` and ``labels.parquet``) gets a row per point: where its signals
 are, its labels read from its resolved case (fault kind, gear, tooth, size; pinion speed, load,
 noise seed and SNR) and the condition-monitoring metrics of its TSA per shaft (`gearcli
@@ -112,20 +114,10 @@ def write_labels(out: Path, table: list[dict]) -> tuple[Path, Path]:
     return csv_path, parquet_path
 
 
-def run_dataset(study_path: str | Path, out: str | Path, jobs: int | None = None,
-                scheduler: str | None = None, force: bool = False, signal: str = "accel_m_s2",
-                allow_large: bool = False, progress=None):
-    """Run the study keeping every point's signals as Parquet, then write the labels table;
-    returns (the sweep's outcome, the labels rows)."""
-    from gearcli.pipeline.sweep.run import run_study
-    from gearcli.pipeline.sweep.study import load_study
-
-    study = load_study(study_path, allow_large=allow_large)
-    if study.design == "speed_curve":
-        raise GearcliError(f"{study_path}: design speed_curve runs one simulation per "
-                           "direction; expected grid, zip, lhs or one_at_a_time for a dataset")
-    outcome = run_study(study, out, jobs, scheduler, keep_timeseries=True, force=force,
-                        progress=progress, timeseries_format="parquet")
-    table = labels_table(Path(out), outcome.rows, signal)
+def write_dataset(out: Path, rows: list[dict], signal: str) -> list[dict]:
+    """The labels table of a dataset study's finished sweep (its summary rows, every point's
+    folder kept with Parquet signals) in ``out``: labels.csv and labels.parquet; returns its
+    rows."""
+    table = labels_table(Path(out), rows, signal)
     write_labels(Path(out), table)
-    return outcome, table
+    return table

@@ -181,10 +181,18 @@ def write_monitor(doc: MonitorDocument, folder: str | Path, force: bool) -> Path
     return Path(folder)
 
 
+def report_signal(case: dict) -> str:
+    """The signal of a run's monitoring section (its resolved case as a dict): the housing
+    accelerometer ("accel_m_s2") when the case has one, else the TE from the shaft angles."""
+    return "accel_m_s2" if (case.get("sensors") or {}).get("accelerometer") else "te"
+
+
 def write_run_monitor(folder: str | Path) -> str:
-    """monitor.json (of the TE, :func:`monitor`) into a results folder whose case has
-    ``faults:``, for the report's "Condition monitoring" section; returns "" when written or
-    not needed, else why it was not (a window shorter than a revolution of a shaft)."""
+    """monitor.json (:func:`monitor`) into a results folder whose case has ``faults:``, for the
+    report's "Condition monitoring" section: of the housing accelerometer when the case has
+    ``sensors.accelerometer`` (what a rig would record), else of the encoder TE; returns ""
+    when written or not needed, else why it was not (a window shorter than a revolution of a
+    shaft)."""
     import json
 
     from gearcli.io.files import write_atomic
@@ -193,10 +201,11 @@ def write_run_monitor(folder: str | Path) -> str:
         run = read_run(folder)
     except ResultsError:
         return ""  # not a results folder: the report says so in its own words
-    if not run.manifest.get("resolved_case", {}).get("faults"):
+    case = run.manifest.get("resolved_case", {})
+    if not case.get("faults"):
         return ""
     try:
-        doc = monitor(folder)
+        doc = monitor(folder, signal=report_signal(case))
         write_atomic(Path(folder) / "monitor.json", json.dumps(doc.to_dict(), indent=2) + "\n")
     except (GearcliError, OSError) as exc:  # a window too short; a folder we cannot write
         return str(exc).splitlines()[0]

@@ -1,8 +1,9 @@
 """The report's "Condition monitoring" section (docs/theory.md, "Condition-monitoring
 signals"), when the results folder holds monitor.json (written by `gearcli run` and `gearcli
-report` for a case with ``faults:``, pipeline/monitor.write_run_monitor): each shaft's metrics,
-its order spectrum around the mesh harmonics with the shaft-order sidebands, and the figures of
-`gearcli monitor --orders/--teeth`."""
+report` for a case with ``faults:``, pipeline/monitor.write_run_monitor; of the housing
+accelerometer when the case has ``sensors.accelerometer``, else of the encoder TE): each
+shaft's metrics, its order spectrum around the mesh harmonics with the shaft-order sidebands,
+and the figures of `gearcli monitor --orders/--teeth`."""
 
 from __future__ import annotations
 
@@ -78,6 +79,13 @@ def _last_number(document: Document, kind: type) -> int:
                default=0)
 
 
+def _why(doc: MonitorDocument) -> str:
+    """Why the section shows this signal (pipeline/monitor.report_signal's choice)."""
+    if "accelerometer" in doc.signal:
+        return "the case's sensors.accelerometer, what a rig would record"
+    return "the signal of a case without sensors.accelerometer"
+
+
 def add_monitoring(document: Document, data: ReportData, out_dir: Path, svg: bool) -> None:
     """Insert the "Condition monitoring" section after "Figures" when the folder has
     monitor.json; otherwise leave ``document`` as it is."""
@@ -90,9 +98,9 @@ def add_monitoring(document: Document, data: ReportData, out_dir: Path, svg: boo
     t0, f0 = _last_number(document, NumberedTable), _last_number(document, NumberedFigure)
     faults = [f"{s.shaft} tooth {k}" for s in doc.shafts for k in s.faulted_teeth]
     blocks = [Paragraph(
-        f"Faulted: {', '.join(faults) or 'none'}. Signal: {doc.signal} [{doc.signal_unit}], "
-        "time-synchronously averaged per shaft over the whole revolutions of the steady window "
-        "(docs/theory.md, Condition-monitoring signals; `gearcli monitor`)."),
+        f"Faulted: {', '.join(faults) or 'none'}. Signal: {doc.signal} [{doc.signal_unit}] "
+        f"({_why(doc)}), time-synchronously averaged per shaft over the whole revolutions of "
+        "the steady window (docs/theory.md, Condition-monitoring signals; `gearcli monitor`)."),
         NumberedTable(t0 + 1, _metrics_table(doc)), NumberedTable(t0 + 2, _sideband_table(doc))]
     blocks += [NumberedFigure(f0 + k, f) for k, f in
                enumerate(_figures(doc, out_dir, svg), start=1)]

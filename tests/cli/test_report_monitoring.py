@@ -42,3 +42,18 @@ def test_healthy_run_report_has_none(tmp_path):
     assert "Condition monitoring" not in text
     assert not (tmp_path / "healthy" / "monitor.json").exists()
     assert not (tmp_path / "healthy" / "figures" / "monitor_orders.png").exists()
+
+
+def test_report_monitors_the_accelerometer_when_the_case_has_one(tmp_path):
+    """With sensors.accelerometer the section is of the housing accelerometer [m/s^2] (what a
+    rig records), not of the TE; without it, of the TE [mm] (test above)."""
+    import json
+
+    sensors = "sensors={accelerometer: {housing: [{frequency: 3 kHz, modal_mass: 2 kg}]}}"
+    text = _run(tmp_path / "accel", CRACK, sensors)
+    assert r"Signal: housing accelerometer (sensors) \[m/s^2\] (the case's " \
+        "sensors.accelerometer" in text
+    doc = json.loads((tmp_path / "accel" / "monitor.json").read_text())
+    assert doc["signal_unit"] == "m/s^2"
+    te = _run(tmp_path / "te", CRACK)
+    assert "Signal: transmission error" in te and r"\[mm\] (the signal of a case without" in te

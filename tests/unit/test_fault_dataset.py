@@ -1,7 +1,7 @@
-"""`gearcli dataset` (pipeline/dataset.py; docs/theory.md "Fault datasets"): a study crossing
-fault kind and size with noise seeds runs on the sweep machinery, keeps each point's signals as
-Parquet and writes one labels table with the labels from each point's resolved case and its
-monitoring metrics.
+"""`gearcli sweep` of a study with ``dataset:`` (pipeline/dataset.py; docs/theory.md "Fault
+datasets"): a study crossing fault kind and size with noise seeds runs on the sweep machinery,
+keeps each point's signals as Parquet and writes one labels table with the labels from each
+point's resolved case and its monitoring metrics.
 
 Case: cases/iso_pair.yaml, 0.3 s (pinion: 2 revolutions in the steady window)."""
 
@@ -23,6 +23,7 @@ set:
   sensors: {{accelerometer: {{housing: [{{frequency: 3 kHz, modal_mass: 2 kg}}]}},
             noise: {{seed: 0}}}}
 design: grid
+dataset: {{signal: te}}
 parameters:
   faults:
     - []
@@ -36,9 +37,9 @@ def test_dataset_writes_signals_and_labels(tmp_path):
     study = tmp_path / "study.yaml"
     study.write_text(STUDY)
     out = tmp_path / "ds"
-    res = CliRunner().invoke(app, ["dataset", str(study), "-o", str(out), "-j", "1",
-                                   "--signal", "te"])
+    res = CliRunner().invoke(app, ["sweep", str(study), "-o", str(out), "-j", "1"])
     assert res.exit_code == 0, res.output
+    assert "labels in" in res.output
     labels = pd.read_parquet(out / "labels.parquet")
     assert list(labels["point"]) == [0, 1, 2]
     assert list(labels["status"]) == ["ok"] * 3
@@ -57,3 +58,29 @@ def test_dataset_writes_signals_and_labels(tmp_path):
     assert labels.loc[2, "pinion_fm4"] == labels.loc[0, "pinion_fm4"]  # bit for bit healthy
     csv = pd.read_csv(out / "labels.csv")
     assert list(csv.columns) == list(labels.columns) and len(csv) == 3
+
+
+def test_dataset_key_is_checked_where_it_is_written(tmp_path):
+    """An unknown signal and a speed_curve dataset are located errors of the study file."""
+    import pytest
+
+    from gearcli.errors import CaseError
+    from gearcli.pipeline.sweep.study import load_study, load_study_text
+
+    assert load_study(ROOT / "cases" / "studies" / "fault_dataset.yaml").dataset.signal \
+        == "accel_m_s2"
+    bad = STUDY.replace("dataset: {signal: te}", "dataset: {signal: tee}")
+    with pytest.raises(CaseError, match="signal 'tee': expected one of te, ") as exc:
+        load_study_text(bad, str(tmp_path / "s.yaml"))
+    assert exc.value.line == 9  # the dataset: line
+    curve = f"""
+base: {ROOT / "cases" / "iso_pair.yaml"}
+design: speed_curve
+dataset: {{}}
+parameters:
+  mesh_frequency: ["300 Hz", "400 Hz"]
+"""
+    with pytest.raises(CaseError, match="a speed_curve runs one simulation per direction") \
+            as exc:
+        load_study_text(curve, str(tmp_path / "c.yaml"))
+    assert exc.value.line == 4

@@ -1,9 +1,14 @@
 """Study files: designs, units, the virtual mesh_frequency parameter, and every bad input."""
 
+import json
+import math
+
 import pytest
 
+from gearcli.case.schema import Case
 from gearcli.errors import CaseError
 from gearcli.pipeline.sweep.study import MAX_POINTS, load_study
+from tests.conftest import ROOT
 from tests.unit.sweep_helpers import write_study
 
 
@@ -143,3 +148,42 @@ def test_other_bad_inputs(tmp_path):
     assert "needs 'num'" in _error(tmp_path, "parameters:\n  gears.module: {linspace: [9, 11]}\n")
     assert "one length" in _error(tmp_path, "design: zip\nparameters:\n  gears.module: [9, 11]\n"
                                   "  gears.face_width: [80]\n")
+
+
+@pytest.mark.parametrize("speed, unit, final", [
+    ('{function: "STEP(time, 0, 0, 0.1, 3000)", unit: deg/s}', "deg/s", "3600"),
+    ('{function: "STEP5(time, 0, 0, 0.1, 50)", unit: rad/s}', "rad/s", "62.8318530718"),
+    ('{function: "RAMP(time, 0, 0, 0.1, 500)", unit: rpm}', "rpm", "600"),
+])
+def test_mesh_frequency_keeps_a_mapping_ramp(tmp_path, speed, unit, final):
+    """A drive speed written as {function: STEP(...), unit: ...} keeps its ramp, in its unit
+    (it became a constant speed: the ramp was lost); 170 Hz with 17 teeth = 10 rev/s."""
+    path = write_study(tmp_path, "parameters:\n  mesh_frequency: [\"170 Hz\"]\n")
+    path.write_text(path.read_text().replace("drive.speed: STEP(time, 0, 0, 0.1, 3000)",
+                                             f"drive.speed: {speed}"))
+    s = load_study(path)
+    name = speed.split('"')[1].split("(")[0]
+    assert s.points[0].overrides[0] == json.dumps(
+        {"function": f"{name}(time,0,0,0.1,{final})", "unit": unit}).join(["drive.speed=", ""])
+    drive = json.loads(s.points[0].case_json)["drive"]["speed"]
+    assert drive["function"].startswith(name)  # a ramp, not a constant
+    rad_s = Case.model_validate(json.loads(s.points[0].case_json)).drive.speed.pp
+    assert rad_s(0.0) == 0.0
+    assert rad_s(0.3) == pytest.approx(20.0 * math.pi, rel=1e-11)  # 10 rev/s, 12 digits kept
+
+
+def test_mesh_frequency_ramp_in_a_declared_unit_system(tmp_path):
+    """A bare "STEP(...)" in a case declaring ``units:`` is in that system's unit of angular
+    velocity: the ramp's final value is written in it (it was written in deg/s, so 90 Hz of
+    the 18-tooth sun became 1800 rpm, six times the speed)."""
+    path = tmp_path / "study.yaml"
+    path.write_text(f"""base: {ROOT / "cases" / "nrel5mw_sun_planet.yaml"}
+set:
+  drive.speed: STEP(time, 0, 0, 0.2, 246)
+parameters:
+  mesh_frequency: ["90 Hz"]
+""")
+    s = load_study(path)
+    assert s.points[0].overrides[0] == "drive.speed=STEP(time,0,0,0.2,300)"  # rpm: 5 rev/s
+    rad_s = Case.model_validate(json.loads(s.points[0].case_json)).drive.speed.pp
+    assert rad_s(0.5) == pytest.approx(10.0 * math.pi, rel=1e-11)

@@ -15,12 +15,15 @@ A study file (YAML)::
     samples: 50                   # lhs only: number of points
     seed: 1                       # lhs only
     metrics: [force_max_N, dynamic_factor]  # optional: columns kept (default: all)
+    dataset: {signal: accel_m_s2} # optional: a labelled dataset (pipeline/dataset.py)
     checks:                       # optional: per-point limits, reported in the summary
       - {metric: dynamic_factor, max: 2.0}
 
 Values with units are passed to the case as strings ("9.5 mm"); ranges keep the unit of their
 first end. ``mesh_frequency`` is not a case key: it sets the final value of the drive-speed ramp
-(``drive.speed``) so that the gear-mesh frequency f_z = z1 n1 takes the given value.
+(``drive.speed`` written as "STEP(time, ...)" or as ``{function: "STEP(time, ...)", unit: ...}``,
+kept in its unit; any other drive speed becomes that constant speed) so that the gear-mesh
+frequency f_z = z1 n1 takes the given value.
 
 ``design: speed_curve`` takes the one parameter ``mesh_frequency`` (2 to 40 values) and runs the
 speeds up and then down, each speed starting from the previous one's state
@@ -103,6 +106,22 @@ class Check(_Strict):
     max: float | None = None
 
 
+class DatasetSpec(_Strict):
+    """``dataset:``: the study is a labelled dataset (docs/theory.md, "Fault datasets"): each
+    point's signals kept as Parquet, one labels table with the monitoring metrics of
+    ``signal`` (a sensors-table column, or "te")."""
+
+    signal: str = "accel_m_s2"
+
+    @model_validator(mode="after")
+    def _known_signal(self):
+        from gearcli.pipeline.monitor import SIGNALS
+
+        if self.signal not in SIGNALS:
+            raise ValueError(f"signal {self.signal!r}: expected one of {', '.join(SIGNALS)}")
+        return self
+
+
 class StudyFile(_Strict):
     name: str | None = None
     description: str | None = None
@@ -114,6 +133,7 @@ class StudyFile(_Strict):
     parameters: dict[str, list[Any] | Range] = Field(min_length=1)
     metrics: list[str] | None = Field(None, min_length=1)
     checks: list[Check] = Field(default_factory=list)
+    dataset: DatasetSpec | None = None
 
 
 @dataclass
@@ -138,6 +158,7 @@ class Study:
     checks: list[Check]
     base_case_json: str
     base_values: dict[str, Any] = field(default_factory=dict)
+    dataset: DatasetSpec | None = None
 
     @property
     def parameter_columns(self) -> list[str]:
@@ -192,6 +213,9 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         raise src.error(where, f"the {spec.design} has {size} points "
                         f"(> {MAX_POINTS}); pass --yes to run it")
     _check_metrics(src, spec)
+    if spec.dataset is not None and spec.design == "speed_curve":
+        raise src.error(("dataset",), "a speed_curve runs one simulation per direction; "
+                        "expected design grid, zip, lhs or one_at_a_time for a dataset")
     combos = design_points(spec, params)
     base_values = {p.column: _base_value(base_src.data, p) for p in params}
     points = []
@@ -204,7 +228,7 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         points.append(_resolve(src, base_src, i, values, overrides, stem))
     metrics = spec.metrics
     return Study(spec.name or stem, src.file, spec.design, params, points, metrics, spec.checks,
-                 _canonical(base), base_values)
+                 _canonical(base), base_values, spec.dataset)
 
 
 def _check_metrics(src: Source, spec: StudyFile) -> None:
@@ -418,9 +442,24 @@ def _speed_override(src: Source, data: dict, overrides: list, value) -> str:
                         "which a torque drive does not prescribe: expected a base case with "
                         "drive type 'speed' or 'shaft'")
     speed = data.get("drive", {}).get("speed")
-    m = _RAMP.match(speed) if isinstance(speed, str) else None
-    if m:
-        name, t0, h0, t1, _ = m.groups()
-        return (f"drive.speed={name}(time,{t0.strip()},{h0.strip()},{t1.strip()},"
-                f"{n1_deg_s:.12g})")
-    return f"drive.speed={n1_deg_s:.12g} deg/s"
+    ramp = _ramp_to(speed, n1_deg_s, data.get("units"))
+    return f"drive.speed={ramp}" if ramp else f"drive.speed={n1_deg_s:.12g} deg/s"
+
+
+def _ramp_to(speed, n1_deg_s: float, system) -> str:
+    """``speed`` (a case's drive.speed: "STEP(time, t0, h0, t1, h1)" or ``{function: ...,
+    unit: ...}``) ramping to ``n1_deg_s`` [deg/s] instead of h1, in the form and unit it was
+    written in (a mapping's ``unit``, else the unit of the case's bare numbers: its ``units:``
+    system); "" when it is not such a ramp."""
+    expression, unit = (speed.get("function"), speed.get("unit")) if isinstance(speed, dict) \
+        else (speed, None)
+    m = _RAMP.match(expression) if isinstance(expression, str) else None
+    if m is None:
+        return ""
+    dim = units.ANGULAR_VELOCITY
+    own = units.in_system(dim, system if system in units.UNIT_SYSTEMS else None)
+    n1 = units.parse_quantity(f"{n1_deg_s!r} deg/s", dim) / units.unit_factor(
+        str(unit or own.default), dim)
+    name, t0, h0, t1, _ = m.groups()
+    text = f"{name}(time,{t0.strip()},{h0.strip()},{t1.strip()},{n1:.12g})"
+    return json.dumps({"function": text, "unit": unit}) if unit else text
