@@ -25,7 +25,7 @@ if TYPE_CHECKING:
 
     from gearcli.model.geometry import GearGeometry, PairGeometry
 
-__all__ = ["plot_pair", "mesh_layout", "check_drawable", "MAX_DRAWN_TEETH"]
+__all__ = ["plot_pair", "mesh_layout", "check_drawable", "drawable", "MAX_DRAWN_TEETH"]
 
 #: Teeth a gear may have to be drawn: the outlines are drawn twice (pair and zoom) at 24 and 120
 #: segments a flank, so the cost grows with the teeth (~5 s at 600/600 teeth, 180 s at 3000);
@@ -130,6 +130,12 @@ def _summary(geom: PairGeometry) -> str:
             f"x1 = {geom.pinion.profile_shift:g}, x2 = {geom.gear.profile_shift:g}\n"
             f"a_w = {geom.a_w_mm:.3f} mm, α_w = {math.degrees(geom.alpha_w_rad):.3f}°\n"
             f"ε_α = {geom.eps_alpha:.4f}" + j)
+
+
+def drawable(geom: PairGeometry) -> bool:
+    """Whether both gears have at most MAX_DRAWN_TEETH teeth (the report leaves the drawing
+    of a larger pair out; ``--plot`` refuses it with :func:`check_drawable`)."""
+    return max(geom.pinion.teeth, geom.gear.teeth) <= MAX_DRAWN_TEETH
 
 
 def check_drawable(geom: PairGeometry) -> None:

@@ -15,7 +15,7 @@ from gearcli.io.files import make_folder, write_atomic
 from gearcli.model.gap import Modifications, Relief, modification_gaps
 from gearcli.plotting import results as plots
 from gearcli.plotting.campbell import plot_campbell_summary
-from gearcli.plotting.geometry import plot_pair
+from gearcli.plotting.geometry import drawable, plot_pair
 from gearcli.plotting.orders import plot_order_map
 from gearcli.plotting.spectra import plot_spectra
 from gearcli.report.data import ReportData
@@ -105,7 +105,7 @@ def build_figures(data: ReportData, out_dir: Path, svg: bool = False) -> list[Fi
          "physical lines.",
          lambda: _spectra(data)),
     ]
-    if data.geometry is not None:
+    if data.geometry is not None and drawable(data.geometry):  # a 600-tooth gear: no drawing
         jobs.insert(0, ("geometry", "The pair in mesh at its operating centre distance, drawn "
                         "from the generated tooth profiles (involute, trochoid fillet, tip), "
                         "with the line of action and the path of contact.",
