@@ -49,13 +49,14 @@ def fe_check(case, geo, force_N: float, store=None) -> FeCheck:
     cache = ComplianceCache(load=store.load, store=store.store)
     fe = fe_mesh_stiffness(g, load_N_mm=force_N / b, cache=cache, **common)
     x_c = g.C_mm - g.A_mm
-    pe = pair_stiffness(g, [x_c], plane_strain=fe.plane_strain, **common)
-    pe_mesh = mesh_stiffness(g, plane_strain=fe.plane_strain, **common)
+    law = {"plane_strain": fe.plane_strain, "load_N_mm": force_N / b, **common}
+    pe = pair_stiffness(g, [x_c], **law)
+    pe_mesh = mesh_stiffness(g, **law)
     pe_ste_um = 1e3 * force_N / pe_mesh.k_mesh_N_mm
     fe_teeth = float(np.interp(x_c, fe.x_mm, fe.tooth1_mm_N + fe.tooth2_mm_N))
     fe_local = float(np.interp(x_c, fe.x_mm, fe.local_mm_N))
     teeth = _pe_fe(1.0 / (pe.pinion.total_mm_N[0] + pe.gear.total_mm_N[0]), 1.0 / fe_teeth)
-    contact = _pe_fe(1.0 / pe.hertz_mm_N, 1.0 / fe_local)
+    contact = _pe_fe(1.0 / pe.hertz_mm_N[0], 1.0 / fe_local)
     return FeCheck(
         line_load_N_mm=force_N / b, plane_strain=fe.plane_strain,
         pitch_pair_stiffness_N_mm=_pe_fe(pe.k_N_mm[0], fe.pitch_pair_N_mm),
