@@ -2,12 +2,15 @@
 the finite-element model of the case's pair (docs/theory.md, "Finite-element check of the tooth
 compliance"; gearcli/model/fe/).
 
-Both sides are evaluated alike, so their ratio isolates the compliance models: rigid engagement
-without profile modifications, the pairs on the path in parallel (k_mesh = Σ k_pair, STE =
-F/k_mesh), the case's materials, narrower face width and bores (default d_f/3 in both), at the
-FE's plane state (plane strain when b ≥ 5 m) in both. The FE pair stiffness is a secant at the
-load (Weber's local term depends on ln a), the law's is linear. The influence coefficients are
-cached per geometry hash on disk (gearcli/io/fe_store.py).
+Both sides are evaluated alike, so their ratio isolates the compliance models: the case's
+materials, narrower face width and bores (default d_f/3 in both), the FE's plane state (plane
+strain when b ≥ 5 m) in both, both contact terms secants at the line load. Two comparisons:
+(1) rigid engagement without profile modifications, the pairs on the path in parallel
+(k_mesh = Σ k_pair, STE = F/k_mesh; the FE shares the load between the pairs for its local
+terms); (2) the loaded contact with the case's gap tables (extended contact at the tip corners,
+profile modifications): the same LTCA (model.ltca) with k(x) of the law and of the FE
+(model/fe/extended.py) on the same roll nodes. The influence coefficients are cached per
+geometry hash on disk (gearcli/io/fe_store.py).
 """
 
 from __future__ import annotations
@@ -24,11 +27,13 @@ _GAP_REACH = 3.0  # the loaded contact never reaches a gap of three mean STEs (H
 def _note(teeth: PeFe, contact: PeFe) -> str:
     """What differs, from this pair's numbers (docs/theory.md, "PE law against FE")."""
     return (f"FE vs PE at the pitch point: teeth + body {100 * teeth.fe_over_pe_minus_1:+.1f} %, "
-            f"contact term {100 * contact.fe_over_pe_minus_1:+.1f} % (the law's linear Hertz "
-            "term 2/(π b E*), Yang & Sun 1985, against Weber's flattening at the load in the FE "
-            "model, which softens with less load); both columns rigid engagement without "
-            "profile modifications (docs/theory.md, 'Finite-element check of the tooth "
-            "compliance')")
+            f"contact term {100 * contact.fe_over_pe_minus_1:+.1f} % (the law's beam is the "
+            "centreline's and its contact term Weber's flattening to the centrelines; the FE "
+            "reads 0.25 m below the surface and adds Weber's flattening above that depth, so "
+            "the split differs by construction and the pair is the comparison). Pairs on the "
+            "path: rigid engagement without profile modifications; with the tip corners: the "
+            "case's gaps and the same LTCA on both sides (docs/theory.md, 'Finite-element "
+            "check of the tooth compliance')")
 
 
 def _pe_fe(pe: float, fe: float) -> PeFe:
@@ -73,10 +78,11 @@ def _table_law(nodes, k_nodes, tables, g):
     return tooth_law(np.stack([k, dk]), tables.x_lo, tables.x_hi)
 
 
-def _loaded_pe_fe(case, geo, force_N: float, law_kw: dict, cache) -> tuple[PeFe, PeFe]:
+def loaded_pe_fe(case, geo, force_N: float, law_kw: dict, cache, nodes=None):
     """Loaded STE peak-to-peak [µm] and the share of roll positions with one pair in contact
-    by the law and by FE, both with the case's gap tables (extended contact at the tip
-    corners, profile modifications) and the same LTCA (model.ltca): only k(x) differs."""
+    by the law and by FE (two PeFe), both with the case's gap tables (extended contact at the
+    tip corners, profile modifications) and the same LTCA (model.ltca): only k(x) differs;
+    and the roll nodes [mm] of k (given ``nodes``, or those this load reaches)."""
     from gearcli.model.fe.extended import fe_pair_stiffness
     from gearcli.model.gap import slot_layout
     from gearcli.model.ltca import loaded_mesh
@@ -90,14 +96,15 @@ def _loaded_pe_fe(case, geo, force_N: float, law_kw: dict, cache) -> tuple[PeFe,
     args = (tables.tables, tables.x_lo, tables.x_hi, g.p_b_mm, slots)
     ps = pair_stiffness(g, tables.x_mm, **law_kw)
     first = loaded_mesh(*args, _table_law(tables.x_mm, ps.k_N_mm, tables, g), force_N, cycles=1)
-    nodes = _roll_nodes(g, tables, _GAP_REACH * float(first.ste_mm.mean()))
+    if nodes is None:
+        nodes = _roll_nodes(g, tables, _GAP_REACH * float(first.ste_mm.mean()))
     # both on the same nodes and interpolant, so only the compliance model differs
     pe = loaded_mesh(*args, _table_law(nodes, pair_stiffness(g, nodes, **law_kw).k_N_mm,
                                        tables, g), force_N, cycles=1)
     k_fe = fe_pair_stiffness(g, nodes, cache=cache, **law_kw)
     fe = loaded_mesh(*args, _table_law(nodes, k_fe, tables, g), force_N, cycles=1)
     return (_pe_fe(1e3 * pe.ste_peak_to_peak_mm, 1e3 * fe.ste_peak_to_peak_mm),
-            _pe_fe(np.mean(pe.pairs_in_contact == 1), np.mean(fe.pairs_in_contact == 1)))
+            _pe_fe(np.mean(pe.pairs_in_contact == 1), np.mean(fe.pairs_in_contact == 1)), nodes)
 
 
 def fe_check(case, geo, force_N: float, store=None) -> FeCheck:
@@ -125,7 +132,7 @@ def fe_check(case, geo, force_N: float, store=None) -> FeCheck:
     fe_teeth = float(np.interp(x_c, fe.x_mm, fe.tooth1_mm_N + fe.tooth2_mm_N))
     fe_local = float(np.interp(x_c, fe.x_mm, fe.local_mm_N))
     teeth = _pe_fe(1.0 / (pe.pinion.total_mm_N[0] + pe.gear.total_mm_N[0]), 1.0 / fe_teeth)
-    loaded_ste, single = _loaded_pe_fe(case, geo, force_N, law, cache)
+    loaded_ste, single, _ = loaded_pe_fe(case, geo, force_N, law, cache)
     contact = _pe_fe(1.0 / pe.hertz_mm_N[0], 1.0 / fe_local)
     return FeCheck(
         line_load_N_mm=force_N / b, plane_strain=fe.plane_strain,

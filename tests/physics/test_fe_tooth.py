@@ -167,3 +167,42 @@ def test_fe_loads_at_involute_points_match_the_flank_normal_route():
     by_radius = fe_tooth_compliance(g, r, **common).compliance_mm2_N
     by_point = fe_tooth_compliance(g, None, loads=(pts, dirs), **common).compliance_mm2_N
     assert by_point == pytest.approx(by_radius, rel=1e-6)
+
+
+@pytest.mark.slow
+def test_loaded_contact_with_the_tip_corners_law_against_fe():
+    """Issue 31's 62/62 m 2 b 20 pair (bores 40 mm) at 0.1, 0.3, 1 and 2 times its 200 N/mm,
+    loaded contact with the case's gaps (extended contact at the tip corners) by the same LTCA,
+    only k(x) from the law or from FE (pipeline/mesh_fe.py; 29 roll nodes from 2.1 mm before
+    A to 2.1 mm after E, those of the 2× load, for all loads). Measured STE peak-to-peak law /
+    FE [µm]: 0.82 / 0.80, 1.76 / 1.79, 0.81 / 0.89, 3.06 / 2.89 (FE/PE − 1 −3.0, +1.8,
+    +9.9, −5.4 %); one pair alone in contact at 0.1 × only (7.5 % of the cycle, both), never
+    at 0.3 × and above. Asserted: within 15 % (the issue's bound) at every load, and the FE
+    has no single-pair zone at the nominal load either: the tip gap at the middle of the
+    single-pair zone, 0.62 mm outside the path, is 4.1 µm against a mesh deflection of
+    8–14 µm, so the corner touches whatever its stiffness (docs/theory.md §4b, "Corner
+    contact"); the Harris map of the unmodified pair is not monotonic in FE either."""
+    from gearcli.case.load import load_case
+    from gearcli.pipeline.geometry import run_geometry
+    from gearcli.pipeline.mesh_fe import loaded_pe_fe
+    from gearcli.pipeline.mesh_input import static_force_N
+    from tests.unit.test_modal_no_single_zone import ISO_PAIR
+    from tests.unit.test_modal_no_single_zone import PAIR_62 as OVERRIDES_62
+
+    loaded = load_case(ISO_PAIR, OVERRIDES_62)
+    geo = run_geometry(loaded)
+    force = static_force_N(loaded.case, geo)
+    m = loaded.case.material
+    cache = ComplianceCache()  # one FE model per gear: the nodes of the largest load for all
+    ste, nodes = {}, None
+    for frac in (2.0, 1.0, 0.3, 0.1):
+        law = {"face_width_mm": 20.0, "E1_MPa": m.youngs_modulus, "nu1": m.poisson_ratio,
+               "E2_MPa": m.youngs_modulus, "nu2": m.poisson_ratio, "bore_diameter1_mm": 40.0,
+               "bore_diameter2_mm": 40.0, "plane_strain": True,
+               "load_N_mm": frac * force / 20.0}
+        ste[frac], single, nodes = loaded_pe_fe(loaded.case, geo, frac * force, law, cache,
+                                                nodes)
+        assert ste[frac].fe == pytest.approx(ste[frac].pe, rel=0.15), (frac, ste[frac])
+        if frac == 1.0:
+            assert single.fe == 0.0 and single.pe == 0.0
+    assert ste[0.3].fe > ste[1.0].fe < ste[2.0].fe  # the dip of the extended contact
