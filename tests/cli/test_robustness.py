@@ -571,8 +571,10 @@ def test_round_off_coast_contact_is_no_impact_warning():
     warned = any(w.startswith("coast-flank impacts") for w in res.warnings)
     assert warned == (res.summary.coast_force_max_N
                       > COAST_FORCE_FRACTION * res.kernel_input.mesh.static_force_N)
-    # near resonance without backlash the coast flanks are hit: 11 kN
+    # near resonance without backlash the coast flanks are hit: 12.4 kN at 4440 rpm (f_z 0.96
+    # f_n; 11 kN at 4900 rpm when the mesh mode was at 1792 Hz, before the tooth law took
+    # Weber's contact term, issue 31: now 1625 Hz, and 4900 rpm gives 6.5 kN)
     hit = run_simulation(ROOT / "cases" / "iso_pair.yaml", [
-        "run.end_time=0.4", 'drive.speed={function: "STEP(time,0,0,0.2,4900)", unit: rpm}'],
+        "run.end_time=0.4", 'drive.speed={function: "STEP(time,0,0,0.2,4440)", unit: rpm}'],
         zoom=False)
-    assert any(w.startswith("coast-flank impacts: coast force up to 1.1") for w in hit.warnings)
+    assert any(w.startswith("coast-flank impacts: coast force up to 1.2") for w in hit.warnings)
