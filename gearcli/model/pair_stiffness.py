@@ -1,10 +1,17 @@
 """Stiffness of a spur tooth pair along its roll position, and of the mesh (docs/theory.md §4b).
 
 Per pair, the two teeth (:mod:`gearcli.model.tooth_stiffness`: bending, shear, axial,
-fillet-foundation) and the linearised Hertz contact act in series; the pairs in contact act in
+fillet-foundation) and the contact flattening act in series; the pairs in contact act in
 parallel:
 
-    1/k_pair(x) = 1/k_h + Σ_(pinion, gear) (1/k_b + 1/k_s + 1/k_a + 1/k_f)
+    1/k_pair(x) = 1/k_c(x; w) + Σ_(pinion, gear) (1/k_b + 1/k_s + 1/k_a + 1/k_f)
+
+1/k_c is Weber's flattening of both teeth to their centrelines at the line load w, a secant
+(:func:`gearcli.model.contact_compliance.weber_pair_compliance`, docs/theory.md §4b): the Hertz
+half width of the reduced radius R′ = ρ1 ρ2/(ρ1 + ρ2) of the involutes, each tooth's depth
+h_P the contact point's distance from its centreline; outside the path the corner's and the
+mate's depths with the path end's R′. Without a load (``load_N_mm=None``) the linear term
+2/(π b E*) of Yang & Sun (1985), the law before issue 31.
     k_mesh(x)   = Σ_j k_pair(x + j p_b)     over the pairs with 0 ≤ x + j p_b ≤ g_α
 
 x [mm] is the pinion roll position from A along the line of action, the grid convention of
@@ -16,9 +23,10 @@ at x is that of the unloaded rigid kinematics (:mod:`gearcli.model.contact_point
 * x < 0 (gear tip) and x > g_α (pinion tip): the tip rounding circle, or the sharp tip corner
   (rounding radius 0), touches the mate's involute where the mate's involute normal passes
   through its centre; the force acts along that normal. ``contact_point.contact_points`` clamps
-  a sharp corner to A/E because its Hertz STRESS is unbounded; the linearised Hertz
-  compliance used here does not depend on the curvature, so the corner is evaluated where it
-  is (``contact_point.tip_contact``, for a rounding radius ρ_a ≥ 0).
+  a sharp corner to A/E because its Hertz STRESS is unbounded; the compliance here takes the
+  path end's curvature for the contact term, so the corner is evaluated where it is
+  (``contact_point.tip_contact``, for a rounding radius ρ_a ≥ 0; checked against FE, docs/theory.md
+  §4b "Corner contact").
 
 Outside the path the corner tooth is loaded at its tip with a force turned away from the
 line of action and the mate is loaded below its active profile: the pair is softer there and
