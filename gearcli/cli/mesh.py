@@ -174,6 +174,7 @@ def _fe_table(fe, units: str):
                            ("  contact term at the pitch point", fe.contact_at_pitch_N_mm,
                             "N/mm")):
         (pe, fe_value), shown_unit = convert([q.pe, q.fe], unit, units)
+        rel = q.fe_over_pe_minus_1
         t.add_row(label, format_value(pe), format_value(fe_value), escape(shown_unit),
-                  f"{100.0 * q.fe_over_pe_minus_1:+.1f} %")
+                  "—" if rel is None else f"{100.0 * rel:+.1f} %")
     return t

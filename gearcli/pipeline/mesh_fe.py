@@ -37,7 +37,7 @@ def _note(teeth: PeFe, contact: PeFe) -> str:
 
 
 def _pe_fe(pe: float, fe: float) -> PeFe:
-    ratio = float(fe) / float(pe) - 1.0 if float(pe) != 0.0 else float("nan")
+    ratio = float(fe) / float(pe) - 1.0 if float(pe) != 0.0 else None  # JSON null: undefined
     return PeFe(pe=float(pe), fe=float(fe), fe_over_pe_minus_1=ratio)
 
 

@@ -141,7 +141,7 @@ class PeFe(Document):
 
     pe: float = metric_field("pe")
     fe: float = metric_field("fe")
-    fe_over_pe_minus_1: float = metric_field("fe_over_pe_minus_1")
+    fe_over_pe_minus_1: float | None = metric_field("fe_over_pe_minus_1")  #: None: PE is 0
 
 
 @dataclasses.dataclass(frozen=True)
