@@ -191,11 +191,17 @@ def _fe_table(fe, units: str):
     for label, q, unit in (("single-pair stiffness at the pitch point",
                             fe.pitch_pair_stiffness_N_mm, "N/mm"),
                            ("mean mesh stiffness", fe.mesh_mean_stiffness_N_mm, "N/mm"),
-                           ("loaded STE peak-to-peak", fe.ste_peak_to_peak_um, "µm"),
+                           ("loaded STE peak-to-peak (pairs on the path)",
+                            fe.ste_peak_to_peak_um, "µm"),
+                           ("loaded STE peak-to-peak with the tip corners",
+                            fe.loaded_ste_peak_to_peak_um, "µm"),
+                           ("share of one pair in contact with the tip corners",
+                            fe.single_pair_share, "–"),
                            ("  teeth + body at the pitch point", fe.teeth_at_pitch_N_mm, "N/mm"),
                            ("  contact term at the pitch point", fe.contact_at_pitch_N_mm,
                             "N/mm")):
         (pe, fe_value), shown_unit = convert([q.pe, q.fe], unit, units)
+        rel = q.fe_over_pe_minus_1
         t.add_row(label, format_value(pe), format_value(fe_value), escape(shown_unit),
-                  f"{100.0 * q.fe_over_pe_minus_1:+.1f} %")
+                  "—" if rel is None else f"{100.0 * rel:+.1f} %")
     return t

@@ -196,11 +196,13 @@ def loaded_mesh(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float, n_slot
 
 
 def harris_map(tables, x_lo, x_hi, p_b, n_slots, law: ForceLaw, force_N: float,
-               fractions=None, **kw) -> tuple[np.ndarray, np.ndarray]:
+               fractions=None, law_of_load=None, **kw) -> tuple[np.ndarray, np.ndarray]:
     """STE peak-to-peak [mm] against load [N] at ``fractions`` of ``force_N`` (default 0.1 to
-    2 in steps of 0.1; Harris 1958)."""
+    2 in steps of 0.1; Harris 1958); ``law_of_load(F)``, when given, the law at each load F [N]
+    (the tooth law's contact term is a secant at the load, docs/theory.md §4b)."""
     frac = np.linspace(0.1, 2.0, 20) if fractions is None else np.asarray(fractions, float)
     loads = frac * force_N
-    ptp = np.array([loaded_mesh(tables, x_lo, x_hi, p_b, n_slots, law, f, **kw)
+    ptp = np.array([loaded_mesh(tables, x_lo, x_hi, p_b, n_slots,
+                                law if law_of_load is None else law_of_load(f), f, **kw)
                     .ste_peak_to_peak_mm for f in loads])
     return loads, ptp

@@ -1,10 +1,17 @@
 """Stiffness of a spur tooth pair along its roll position, and of the mesh (docs/theory.md §4b).
 
 Per pair, the two teeth (:mod:`gearcli.model.tooth_stiffness`: bending, shear, axial,
-fillet-foundation) and the linearised Hertz contact act in series; the pairs in contact act in
+fillet-foundation) and the contact flattening act in series; the pairs in contact act in
 parallel:
 
-    1/k_pair(x) = 1/k_h + Σ_(pinion, gear) (1/k_b + 1/k_s + 1/k_a + 1/k_f)
+    1/k_pair(x) = 1/k_c(x; w) + Σ_(pinion, gear) (1/k_b + 1/k_s + 1/k_a + 1/k_f)
+
+1/k_c is Weber's flattening of both teeth to their centrelines at the line load w, a secant
+(:func:`gearcli.model.contact_compliance.weber_pair_compliance`, docs/theory.md §4b): the Hertz
+half width of the reduced radius R′ = ρ1 ρ2/(ρ1 + ρ2) of the involutes, each tooth's depth
+h_P the contact point's distance from its centreline; outside the path the corner's and the
+mate's depths with the path end's R′. Without a load (``load_N_mm=None``) the linear term
+2/(π b E*) of Yang & Sun (1985), the law before issue 31.
     k_mesh(x)   = Σ_j k_pair(x + j p_b)     over the pairs with 0 ≤ x + j p_b ≤ g_α
 
 x [mm] is the pinion roll position from A along the line of action, the grid convention of
@@ -16,9 +23,10 @@ at x is that of the unloaded rigid kinematics (:mod:`gearcli.model.contact_point
 * x < 0 (gear tip) and x > g_α (pinion tip): the tip rounding circle, or the sharp tip corner
   (rounding radius 0), touches the mate's involute where the mate's involute normal passes
   through its centre; the force acts along that normal. ``contact_point.contact_points`` clamps
-  a sharp corner to A/E because its Hertz STRESS is unbounded; the linearised Hertz
-  compliance used here does not depend on the curvature, so the corner is evaluated where it
-  is (``contact_point.tip_contact``, for a rounding radius ρ_a ≥ 0).
+  a sharp corner to A/E because its Hertz STRESS is unbounded; the compliance here takes the
+  path end's curvature for the contact term, so the corner is evaluated where it is
+  (``contact_point.tip_contact``, for a rounding radius ρ_a ≥ 0; checked against FE, docs/theory.md
+  §4b "Corner contact").
 
 Outside the path the corner tooth is loaded at its tip with a force turned away from the
 line of action and the mate is loaded below its active profile: the pair is softer there and
@@ -45,6 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.model.contact_compliance import weber_pair_compliance
 from gearcli.model.contact_point import tip_contact
 from gearcli.model.geometry import PairGeometry
 from gearcli.model.rating import involute_load_line, load_line
@@ -69,7 +78,9 @@ class PairContact:
 
     ``y_point`` height of the contact point along the tooth centreline, ``y_load`` where the
     load line crosses it [mm], ``angle`` the load angle α_1 to the centreline's normal [rad];
-    ``region`` −1 before A (gear tip), 0 on the path, +1 after E (pinion tip).
+    ``region`` −1 before A (gear tip), 0 on the path, +1 after E (pinion tip);
+    ``h_point`` the contact point's distance from the tooth centreline [mm] (Weber's depth of
+    the contact flattening), ``reduced_radius_mm`` R′ of the Hertz strip [mm].
     """
 
     y_point1_mm: np.ndarray
@@ -79,13 +90,21 @@ class PairContact:
     y_load2_mm: np.ndarray
     angle2_rad: np.ndarray
     region: np.ndarray
+    h_point1_mm: np.ndarray
+    h_point2_mm: np.ndarray
+    reduced_radius_mm: np.ndarray
 
 
 def _involute_contact(gear, radius):
-    """(y_P, y_L, α_1) of a force along the involute normal at ``radius`` (ISO 6336-3)."""
-    _, y = tooth_point(gear, radius)
+    """(y_P, y_L, α_1, h_P) of a force along the involute normal at ``radius`` (ISO 6336-3)."""
+    h, y = tooth_point(gear, radius)
     y_l, a = involute_load_line(gear, radius)
-    return y, y_l, a
+    return y, y_l, a, h
+
+
+def _reduced_radius(rho1, rho2):
+    """R′ = ρ1 ρ2/(ρ1 + ρ2) [mm] of two convex radii of curvature."""
+    return rho1 * rho2 / (rho1 + rho2)
 
 
 def pair_contact(pair: PairGeometry, x_mm) -> PairContact:
@@ -103,6 +122,7 @@ def pair_contact(pair: PairGeometry, x_mm) -> PairContact:
     rho1 = pair.A_mm + np.clip(x, 0.0, g_a)
     out1 = list(_involute_contact(pair.pinion, np.hypot(pair.pinion.r_b_mm, rho1)))
     out2 = list(_involute_contact(pair.gear, np.hypot(pair.gear.r_b_mm, pair.T1T2_mm - rho1)))
+    r_red = _reduced_radius(rho1, pair.T1T2_mm - rho1)
     for side, corner in ((-1, "gear"), (1, "pinion")):
         sel = region == side
         if not sel.any():
@@ -115,13 +135,14 @@ def pair_contact(pair: PairGeometry, x_mm) -> PairContact:
             )
         y_l, a = load_line(point, force, beta)
         y_p = point[..., 0] * np.cos(beta) + point[..., 1] * np.sin(beta)
+        h_p = np.abs(point[..., 0] * np.sin(beta) - point[..., 1] * np.cos(beta))
         own, mate = (out2, out1) if corner == "gear" else (out1, out2)
         mate_gear = pair.pinion if corner == "gear" else pair.gear
-        for k, v in enumerate((y_p, y_l, a)):
+        for k, v in enumerate((y_p, y_l, a, h_p)):
             own[k][sel] = v
         for k, v in enumerate(_involute_contact(mate_gear, r_mate)):
             mate[k][sel] = v
-    return PairContact(*out1, *out2, region)
+    return PairContact(*out1[:3], *out2[:3], region, out1[3], out2[3], r_red)
 
 
 @dataclass(frozen=True)
@@ -133,7 +154,8 @@ class PairStiffness:
     dk_dx_N_mm2: np.ndarray  #: its slope along x [N/mm²]
     pinion: ToothCompliance  #: pinion tooth compliances [mm/N]
     gear: ToothCompliance  #: gear tooth compliances [mm/N]
-    hertz_mm_N: float  #: 1/k_h [mm/N]
+    hertz_mm_N: np.ndarray  #: contact compliance 1/k_c at x [mm/N] (Weber, or Yang & Sun)
+    load_N_mm: float | None  #: line load of Weber's secant term [N/mm]; None: Yang & Sun
     region: np.ndarray  #: −1 before A, 0 on the path, +1 after E
     family: str  #: "drive" or "coast"
 
@@ -146,13 +168,20 @@ def _stiffness(pair, x, kw):
     t2 = tooth_compliance_at(tooth_section(pair.gear), c.y_point2_mm, c.y_load2_mm,
                              c.angle2_rad, youngs_MPa=kw["E2"], poisson=kw["nu2"],
                              bore_diameter_mm=kw["bore2"], **kw["common"])
-    return 1.0 / (kw["hertz"] + t1.total_mm_N + t2.total_mm_N), t1, t2, c.region
+    if kw["load"] is None:
+        contact = np.full(x.shape, hertz_compliance(kw["common"]["face_width_mm"], kw["E1"],
+                                                    kw["nu1"], kw["E2"], kw["nu2"]))
+    else:
+        contact = weber_pair_compliance(
+            kw["load"], c.reduced_radius_mm, c.h_point1_mm, c.h_point2_mm, E1_MPa=kw["E1"],
+            nu1=kw["nu1"], E2_MPa=kw["E2"], nu2=kw["nu2"], **kw["common"])
+    return 1.0 / (contact + t1.total_mm_N + t2.total_mm_N), t1, t2, c.region, contact
 
 
 def pair_stiffness(pair: PairGeometry, x_mm, *, face_width_mm: float, E1_MPa: float,
                    nu1: float, E2_MPa: float, nu2: float, bore_diameter1_mm: float | None = None,
                    bore_diameter2_mm: float | None = None, family: str = "drive",
-                   plane_strain: bool = True) -> PairStiffness:
+                   plane_strain: bool = True, load_N_mm: float | None = None) -> PairStiffness:
     """Stiffness k(x) [N/mm] of one tooth pair and its slope dk/dx [N/mm²] on a roll grid.
 
     Parameters
@@ -173,7 +202,13 @@ def pair_stiffness(pair: PairGeometry, x_mm, *, face_width_mm: float, E1_MPa: fl
         Flank family; for symmetric teeth the coast values equal the drive values at the coast
         roll position (module notes).
     plane_strain : bool
-        E/(1 − ν²) for the tooth and body terms (default), or E (plane stress).
+        E/(1 − ν²) for the tooth, body and contact terms (default), or E (plane stress).
+    load_N_mm : float, optional
+        Line load w [N/mm] (normal force per face width) at which Weber's contact flattening
+        to the tooth centrelines is taken as a secant compliance (the law's contact term,
+        docs/theory.md §4b); the case's pipeline passes its static force / b. None: the
+        linear Hertz term 2/(π b E*) of Yang & Sun (1985), the law before issue 31, kept for
+        comparison.
 
     Returns
     -------
@@ -188,15 +223,15 @@ def pair_stiffness(pair: PairGeometry, x_mm, *, face_width_mm: float, E1_MPa: fl
         else bore_diameter1_mm,
         "bore2": default_bore_diameter(pair.gear) if bore_diameter2_mm is None
         else bore_diameter2_mm,
-        "hertz": hertz_compliance(face_width_mm, E1_MPa, nu1, E2_MPa, nu2),
+        "load": None if load_N_mm is None else float(load_N_mm),
         "common": {"face_width_mm": face_width_mm, "plane_strain": plane_strain},
     }
-    k, t1, t2, region = _stiffness(pair, x, kw)
+    k, t1, t2, region, contact = _stiffness(pair, x, kw)
     h = _FD_STEP_MM
     k_plus = _stiffness(pair, x + h, kw)[0]
     k_minus = _stiffness(pair, x - h, kw)[0]
-    return PairStiffness(x, k, (k_plus - k_minus) / (2.0 * h), t1, t2, kw["hertz"], region,
-                         family)
+    return PairStiffness(x, k, (k_plus - k_minus) / (2.0 * h), t1, t2, contact, kw["load"],
+                         region, family)
 
 
 @dataclass(frozen=True)

@@ -37,13 +37,12 @@ G = E/(2(1 + ν)); s_L = y_L − y0):
     X*(h_fi, θ_f) = A_X/θ_f² + B_X h_fi² + C_X h_fi/θ_f + D_X/θ_f + E_X h_fi + F_X
 
 The two bending forms are equal because (s_P − s) cos α_1 − h_P sin α_1 = (s_L − s) cos α_1 on
-the load line. Linearised Hertz line contact (Yang & Sun 1985) for two cylinders of one material,
-k_h = π E b / (4 (1 − ν²)), is 2/(π b E*) in compliance; with the contact modulus
-1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2 (Johnson 1985, ch. 4) this is what is used for unequal
-materials (it reduces to Yang & Sun's for equal ones). It does not depend on the radii of
-curvature, so the same value is used at a tip rounding and at a sharp tip corner; for a corner
-that is a modelling choice (a corner is no Hertz line contact; the real local compliance is
-larger), stated in docs/theory.md §4b.
+the load line. The tooth law's contact term is Weber's flattening to the tooth centrelines
+(:mod:`gearcli.model.contact_compliance`, docs/theory.md §4b); :func:`hertz_compliance` here is
+the linear Hertz line contact of Yang & Sun (1985), k_h = π E b / (4 (1 − ν²)) for one
+material, 2/(π b E*) in compliance with the contact modulus 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2
+(Johnson 1985, ch. 4), the law's term before issue 31 (1.7–3.9 times stiffer than Weber's at
+the load, docs/theory.md, FE section), kept for comparison.
 
 Plane strain (E' = E/(1 − ν²)) is the default: the face width of a spur gear is usually large
 compared with its tooth thickness (the seed: b = 100 mm, s = 15.7 mm), and a wide tooth is in

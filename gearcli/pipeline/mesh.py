@@ -105,9 +105,12 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
             CaseError(f"load_N (--load) {load_N!r}: expected a force > 0 N")
     tables, _ = case_gap_tables(case, geo, mesh)
     slots = int(slot_layout(g, tables)["n_slots"])
+    law_of_load = None
     if case.contact.law == "tooth":
-        ps = tooth_stiffness(case, geo, tables.x_mm)
-        law = tooth_law(np.stack([ps.k_N_mm, ps.dk_dx_N_mm2]), tables.x_lo, tables.x_hi)
+        def law_of_load(f):  # the contact term is Weber's secant at the load (§4b)
+            ps = tooth_stiffness(case, geo, tables.x_mm, f)
+            return tooth_law(np.stack([ps.k_N_mm, ps.dk_dx_N_mm2]), tables.x_lo, tables.x_hi)
+        law = law_of_load(force)
         law_name = "tooth compliance k(x) p"
     else:
         law = impact_law(contact_stiffness(case, geo), case.contact.exponent)
@@ -115,7 +118,8 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
     args = (tables.tables, tables.x_lo, tables.x_hi, g.p_b_mm, slots, law)
     try:
         result = loaded_mesh(*args, force, cycles=cycles, points_per_cycle=points_per_cycle)
-        harris = (harris_map(*args, force, cycles=1, points_per_cycle=points_per_cycle)
+        harris = (harris_map(*args, force, law_of_load=law_of_load, cycles=1,
+                             points_per_cycle=points_per_cycle)
                   if harris else None)  # the same roll grid: its row at the load is the STE
     except ValueError as exc:  # model.ltca: no equilibrium within its deflection range
         where = f"--load {load_N:g} N" if load_N is not None else f"{force:.6g} N"

@@ -55,10 +55,28 @@ def contact_stiffness(case: Case, geo: GeometryResult) -> float:
     return iso_stiffness(case, geo).mesh_stiffness_N_mm / geo.geometry.eps_alpha
 
 
-def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
+#: Line load [N/mm] of the tooth law's contact term when the case has no load: ISO 6336-1's
+#: 100 N/mm, above which its single stiffness c′ has no low-load factor (§9.3).
+REFERENCE_LINE_LOAD_N_MM = 100.0
+
+
+def contact_line_load_N_mm(case: Case, geo: GeometryResult, force_N: float | None = None
+                           ) -> float:
+    """w = F/b [N/mm] at which the tooth law takes Weber's contact flattening (a secant,
+    docs/theory.md §4b): the static normal force (or ``force_N``) over the narrower face
+    width; without a load, REFERENCE_LINE_LOAD_N_MM."""
+    g = geo.geometry
+    force = static_force_N(case, geo) if force_N is None else float(force_N)
+    w = force / min(g.pinion.face_width_mm, g.gear.face_width_mm)
+    return w if w > 0.0 else REFERENCE_LINE_LOAD_N_MM
+
+
+def tooth_stiffness(case: Case, geo: GeometryResult, x_mm, force_N: float | None = None
+                    ) -> PairStiffness:
     """The tooth law's pair stiffness k(x) [N/mm] and dk/dx on pinion roll positions ``x_mm``
     from A (model.pair_stiffness): each gear's material (or the case's), the narrower face
-    width, the bores given or model.tooth_stiffness.default_bore_diameter."""
+    width, the bores given or model.tooth_stiffness.default_bore_diameter, the contact term at
+    the line load of the static force (or ``force_N`` [N]; :func:`contact_line_load_N_mm`)."""
     # imported here: the tooth-compliance model loads scipy.interpolate (~0.4 s), which a case
     # with the IMPACT law does not need
     from gearcli.model.pair_stiffness import pair_stiffness
@@ -71,7 +89,8 @@ def tooth_stiffness(case: Case, geo: GeometryResult, x_mm) -> PairStiffness:
                               E1_MPa=m1.youngs_modulus, nu1=m1.poisson_ratio,
                               E2_MPa=m2.youngs_modulus, nu2=m2.poisson_ratio,
                               bore_diameter1_mm=gears.pinion.bore_diameter,
-                              bore_diameter2_mm=gears.gear.bore_diameter)
+                              bore_diameter2_mm=gears.gear.bore_diameter,
+                              load_N_mm=contact_line_load_N_mm(case, geo, force_N))
     except ValueError as exc:
         from gearcli.errors import CaseError
         from gearcli.model.tooth_stiffness import ContactOutsideTooth

@@ -141,7 +141,7 @@ class PeFe(Document):
 
     pe: float = metric_field("pe")
     fe: float = metric_field("fe")
-    fe_over_pe_minus_1: float = metric_field("fe_over_pe_minus_1")
+    fe_over_pe_minus_1: float | None = metric_field("fe_over_pe_minus_1")  #: None: PE is 0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -160,6 +160,11 @@ class FeCheck(Document):
     ste_peak_to_peak_um: PeFe = metric_field("ste_peak_to_peak_um", PeFe(), nested=PeFe)
     teeth_at_pitch_N_mm: PeFe = metric_field("teeth_at_pitch_N_mm", PeFe(), nested=PeFe)
     contact_at_pitch_N_mm: PeFe = metric_field("contact_at_pitch_N_mm", PeFe(), nested=PeFe)
+    #: with the case's gaps (extended contact at the tip corners, modifications), same LTCA
+    loaded_ste_peak_to_peak_um: PeFe = metric_field("loaded_ste_peak_to_peak_um", PeFe(),
+                                                    nested=PeFe)
+    #: share of the roll positions with one pair in contact, same LTCA
+    single_pair_share: PeFe = metric_field("single_pair_share", PeFe(), nested=PeFe)
     fe_dofs: tuple[int, ...] = metric_field("fe_dofs", ())  #: model sizes (pinion, gear)
     cache_hits: int = metric_field("cache_hits", 0)  #: gear models read from the cache
     cache_misses: int = metric_field("cache_misses", 0)  #: gear models solved

@@ -571,9 +571,10 @@ def test_round_off_coast_contact_is_no_impact_warning():
     warned = any(w.startswith("coast-flank impacts") for w in res.warnings)
     assert warned == (res.summary.coast_force_max_N
                       > COAST_FORCE_FRACTION * res.kernel_input.mesh.static_force_N)
-    # near resonance without backlash the coast flanks are hit: 10.7 kN (11.2 kN before issue
-    # 31 took the case's bores out of its disc inertias, f_n 1792.5 -> 1798.0 Hz)
+    # near resonance without backlash the coast flanks are hit: 11.8 kN at 4440 rpm (f_z 0.95
+    # f_n = 1630 Hz; 11 kN at 4900 rpm when the mesh mode was at 1792 Hz, before the tooth
+    # law took Weber's contact term and the bores left the disc inertias, issue 31)
     hit = run_simulation(ROOT / "cases" / "iso_pair.yaml", [
-        "run.end_time=0.4", 'drive.speed={function: "STEP(time,0,0,0.2,4900)", unit: rpm}'],
+        "run.end_time=0.4", 'drive.speed={function: "STEP(time,0,0,0.2,4440)", unit: rpm}'],
         zoom=False)
-    assert any(w.startswith("coast-flank impacts: coast force up to 1.06") for w in hit.warnings)
+    assert any(w.startswith("coast-flank impacts: coast force up to 1.18") for w in hit.warnings)

@@ -18,21 +18,21 @@ SHORT = ["run.end_time=0.4"]  # past the 0.2 s ramps: the digest uses the final 
 
 
 def test_iso_pair_digest_against_hand_formulas():
-    """iso_pair: z 21/43, m 5 mm, α 20°, b 50 mm, 1500 rpm, 300 N·m on the gear,
-    E 206 GPa, ν 0.3 (cases/iso_pair.yaml)."""
+    """iso_pair: z 21/43, m 5 mm, α 20°, b 50 mm, 1340 rpm (1500 before issue 31 moved the
+    case off 3 f_z = f_n), 300 N·m on the gear, E 206 GPa, ν 0.3 (cases/iso_pair.yaml)."""
     res = api.simulate(ISO_PAIR, SHORT)
     d = summary_document(res).input_digest
     geo = res.geometry.geometry
-    w1 = 1500 * 2 * math.pi / 60  # [rad/s]
+    w1 = 1340 * 2 * math.pi / 60  # [rad/s]
     d1, d2, b = 21 * 5.0, 43 * 5.0, 50.0  # [mm]
     f_t = 300e3 / (d2 / 2)  # T2/r2 [N]
     v = w1 * d1 / 2 / 1000  # [m/s]
     # all relative 1e-9: the same closed forms, only the order of operations differs
-    assert d.pitch_line_velocity_m_s == pytest.approx(v, rel=1e-9)  # 8.247 m/s
+    assert d.pitch_line_velocity_m_s == pytest.approx(v, rel=1e-9)  # 7.367 m/s
     assert d.line_load_N_mm == pytest.approx(f_t / b, rel=1e-9)  # 55.81 N/mm
-    assert d.power_kW == pytest.approx(300 * w1 * 21 / 43 / 1000, rel=1e-9)  # T2 ω2 = 23.0 kW
-    assert d.gear_mesh_frequency_Hz == pytest.approx(21 * 1500 / 60, rel=1e-9)  # 525 Hz
-    assert d.resonance_ratio == pytest.approx(525 / res.summary.mesh_natural_frequency_Hz,
+    assert d.power_kW == pytest.approx(300 * w1 * 21 / 43 / 1000, rel=1e-9)  # T2 ω2 = 20.6 kW
+    assert d.gear_mesh_frequency_Hz == pytest.approx(21 * 1340 / 60, rel=1e-9)  # 469 Hz
+    assert d.resonance_ratio == pytest.approx(469 / res.summary.mesh_natural_frequency_Hz,
                                               rel=1e-9)
     # ISO 6336-2 eq. 4 with Z_ε, spur: Z_E = √(E/(2π(1-ν²))) for equal materials
     a, aw = math.radians(20), geo.alpha_w_rad

@@ -283,17 +283,22 @@ ISO_PAIRS = [(17, 25, 0.0, 0.0, 10, 100), (21, 43, 0.35, -0.2, 5, 50), (62, 62, 
 @pytest.mark.parametrize("z1, z2, x1, x2, m, b", ISO_PAIRS)
 def test_iso_6336_method_b_anchors(z1, z2, x1, x2, m, b):
     """Single-pair maximum vs ISO 6336-1 c′b and mean vs c_γα b (Method B, E/E_st, no
-    low-load factor), within ±15 % (the issue's anchor) with the default bores (r_f/3: a solid
-    gear on a shaft, docs/theory.md §4b). ISO's c′ is measured stiffness of solid gears (its
-    C_M = 0.8 scales the theory down to measurements, §9.3), so this checks that the law with
-    a real body reproduces measured gears. Measured, plane strain: single 0.95 … 1.13 and mean
-    0.96 … 1.12 of ISO over the nine pairs (seed 1.10 / 1.10, shifted 1.03 / 1.02, fine
-    0.95 / 0.96); with the earlier default body (h_fi 1.4 … 1.8) they were 1.19 … 1.41."""
+    low-load factor) with the default bores (r_f/3) and the law as the cases use it, Weber's
+    contact term at a line load, here F_t/b = 200 N/mm: within ±20 %, the plausibility anchor
+    of docs/theory.md §4b (potential-energy results within 10–20 % of ISO). Measured, plane
+    strain: single 0.82 … 0.95 and mean 0.82 … 0.96 of ISO over the nine pairs (seed 0.90 /
+    0.91, shifted 0.86 / 0.87, fine 0.83 / 0.86; at 100 N/mm 0.80 … 0.93, at 400 N/mm 0.84 …
+    0.97). The law is checked against FE within 5 % (tests/physics/test_fe_tooth.py) and no
+    longer calibrated to ISO: with the linear Hertz term it was 0.95 … 1.13 / 0.96 … 1.12,
+    the default bore having been chosen to land there. ISO's c′ is measured stiffness of
+    solid gears (C_M = 0.8, §9.3), whose bodies are shallower than d_f/3 or not clamped."""
     geo = compute_pair_geometry(PairSpec(float(m), A20, GearSpec(z1, b, x1), GearSpec(z2, b, x2)))
     iso = _iso(geo, float(b))
-    mesh = mesh_stiffness(geo, face_width_mm=float(b), **MAT)
-    assert mesh.single_max_N_mm == pytest.approx(iso.pair_stiffness_N_mm, rel=0.15)
-    assert mesh.mean_N_mm == pytest.approx(iso.mesh_stiffness_N_mm, rel=0.15)
+    w = 200.0 / math.cos(A20)  # normal line load of F_t/b = 200 N/mm
+    mesh = mesh_stiffness(geo, face_width_mm=float(b), load_N_mm=w, **MAT)
+    assert mesh.single_max_N_mm == pytest.approx(iso.pair_stiffness_N_mm, rel=0.20)
+    assert mesh.mean_N_mm == pytest.approx(iso.mesh_stiffness_N_mm, rel=0.20)
+    assert mesh.single_max_N_mm < iso.pair_stiffness_N_mm  # below ISO on every pair
 
 
 @pytest.mark.parametrize("geo, b", [(SEED, 100.0), (SHIFTED, 50.0), (FINE, 20.0)])

@@ -100,19 +100,24 @@ def _insert(curve: np.ndarray, pts: np.ndarray, gap: float) -> tuple[np.ndarray,
 
 
 def sector_outline(gear: ToothForm, load_radii_mm, *, bore_radius_mm: float,
-                   n_teeth: int | None, fine_mm: float, coarse_mm: float) -> SectorOutline:
-    """Sector (module notes) with the load points at ``load_radii_mm`` inserted.
+                   n_teeth: int | None, fine_mm: float, coarse_mm: float,
+                   load_points_mm=None) -> SectorOutline:
+    """Sector (module notes) with the load points at ``load_radii_mm`` on the involute, or at
+    ``load_points_mm`` ((n, 2) points on the loaded tooth's outline, e.g. a tip corner, when
+    given), inserted.
 
     ``n_teeth``: odd number of teeth of the sector, or None for the whole gear (all teeth, the
     bore a hole; no sides). ``fine_mm``: boundary spacing on the loaded tooth; ``coarse_mm``:
     elsewhere [mm].
     """
+    loaded = (flank_point_normal(gear, load_radii_mm)[0] if load_points_mm is None
+              else np.asarray(load_points_mm, float).reshape(-1, 2))
     if n_teeth is None:
-        return _whole(gear, load_radii_mm, bore_radius_mm, fine_mm, coarse_mm)
+        return _whole(gear, loaded, bore_radius_mm, fine_mm, coarse_mm)
     if n_teeth < 1 or n_teeth % 2 == 0 or n_teeth >= gear.teeth:
         raise ValueError(f"n_teeth must be odd, positive and below z, got {n_teeth}")
     half = n_teeth // 2
-    rim, load_ids, tooth = _teeth(gear, load_radii_mm, bore_radius_mm, range(-half, half + 1),
+    rim, load_ids, tooth = _teeth(gear, loaded, bore_radius_mm, range(-half, half + 1),
                                   fine_mm, coarse_mm)
     pitch = 2.0 * math.pi / gear.teeth
     edge = [np.full(len(rim), SURFACE)]
@@ -132,15 +137,15 @@ def sector_outline(gear: ToothForm, load_radii_mm, *, bore_radius_mm: float,
                          n_teeth, bore_radius_mm)
 
 
-def _teeth(gear, load_radii_mm, bore_radius_mm, indices, fine_mm, coarse_mm):
+def _teeth(gear, loaded, bore_radius_mm, indices, fine_mm, coarse_mm):
     """Outline of the teeth ``indices`` (0 = the loaded one), each up to the next tooth's
-    first point; the load points inserted in tooth 0. Returns (points, load ids, tooth)."""
+    first point; the load points ``loaded`` (n, 2) inserted in tooth 0. Returns (points,
+    load ids, tooth)."""
     if not 0.0 < bore_radius_mm < gear.r_f_mm:
         raise ValueError(f"the bore radius {bore_radius_mm:.4g} mm must lie in (0, r_f = "
                          f"{gear.r_f_mm:.4g} mm)")
     tx, ty = profile.tooth_outline(gear, n_per_segment=200)
     tooth = np.column_stack([tx, ty])
-    loaded, _ = flank_point_normal(gear, load_radii_mm)
     mid, ids = _insert(resample(tooth, fine_mm), loaded, 0.3 * fine_mm)
     coarse = resample(tooth, coarse_mm)
     pitch = 2.0 * math.pi / gear.teeth
@@ -154,10 +159,10 @@ def _teeth(gear, load_radii_mm, bore_radius_mm, indices, fine_mm, coarse_mm):
     return np.vstack(parts), load_ids, tooth
 
 
-def _whole(gear, load_radii_mm, bore_radius_mm, fine_mm, coarse_mm) -> SectorOutline:
+def _whole(gear, loaded, bore_radius_mm, fine_mm, coarse_mm) -> SectorOutline:
     """The whole gear: all teeth (loaded tooth 0 fine) and the bore circle as a hole."""
     half = gear.teeth // 2
-    rim, load_ids, _ = _teeth(gear, load_radii_mm, bore_radius_mm,
+    rim, load_ids, _ = _teeth(gear, loaded, bore_radius_mm,
                               range(-half, gear.teeth - half), fine_mm, coarse_mm)
     n_arc = max(12, int(math.ceil(2.0 * math.pi * bore_radius_mm / coarse_mm)))
     psi = np.linspace(0.0, 2.0 * math.pi, n_arc, endpoint=False)

@@ -75,32 +75,45 @@ def geometry_key(gear: ToothForm, radii_mm, **params) -> str:
 
 def fe_tooth_compliance(gear: ToothForm, radii_mm, *, bore_diameter_mm: float,
                         youngs_MPa: float, poisson: float, plane_strain: bool,
-                        n_teeth: int | None = None, control: MeshControl = DEFAULT_CONTROL
-                        ) -> FEToothCompliance:
-    """Global FE compliance c_FE(r) [mm/(N/mm)] of ``gear``'s tooth at involute radii.
+                        n_teeth: int | None = None, control: MeshControl = DEFAULT_CONTROL,
+                        loads=None, point_of_load=None) -> FEToothCompliance:
+    """Global FE compliance c_FE [mm/(N/mm)] of ``gear``'s tooth at involute radii, loaded
+    along the inward flank normal, or (``loads`` = (points (n, 2), unit force directions
+    (n, 2)) in the tooth frame, points on the loaded tooth's outline, e.g. a tip corner
+    loaded along the mate's involute normal) at those points in those directions; the
+    displacement is read at the depth h behind each point along its force (module notes).
+    ``point_of_load`` (with ``loads``): index of the point of each force when there are more
+    forces than (distinct) points. ``radius_mm`` of the result is |point| of each load.
 
     Raises :class:`gearcli.model.fe.deps.FEUnavailableError` without the extra ``fe``.
     """
     t0 = time.perf_counter()
-    r = np.atleast_1d(np.asarray(radii_mm, float))
+    if loads is None:
+        point, normal = flank_point_normal(gear, radii_mm)
+        force = -normal
+    else:
+        point = np.asarray(loads[0], float).reshape(-1, 2)
+        force = np.asarray(loads[1], float).reshape(-1, 2)
+    on = np.arange(len(point)) if point_of_load is None else np.asarray(point_of_load, int)
     m = gear.module_mm
     size = m / control.refinement
-    outline = sector_outline(gear, r, bore_radius_mm=0.5 * bore_diameter_mm, n_teeth=n_teeth,
-                             fine_mm=control.fine * size, coarse_mm=control.coarse * size)
+    outline = sector_outline(gear, None, bore_radius_mm=0.5 * bore_diameter_mm,
+                             n_teeth=n_teeth, fine_mm=control.fine * size,
+                             coarse_mm=control.coarse * size, load_points_mm=point)
     clamp = (BORE, SIDE) if control.clamp_sides else (BORE,)
     body = PlaneBody.from_polygon(outline.points_mm, outline.edge_markers,
                                   max_area_mm2=control.max_area * size * size,
                                   youngs_MPa=youngs_MPa, poisson=poisson,
                                   plane_strain=plane_strain, clamp_markers=clamp,
                                   segments=outline.segments, holes_mm=outline.holes_mm)
-    point, normal = flank_point_normal(gear, r)
     mesh_pts = body.vertices_mm[:, outline.load_vertex_ids].T
     if not np.allclose(mesh_pts, point, atol=1e-9 * m):
         raise RuntimeError("the mesher moved a load point")  # Triangle keeps input vertices
-    u = body.solve(body.point_loads(outline.load_vertex_ids, -normal))
+    u = body.solve(body.point_loads(outline.load_vertex_ids[on], force))
     depth = control.depth * m
-    disp = body.displacement_at(u, point - depth * normal)  # (2, n_points, n_loads)
-    idx = np.arange(len(r))
-    c = -(disp[0, idx, idx] * normal[:, 0] + disp[1, idx, idx] * normal[:, 1])
-    return FEToothCompliance(r, c, depth, body.n_dofs, outline.n_teeth, bore_diameter_mm,
-                             plane_strain, time.perf_counter() - t0)
+    disp = body.displacement_at(u, point[on] + depth * force)  # (2, n_loads, n_loads)
+    idx = np.arange(len(on))
+    c = disp[0, idx, idx] * force[:, 0] + disp[1, idx, idx] * force[:, 1]
+    return FEToothCompliance(np.hypot(point[on, 0], point[on, 1]), c, depth, body.n_dofs,
+                             outline.n_teeth, bore_diameter_mm, plane_strain,
+                             time.perf_counter() - t0)
