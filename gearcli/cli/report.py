@@ -60,7 +60,8 @@ def run(
                              "slower: the PNGs alone make the report)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors and the report path."),
 ) -> None:
-    """simulate + analyze + report in one go; the exit code is analyze's (4: a check failed).
+    """simulate + analyze + report in one go; exit 4 when a check failed or an ISO 6336
+    safety is below its minimum (cases with a rating: section or fatigue limits).
 
     All or nothing: the results, the analysis and the report are written into one temporary
     folder that replaces DIR only when all of them are complete (earlier results survive
@@ -95,7 +96,7 @@ def run(
             write_simulation_files(result, tmp, set_)
             analysis = api.analyze(tmp)
             doc = write_analysis(analysis)
-            rating_note = _write_rating(tmp, result.loaded)
+            rating, rating_note = _write_rating(tmp, result.loaded)
             monitor_note = write_run_monitor(tmp)  # faults: the monitoring section
             name = build_report(tmp, fmt, None, units, svg).name
     path = out / name
@@ -110,11 +111,30 @@ def run(
             typer.echo(f"warning: {w}", err=True)
         if rating_note:
             typer.echo(f"not rated (ISO 6336): {rating_note}", err=True)
+        for line in _rating_lines(rating):
+            typer.echo(line)
         _note_monitor(monitor_note, quiet)
     typer.echo(f"report written to {path}")
-    if not analysis.passed:
-        failed = [c.name for c in analysis.checks if c.failed]
+    failed = [c.name for c in analysis.checks if c.failed]
+    if rating is not None and not rating.ok:  # a safety below its minimum is a finding too
+        failed.append("ISO 6336 rating (rating.json)")
+    if failed:
         raise CheckFailed(f"{out}: check(s) failed: {', '.join(failed)}")
+
+
+def _rating_lines(rating) -> list[str]:
+    """One line per rating column: the safeties of both gears against their minimums."""
+    if rating is None:
+        return []
+    out = []
+    for label, col in (("ISO", rating.iso), ("simulated", rating.simulated)):
+        if col is None:
+            continue
+        p, g = col.pinion, col.gear
+        out.append(f"rating ({label}, ISO 6336): S_H {p.S_H:.3f}/{g.S_H:.3f} "
+                   f"(minimum {p.S_H_min:g}), S_F {p.S_F:.3f}/{g.S_F:.3f} "
+                   f"(minimum {p.S_F_min:g}) pinion/gear: {'pass' if col.ok else 'FAIL'}")
+    return out
 
 
 def _note_monitor(why_not: str, quiet: bool) -> None:
@@ -123,13 +143,13 @@ def _note_monitor(why_not: str, quiet: bool) -> None:
         typer.echo(f"no condition-monitoring section: {why_not}", err=True)
 
 
-def _write_rating(folder: Path, loaded) -> str:
+def _write_rating(folder: Path, loaded):
     """rating.json (ISO 6336: the ISO and the simulated column; S_H, S_F also in summary.json)
-    of the run in ``folder`` when its case can be rated, returning ""; else, writing nothing,
-    why it was not rated."""
+    of the run in ``folder`` when its case can be rated: (the rating, ""); else, writing
+    nothing, (None, why it was not rated)."""
     from gearcli.pipeline.run_rating import rate_run, write_rating
 
     rating, why_not = rate_run(folder, loaded, stress_files=True)  # stress.json: the figure
     if rating is not None:  # rating.json, and the safeties into summary.json
         write_rating(folder, rating)
-    return why_not
+    return rating, why_not

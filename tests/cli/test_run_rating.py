@@ -98,3 +98,18 @@ def test_run_without_limits_says_what_is_missing(tmp_path):
     assert len(lines) == 1 and lines[0].startswith("Not rated")
     text = lines[0].replace("\\", "")  # Markdown escapes the underscores
     assert "pinion contact_fatigue_limit" in text and "gear bending_fatigue_limit" in text
+
+
+def test_run_of_a_pair_below_its_minimum_safety_exits_4_and_says_so(tmp_path):
+    # a contact fatigue limit far below the case's contact stress: S_H < S_H,min in both
+    # columns, so the run's exit is 4 (a finding) even when the dynamics' checks pass
+    out = tmp_path / "weak"
+    weak = ["--set", "material.contact_fatigue_limit=200",
+            "--set", "material.bending_fatigue_limit=430"]
+    res = runner.invoke(app, ["run", ISO_PAIR, "-o", str(out), "--set", "run.end_time=0.3",
+                              "--format", "md", *weak])
+    assert res.exit_code == 4, res.output
+    assert "ISO 6336 rating (rating.json)" in res.output
+    lines = [ln for ln in res.output.splitlines() if ln.startswith("rating (")]
+    assert len(lines) == 2 and all(ln.endswith("FAIL") for ln in lines), lines
+    assert json.loads((out / "rating.json").read_text())["verdict"] == "fail"
