@@ -41,23 +41,35 @@ CASES = (
 )
 
 _CHILD = """
-import json, statistics, sys
+import json, statistics, sys, time
+import gearcli.core.integrate as integrate
 from gearcli.pipeline.simulate import run_simulation
-runs, cases = int(sys.argv[1]), json.loads(sys.argv[2])
+runs, cases, clock = int(sys.argv[1]), json.loads(sys.argv[2]), sys.argv[3]
+kernel, cpu = integrate.simulate, []
+
+def timed(*args, **kwargs):  # the same call as wall_time_s, on this thread's CPU clock
+    t0 = time.thread_time()
+    try:
+        return kernel(*args, **kwargs)
+    finally:
+        cpu.append(time.thread_time() - t0)
+
+integrate.simulate = timed
 out = {}
 for label, path, overrides in cases:
-    times = [run_simulation(path, overrides, zoom=False, notice=None).wall_time_s
-             for _ in range(runs + 1)][1:]
+    wall = [run_simulation(path, overrides, zoom=False, notice=None).wall_time_s
+            for _ in range(runs + 1)][1:]
+    times = wall if clock == "wall" else cpu[-runs:]
     out[label] = [statistics.median(times), min(times)]
 print(json.dumps(out))
 """
 
 
-def side(tree: Path, runs: int, labels: list[str]) -> dict:
+def side(tree: Path, runs: int, labels: list[str], clock: str = "wall") -> dict:
     cases = [(label, str(ROOT / path), overrides) for label, path, overrides in CASES
              if label in labels]
     env = {**os.environ, "PYTHONPATH": str(tree)}
-    done = subprocess.run([sys.executable, "-c", _CHILD, str(runs), json.dumps(cases)],
+    done = subprocess.run([sys.executable, "-c", _CHILD, str(runs), json.dumps(cases), clock],
                           env=env, cwd=tree, capture_output=True, text=True, check=True)
     return json.loads(done.stdout.strip().splitlines()[-1])
 
@@ -72,6 +84,10 @@ def main() -> None:
     ap.add_argument("--cases", default=None,
                     help="comma-separated labels of CASES (default: all; seed rigid as "
                          "seed_rigid etc.: spaces and commas as underscores)")
+    ap.add_argument("--clock", choices=("wall", "cpu"), default="wall",
+                    help="wall: SimulationResult.wall_time_s; cpu: the thread's CPU time of "
+                         "the same kernel call (time.thread_time: time spent waiting for a "
+                         "core on a loaded machine is not counted)")
     args = ap.parse_args()
     labels = [label for label, _, _ in CASES]
     if args.cases:
@@ -84,13 +100,14 @@ def main() -> None:
         ratios: dict[str, list[float]] = {label: [] for label in labels}
         ratios_min: dict[str, list[float]] = {label: [] for label in labels}
         for _ in range(args.rounds):
-            before, after = side(base, args.runs, labels), side(head, args.runs, labels)
+            before = side(base, args.runs, labels, args.clock)
+            after = side(head, args.runs, labels, args.clock)
             for label in rows:
                 (b, b_min), (a, a_min) = before[label], after[label]
                 ratios[label].append(a / b)
                 ratios_min[label].append(a_min / b_min)
                 rows[label].append(f"{1e3 * b:.2f} / {1e3 * a:.2f} ({100 * (a / b - 1):+.1f} %)")
-    print(f"kernel A/B, median of {args.runs} runs in ms: {args.base} / "
+    print(f"kernel A/B ({args.clock} clock), median of {args.runs} runs in ms: {args.base} / "
           f"{args.head or 'working tree'}")
     print("| case | " + " | ".join(f"round {i + 1}" for i in range(args.rounds)) + " |")
     print("|---|" + "---|" * args.rounds)
