@@ -6,8 +6,8 @@ package's source (the abstract syntax tree, not text) for the two shapes such re
 
 * ``x["dynamic_factor"]`` or ``x.get("dynamic_factor")``: a subscript or ``get`` whose key is
   the name of a metric of the documents (gearcli/results/metrics.py, the label/unit registry
-  their fields are made from) or of a field of theirs - a document read as a dict (the stress figure's ``static``,
-  the sweep's speed plot did);
+  their fields are made from) or of a field of theirs: a document read as a dict (the
+  stress figure's ``static``, the sweep's speed plot did);
 * ``manifest["resolved_case"]["gears"]...``: an entry of the resolved case read out of the
   manifest's dict instead of the typed Case (`gearcli analyze --spectra/--orders` did).
   Passing ``manifest["resolved_case"]`` whole to the case loader is the conversion into the
