@@ -316,15 +316,20 @@ def flank(f, kin, app, model, slot_force, scratch, full):
     slot_force : ndarray, shape (N_FAMILIES, n_slots)
         Row ``f`` written when ``full``: the force of every slot [N] (0 out of contact).
     scratch : ndarray, shape (N_SCRATCH, n_slots)
-        Work space (layout.SC): the pairs in contact between the two passes.
+        Work space (layout.SC): the pairs in contact of a law that reads their sum, between
+        the two passes.
     full : bool
         False at the inner Runge-Kutta stages, where only the derivatives are used.
 
-    Two passes: :func:`_gather` finds the pairs in contact with their penetration, its rate
-    and derivatives and their stiffness (the tooth law's table k(x1), the per-tooth,
-    per-position stiffness factors); :func:`_pair_forces` applies the contact
-    law (``prm[P.contact_law]``, one call of :func:`gearcli.core.laws.pair_force` per pair;
-    the laws and their closed forms are in :mod:`gearcli.core.laws`) and adds friction.
+    :func:`_slots` finds the pairs in contact with their penetration, its rate and
+    derivatives and their stiffness (the tooth law's table k(x1), the per-tooth, per-position
+    stiffness factors). A law of the pair alone (IMPACT) is applied there, one pass
+    (:func:`gearcli.core.laws.local_law_force`); a law that reads the family's sum of k p (the
+    tooth law's shared damping) gets its pairs in ``scratch`` and :func:`_shared_pass`
+    applies it once the sum is known (:func:`gearcli.core.laws.shared_law_force`). Both add
+    friction (:func:`_push`). The laws and their closed forms are in
+    :mod:`gearcli.core.laws`. (With IMPACT through the scratch as well, the seed case ran
+    ~5 % slower than with one pass: bench/RESULTS.md, session 11.)
 
     Fast paths that leave every result unchanged (tests/physics/test_kernel_fastpaths.py,
     bench/RESULTS.md): with ``sigma delta - offset + overlap <= 0`` (``model.family[f,

@@ -5,7 +5,9 @@ p > 0) and keeps, per pair, its penetration p [mm] and rate p' [mm/s], the deriv
 dp/ds1, dp/ds2 [-] of p by the roll distances, and its stiffness k [N/mm^e] with the
 derivative dk/dx1 [N/mm^(e+1)] by the pinion roll position (the tooth law's table k(x1) times
 the per-tooth stiffness factors, docs/theory.md §4b.2; the constant k of the IMPACT law). It
-then calls :func:`pair_force` once per pair in contact. A law turns one pair into
+then evaluates the run's law once per pair in contact (:func:`pair_force`, the dispatch over
+every law; the kernel calls its halves :func:`local_law_force` in the slot loop and
+:func:`shared_law_force` in a second pass). A law turns one pair into
 
 * its normal force F [N] (0 when it does not push),
 * its share of the generalized forces on s1, s2 [N] (subtracted from the running sums
