@@ -1,5 +1,5 @@
 """Per-tooth, per-position stiffness factors (docs/theory.md §4b.2; core/flank.py
-``_slots``, ``_factors``; core/bundles.py ``Model.tooth_stiffness_factor``) in the running kernel.
+``_gather``, ``_factors``; core/bundles.py ``Model.tooth_stiffness_factor``) in the running kernel.
 
 * a table of ones gives the run without a table bit for bit (both laws, through the pipeline,
   pipeline/kernel_input.py);

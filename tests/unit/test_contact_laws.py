@@ -159,19 +159,3 @@ def test_impact_damping_scales_with_the_stiffness_factor():
         force = impact_law(prm, derived, (pen, rate, 1.0, -1.0, f * K_IMPACT, 0.0),
                            (1.0, rate, 0.0), ACC)[0]
         assert force == pytest.approx(f * (elastic + 30.0 * rate), rel=1e-12, abs=0.0), f
-
-
-def test_the_kernel_halves_of_the_dispatch_cover_every_law_once():
-    """flank.flank evaluates a law of the pair alone in its slot loop (local_law_force) and a
-    law that reads the family's sum of k p in a second pass (shared_law_force): every known
-    law is in exactly one half, and each half gives what pair_force gives."""
-    from gearcli.core.laws import SHARED_SUM_LAWS, local_law_force, reads_sum, shared_law_force
-
-    prm, derived = vectors(1.0)
-    pair, shared = (2e-3, 4.0, 1.0, -1.0, K_TOOTH, 0.0), (1.0, 4.0, 2e5)
-    assert set(SHARED_SUM_LAWS) <= set(KNOWN_LAWS)
-    for law in KNOWN_LAWS:
-        assert reads_sum(law) == (law in SHARED_SUM_LAWS)
-        half = shared_law_force if law in SHARED_SUM_LAWS else local_law_force
-        assert half(law, prm, derived, pair, shared, ACC) == pair_force(
-            law, prm, derived, pair, shared, ACC)
