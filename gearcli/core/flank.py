@@ -114,7 +114,7 @@ def _previous_tooth(i, isig, z):
     return i
 
 
-@jit_noalloc
+@jit_noalloc_inline
 def _gap(tables, g, x, zero_lo, zero_hi, grid):
     """Gap [mm] and slope [-] of table ``g`` at ``x`` [mm]; inside the table's zero run
     ``zero_lo .. zero_hi`` the Hermite cubic is exactly 0 (values and slopes 0) and the table

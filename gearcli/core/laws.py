@@ -35,14 +35,14 @@ out (issue 27), so results are bit for bit those of that code.
 
 from gearcli.core.contact import elastic_force, impact_force
 from gearcli.core.layout import LAW_IMPACT, LAW_TOOTH, D, P
-from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
+from gearcli.core.nrt import jit_noalloc_inline
 
 #: Every contact law the kernel knows (layout.P.contact_law); integrate.kernel_model refuses
 #: other values.
 KNOWN_LAWS = (LAW_IMPACT, LAW_TOOTH)
 
 
-@jit_noalloc
+@jit_noalloc_inline
 def impact_law(prm, derived, pair, shared, acc):
     """Adams IMPACT (docs/theory.md §4.2, §4.3): F = max(0, k p^e + STEP(p, 0, 0, d_max, c_max)
     p') for p > 0 (with stiffness factors f = k/k_contact, k and c_max are both scaled by f),
@@ -70,7 +70,7 @@ def impact_law(prm, derived, pair, shared, acc):
     return force, q1, q2, pot, pdamp
 
 
-@jit_noalloc
+@jit_noalloc_inline
 def tooth_law(prm, derived, pair, shared, acc):
     """Tooth compliance with shared mesh damping (docs/theory.md §4b, §4c): the elastic force
     F_el = k p, F = max(0, F_el (1 + c_m v / max(sum_i k_i p_i, F_ref))) (c_m =
