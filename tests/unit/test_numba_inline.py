@@ -176,3 +176,36 @@ def test_the_same_machine_code_with_and_without_the_fix():
     finally:
         assert numba_inline.apply()
     assert _compiled_llvm() == without
+
+
+def test_each_inlined_function_is_analysed_once():
+    """The untyped passes of a function inlined at several sites (and inside a function
+    inlined at several sites) run once; numba runs them at every site."""
+    _installed()
+    if not getattr(inline_closurecall.InlineWorker.inline_function, "_gearcli_untyped_cache",
+                   False):
+        pytest.skip("numba's inline_function changed shape: no untyped-IR cache")
+    inner = numba.njit(inline="always")(_callee)
+
+    @numba.njit(inline="always")
+    def middle(x, n):
+        return inner(x, n) + inner(2.0 * x, n + 1)
+
+    @numba.njit
+    def outer(x, n):
+        return middle(x, n) + middle(-x, n)
+
+    analysed = []
+    original = inline_closurecall.InlineWorker.run_untyped_passes
+
+    def counting(self, func, enable_ssa=False):
+        analysed.append(func)
+        return original(self, func, enable_ssa)
+
+    inline_closurecall.InlineWorker.run_untyped_passes = counting
+    try:
+        got = outer(0.75, 5)
+    finally:
+        inline_closurecall.InlineWorker.run_untyped_passes = original
+    assert analysed.count(_callee) == 1 and analysed.count(middle.py_func) == 1
+    assert got == (_callee(0.75, 5) + _callee(1.5, 6)) + (_callee(-0.75, 5) + _callee(-1.5, 6))
