@@ -166,19 +166,7 @@ def _compiled_llvm() -> str:
     return text
 
 
-def _scope_fix_only():
-    """Take the untyped-IR cache out of numba's inliner (the scope fix stays); returns what
-    to put back."""
-    cached = inline_closurecall.InlineWorker.inline_function
-    inline_closurecall.InlineWorker.inline_function = getattr(cached, "__wrapped__", cached)
-    return cached
-
-
 def test_the_same_machine_code_with_and_without_the_fix():
-    """The scope fix: the same LLVM IR (names normalised). The untyped-IR cache is taken out
-    on both sides: a site given the kept IR gets other block labels and SSA versions than a
-    site that analyses the function again, so its LLVM IR is the same code in another order
-    (the results are the same bit for bit: bench/identity.py, bench/RESULTS.md session 11)."""
     _installed()
     try:
         numba_inline.remove()
@@ -187,42 +175,4 @@ def test_the_same_machine_code_with_and_without_the_fix():
         without = _compiled_llvm()
     finally:
         assert numba_inline.apply()
-    cached = _scope_fix_only()
-    try:
-        assert _compiled_llvm() == without
-    finally:
-        inline_closurecall.InlineWorker.inline_function = cached
-
-def test_each_inlined_function_is_analysed_once():
-    """The untyped passes of a function inlined at several sites (and inside a function
-    inlined at several sites) run once; numba runs them at every site."""
-    _installed()
-    if not getattr(inline_closurecall.InlineWorker.inline_function, "_gearcli_untyped_cache",
-                   False):
-        pytest.skip("numba's inline_function changed shape: no untyped-IR cache")
-    # a function object of its own: the cache of this process may hold _callee already
-    fresh = types.FunctionType(_callee.__code__, _callee.__globals__, "fresh")
-    inner = numba.njit(inline="always")(fresh)
-
-    @numba.njit(inline="always")
-    def middle(x, n):
-        return inner(x, n) + inner(2.0 * x, n + 1)
-
-    @numba.njit
-    def outer(x, n):
-        return middle(x, n) + middle(-x, n)
-
-    analysed = []
-    original = inline_closurecall.InlineWorker.run_untyped_passes
-
-    def counting(self, func, enable_ssa=False):
-        analysed.append(func)
-        return original(self, func, enable_ssa)
-
-    inline_closurecall.InlineWorker.run_untyped_passes = counting
-    try:
-        got = outer(0.75, 5)
-    finally:
-        inline_closurecall.InlineWorker.run_untyped_passes = original
-    assert analysed.count(fresh) == 1 and analysed.count(middle.py_func) == 1
-    assert got == (_callee(0.75, 5) + _callee(1.5, 6)) + (_callee(-0.75, 5) + _callee(-1.5, 6))
+    assert _compiled_llvm() == without
