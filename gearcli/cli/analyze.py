@@ -77,8 +77,7 @@ def analyze(
             from gearcli.pipeline.analysis_io import spectrum_columns
             from gearcli.report.figures import spectra_figure
 
-            harmonics = int(result.run.manifest["resolved_case"].get("checks", {})
-                            .get("harmonics", 5))
+            harmonics = result.case.checks.harmonics
             save_figure(spectra_figure(spectrum_columns(result), typed, harmonics, order_axis,
                                        db, display_units()), spectra, 110)
         record_outputs(folder, ANALYSIS_FILES)
@@ -96,7 +95,7 @@ def _save_order_map(result, path: Path, units: str) -> None:
     from gearcli.plotting.orders import plot_order_map
 
     c, s = result.run.columns, result.run.summary.scalars
-    teeth = int(result.run.manifest["resolved_case"]["gears"]["pinion"]["teeth"])
+    teeth = result.case.gears.pinion.teeth
     modes = [m.natural_frequency_Hz for m in s.modes
              if not m.rigid_body and m.natural_frequency_Hz]
     fig = plot_order_map(c["t_s"], c["force_total_N"], c["omega1_rad_s"], teeth, modes,

@@ -16,6 +16,7 @@ from typing import NamedTuple
 import numpy as np
 
 from gearcli.case.load import load_case_text
+from gearcli.case.schema import Case
 from gearcli.errors import ResultsError
 from gearcli.io.results import StoredRun, read_run, window_mask
 from gearcli.model.modal import has_resonant_peak
@@ -44,6 +45,8 @@ class Analysis:
     lines: dict[str, list[tuple[str, Line]]]
     checks: list[Check] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    #: The run's resolved case (the manifest's, typed: gearcli.case.schema.Case)
+    case: Case | None = None
 
     @property
     def passed(self) -> bool:
@@ -108,7 +111,7 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
                                 metrics.gear_mesh_frequency_Hz, case.checks, band)
     metrics = dataclasses.replace(metrics, resonance_margins_percent=resonance.margins_percent,
                                   resonance_margins=resonance.margins)
-    result = Analysis(run, win, metrics, spectra, lines)
+    result = Analysis(run, win, metrics, spectra, lines, case=case)
     result.checks = _checks(result, case, s, resonance.check)
     result.warnings = list(run.summary.warnings)
     if strict:

@@ -207,37 +207,55 @@ def settled(t_s, force_N, delta_mm, speeds: dict, f_static_N: float,
     return "ok", ""
 
 
-def run_direction(payload: dict) -> dict:
+@dataclass(frozen=True)
+class DirectionTask:
+    """One direction of a speed curve as its worker receives it (plain, picklable data)."""
+
+    direction: str  #: "up" or "down" (DIRECTIONS)
+    name: str  #: the run's name
+    first: int  #: point number of its first level
+    case_json: str  #: the direction's resolved case (direction_case_json)
+    stairs: Staircase
+    pinion_teeth: int  #: z1 (the speed of a level whose simulation failed)
+
+
+@dataclass(frozen=True)
+class DirectionOutcome:
+    """What a worker returns for one direction."""
+
+    rows: list[SpeedLevel]  #: a row per level
+    f_n_Hz: float  #: the run's mesh natural frequency [Hz] (NaN when it failed)
+    error: str = ""  #: the one-line error of a failed simulation ("" when it ran)
+
+
+def run_direction(task: DirectionTask) -> DirectionOutcome:
     """Simulate one direction and measure its levels (runs in a worker: plain data in and
-    out). Returns {"rows": [...], "f_n_Hz": ..., "error": ""}."""
+    out)."""
     from gearcli.errors import GearcliError
     from gearcli.pipeline.simulate import run_simulation
     from gearcli.pipeline.sweep.run import case_from_json
 
-    stairs = Staircase(tuple(payload["f_z_Hz"]), payload["expression"],
-                       tuple(map(tuple, payload["windows_s"])), payload["end_time_s"])
+    stairs = task.stairs
     try:
-        res = run_simulation(case_from_json(payload["case_json"], payload["name"]), zoom=False)
+        res = run_simulation(case_from_json(task.case_json, task.name), zoom=False)
     except GearcliError as exc:  # every level of this direction is a failed row, with the reason
-        return failed_direction(payload, str(exc).splitlines()[0])
+        return failed_direction(task, str(exc).splitlines()[0])
     f_n = res.summary.mesh_natural_frequency_Hz
-    return {"rows": measure_levels(res, stairs, payload["direction"], f_n, payload["first"]),
-            "f_n_Hz": f_n, "error": ""}
+    return DirectionOutcome(measure_levels(res, stairs, task.direction, f_n, task.first), f_n)
 
 
-def failed_direction(payload: dict, error: str) -> dict:
+def failed_direction(task: DirectionTask, error: str, cause: str = "") -> DirectionOutcome:
     """Every level of a direction as a failed row (its solver failed, its worker was killed
-    or timed out: pipeline/sweep/workers.py)."""
-    teeth = json.loads(payload["case_json"])["gears"]["pinion"]["teeth"]
-    rows = [SpeedLevel(point=payload["first"] + i, direction=payload["direction"],
-                       mesh_frequency_Hz=fz, pinion_speed_rpm=fz / teeth * 60.0,
+    or timed out: pipeline/sweep/workers.py; ``cause`` is not recorded for a speed curve)."""
+    rows = [SpeedLevel(point=task.first + i, direction=task.direction,
+                       mesh_frequency_Hz=fz, pinion_speed_rpm=fz / task.pinion_teeth * 60.0,
                        status="failed", error=error)
-            for i, fz in enumerate(payload["f_z_Hz"])]
-    return {"rows": rows, "f_n_Hz": math.nan, "error": error}
+            for i, fz in enumerate(task.stairs.f_z_Hz)]
+    return DirectionOutcome(rows, math.nan, error)
 
 
-def plan(study) -> list[dict]:
-    """The two direction payloads of a speed-curve study."""
+def plan(study) -> list[DirectionTask]:
+    """The two direction tasks of a speed-curve study."""
     from gearcli.case.types import checked_quantity
     from gearcli.units import FREQUENCY
 
@@ -251,12 +269,10 @@ def plan(study) -> list[dict]:
     out = []
     for d, order in zip(DIRECTIONS, (f_z, f_z[::-1]), strict=True):
         stairs = staircase(order, teeth, start)
-        out.append({"direction": d, "name": f"{study.name}-{d}",
-                    "first": 0 if d == "up" else len(f_z),
-                    "case_json": direction_case_json(study.base_case_json, stairs, max(f_z)),
-                    "f_z_Hz": list(stairs.f_z_Hz), "expression": stairs.expression,
-                    "windows_s": [list(w) for w in stairs.windows_s],
-                    "end_time_s": stairs.end_time_s})
+        out.append(DirectionTask(
+            direction=d, name=f"{study.name}-{d}", first=0 if d == "up" else len(f_z),
+            case_json=direction_case_json(study.base_case_json, stairs, max(f_z)),
+            stairs=stairs, pinion_teeth=teeth))
     return out
 
 
@@ -322,10 +338,10 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
 
     results = list(execute(run_direction, plan(study), jobs, scheduler, failed_direction,
                            point_timeout))
-    rows = sorted((r for res in results for r in res["rows"]), key=lambda r: r.point)
+    rows = sorted((r for res in results for r in res.rows), key=lambda r: r.point)
     base = case_from_json(study.base_case_json, study.name)
     geo = run_geometry(base)
-    f_n = next((res["f_n_Hz"] for res in results if not res["error"]), math.nan)
+    f_n = next((res.f_n_Hz for res in results if not res.error), math.nan)
     if not math.isfinite(f_n):  # both directions failed: the base case's mesh mode
         from gearcli.pipeline.kernel_input import linearised_mesh
 
@@ -337,7 +353,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
         resonance_ratio=r.resonance_ratio if math.isfinite(r.resonance_ratio)
         else r.mesh_frequency_Hz / f_n) for r in rows]
     rows = with_level_safeties(base, rows)  # S_H, S_F at each speed (issue 28)
-    return SpeedCurve(study.name, rows, f_n, [res["error"] for res in results if res["error"]],
+    return SpeedCurve(study.name, rows, f_n, [res.error for res in results if res.error],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
                       _notes(base.case), accuracy_doc(base), study.metrics,
                       list(study.checks))

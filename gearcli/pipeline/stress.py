@@ -407,7 +407,7 @@ def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -
     f_z = res.run.summary.scalars.gear_mesh_frequency_Hz or 0.0
     fig = plot_stress_of_run(
         res.t_s, res.x_mm, res.force_N, res.sigma_H, res.sigma_F_pinion, res.sigma_F_gear,
-        geometry=geo, static=_static_doc(res.static).to_dict(), window_s=res.window_s,
+        geometry=geo, static=_static_doc(res.static), window_s=res.window_s,
         f_z_Hz=f_z, cycles=cycles, peaks=_peaks_of(res),
         title=f"{res.name}: tooth stresses (z1 = {geo.pinion.teeth}, z2 = {geo.gear.teeth})")
     save_figure(fig, path, 130)

@@ -128,15 +128,15 @@ def plot_stress(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, wi
 
 
 def plot_stress_of_run(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, *, geometry,
-                       static: dict, window_s, f_z_Hz: float, title: str,
+                       static, window_s, f_z_Hz: float, title: str,
                        cycles: float = 3.0, peaks: dict | None = None) -> Figure:
     """:func:`plot_stress` of a run: the last ``cycles`` mesh cycles of the window (mesh
     frequency ``f_z_Hz`` [Hz]), the points A…E of ``geometry`` (a PairGeometry) and the
-    single-pair Hertz reference from stress.json's ``static`` values (``force_normal_N``,
-    ``contact_face_width_mm``, ``E_star_MPa``, and per gear ``sigma_H_iso_MPa``,
-    ``sigma_F0_MPa``), so that `gearcli stress --plot` and the report draw the same figure;
-    ``peaks``: stress.json's {"pinion": ..., "gear": ...}, whose peak positions are marked
-    (:func:`critical_points`)."""
+    single-pair Hertz reference from stress.json's ``static`` values (``static``: a
+    gearcli.results.StaticRatingDoc; its ``force_normal_N``, ``contact_face_width_mm``,
+    ``E_star_MPa``, and per gear ``sigma_H_iso_MPa``, ``sigma_F0_MPa``), so that `gearcli
+    stress --plot` and the report draw the same figure; ``peaks``: stress.json's
+    {"pinion": ..., "gear": ...}, whose peak positions are marked (:func:`critical_points`)."""
     from gearcli.model.rating import hertz_line_contact_stress
 
     geo = geometry
@@ -144,15 +144,15 @@ def plot_stress_of_run(t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear
     zoom = (max(t0, t1 - cycles / f_z_Hz), t1) if f_z_Hz > 0 else (t0, t1)
     x_ref = np.linspace(0.0, geo.g_alpha_mm, 200)
     rho1 = geo.A_mm + x_ref
-    ref_h = hertz_line_contact_stress(static["force_normal_N"], static["contact_face_width_mm"],
-                                      rho1, geo.T1T2_mm - rho1, static["E_star_MPa"])
+    ref_h = hertz_line_contact_stress(static.force_normal_N, static.contact_face_width_mm,
+                                      rho1, geo.T1T2_mm - rho1, static.E_star_MPa)
     marks = {k: v - geo.A_mm for k, v in geo.line_of_action_points().items()
              if k in ("A", "B", "C", "D", "E")}
     return plot_stress(
         t_s, x_mm, force_N, sigma_H, sigma_F_pinion, sigma_F_gear, window_s=window_s,
         zoom_s=zoom, marks_mm=marks, single_pair_x_mm=x_ref, single_pair_sigma_H=ref_h,
-        static_MPa={"sigma_H_B": static["pinion"]["sigma_H_iso_MPa"],
-                    "sigma_H_D": static["gear"]["sigma_H_iso_MPa"],
-                    "sigma_F0_pinion": static["pinion"]["sigma_F0_MPa"],
-                    "sigma_F0_gear": static["gear"]["sigma_F0_MPa"]},
+        static_MPa={"sigma_H_B": static.pinion.sigma_H_iso_MPa,
+                    "sigma_H_D": static.gear.sigma_H_iso_MPa,
+                    "sigma_F0_pinion": static.pinion.sigma_F0_MPa,
+                    "sigma_F0_gear": static.gear.sigma_F0_MPa},
         title=title, critical=critical_points(peaks))

@@ -172,7 +172,7 @@ def _stress(data: ReportData):
     return plot_stress_of_run(
         ss["t_s"], stack("x_slot{}_mm", c), stack("force_slot{}_N", c),
         stack("sigma_H_slot{}_MPa", ss), stack("sigma_F_pinion_slot{}_MPa", ss),
-        stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st.static.to_dict(),
+        stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st.static,
         window_s=tuple(st.window_s), peaks={"pinion": st.pinion.to_dict(),
                                             "gear": st.gear.to_dict()},
         f_z_Hz=data.scalars.gear_mesh_frequency_Hz or 0.0,  # as `gearcli stress --plot`

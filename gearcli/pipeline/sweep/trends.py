@@ -23,7 +23,7 @@ from gearcli.io.files import record_outputs, save_figure, write_atomic
 from gearcli.pipeline.sweep.design import MESH_FREQUENCY
 from gearcli.pipeline.sweep.study import Study
 from gearcli.plotting.text import plain
-from gearcli.results import sweep_metrics
+from gearcli.results import Summary, sweep_metrics
 
 #: Metrics of the seed's Table 5 (field metadata "trend", gearcli/results/).
 TREND_METRICS = sweep_metrics("trend")
@@ -259,6 +259,13 @@ def _trend_lines(df, study: Study, p, metric: str):
     return lines
 
 
+def summaries(df) -> list[Summary]:
+    """The rows of a summary.csv table as typed documents: each row's metric cells that are
+    fields of gearcli.results.Summary (the others: the field's default), read by field, not
+    by column name."""
+    return [Summary.from_document(cells) for cells in df.to_dict("records")]
+
+
 def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N803
     """Dynamic factor and DTE standard deviation against f_z, one curve per combination of
     the other parameters, with the mesh natural frequency f_n and f_n/2, f_n/3 marked, and the
@@ -273,9 +280,13 @@ def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N8
         g = g.sort_values(speed.column)
         key = key if isinstance(key, tuple) else (key,)
         label = ", ".join(f"{c} = {v:g}" for c, v in zip(others, key, strict=True)) or None
-        axes[0].plot(g[speed.column], g["dynamic_factor"], "o-", ms=3, label=label)
-        axes[1].plot(g[speed.column], g["dte_rms_mm"], "o-", ms=3, label=label)
-        f_ns += list(g["mesh_natural_frequency_Hz"].dropna())
+        points = summaries(g)
+        axes[0].plot(g[speed.column], [s.dynamic_factor for s in points], "o-", ms=3,
+                     label=label)
+        axes[1].plot(g[speed.column], [s.dte_rms_mm for s in points], "o-", ms=3, label=label)
+        f_ns += [s.mesh_natural_frequency_Hz for s in points
+                 if s.mesh_natural_frequency_Hz is not None
+                 and math.isfinite(s.mesh_natural_frequency_Hz)]
     for status, g in df[df["status"] != "ok"].groupby("status"):
         for ax in axes:  # no metrics to plot: a cross on the f_z axis says where
             ax.plot(g[speed.column], np.full(len(g), 0.02), "x", color="tab:red",

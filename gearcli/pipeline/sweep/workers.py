@@ -87,13 +87,14 @@ def failure_cause(exc: BaseException) -> str:
     return CASE
 
 
-def lost_point(payload: dict, reason: str) -> dict:
-    """The row of a point whose worker gave no result."""
+def lost_point(payload: dict, reason: str, cause: str = ENVIRONMENT) -> dict:
+    """The row of a point whose worker gave no result (``cause``: ENVIRONMENT or CASE)."""
     return {"point": payload["index"], "case_hash": payload["case_hash"], "status": "failed",
-            "error": reason, "cause": ENVIRONMENT}
+            "error": reason, "cause": cause}
 
 
-Lost = Callable[[dict, str], dict]
+#: (payload, reason, cause) -> the failed result of a payload whose worker gave none
+Lost = Callable[..., object]
 
 
 # --- local workers -----------------------------------------------------------------------------
@@ -240,7 +241,7 @@ def _collect(done, flight: dict, timeout: PointTimeout, lost: Lost):
         if isinstance(exc, BrokenProcessPool):
             broken.append(p)
         elif exc is not None:  # fn catches the case's errors: this is the machinery's
-            yield {**lost(p, f"internal error: {exc!r}"), "cause": failure_cause(exc)}
+            yield lost(p, f"internal error: {exc!r}", failure_cause(exc))
         else:
             if t0 is not None:
                 timeout.observe(time.monotonic() - t0)
@@ -338,8 +339,8 @@ def _dask_results(client, payloads, fn, lost: Lost, timeout: PointTimeout) -> It
             exc = fut.exception()  # KilledWorker: the workers running it died
             reason = KILLED if type(exc).__name__ == "KilledWorker" else \
                 f"internal error: {exc!r}"
-            yield {**lost(futures[fut], reason),
-                   "cause": ENVIRONMENT if reason == KILLED else failure_cause(exc)}
+            yield lost(futures[fut], reason,
+                       ENVIRONMENT if reason == KILLED else failure_cause(exc))
 
 
 _ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.-]+):(\d{1,5})$")
