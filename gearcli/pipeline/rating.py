@@ -67,6 +67,25 @@ class SimulatedLoad:
 
 
 @dataclass(frozen=True)
+class PeakSafety:
+    """One gear's safeties from the run's peak stresses (:func:`_peaks`); a field is None
+    when the run has no loaded sample of that stress."""
+
+    sigma_H_peak_MPa: float | None = None  #: σ_H peak of `gearcli stress` [MPa]
+    sigma_H_MPa: float | None = None  #: σ_H,sim = σ_H,peak √(K_A K_γ K_Hβ) [MPa]
+    S_H: float | None = None
+    S_H_min: float | None = None
+    sigma_F_peak_MPa: float | None = None  #: σ_F peak of `gearcli stress` [MPa]
+    sigma_F_MPa: float | None = None  #: σ_F,sim = σ_F,peak K_A K_γ K_Fβ Y_β Y_B Y_DT [MPa]
+    S_F: float | None = None
+    S_F_min: float | None = None
+
+    def to_dict(self) -> dict:
+        """rating.json's ``simulated.peaks.<gear>``: the fields that have a value."""
+        return {k: v for k, v in dataclasses.asdict(self).items() if v is not None}
+
+
+@dataclass(frozen=True)
 class CaseRating:
     """The rating of a case: the ISO column, the duty cycle's damage, the simulated column."""
 
@@ -77,7 +96,7 @@ class CaseRating:
     iso_dynamic: dict | None  #: Method B data when K_v is 'iso' (resonance ratio, range)
     duty_cycle: DutyCycleDamage | None
     simulated: RatingResult | None  #: K_v (and K_γ) of the run
-    simulated_peaks: dict | None  #: safeties from the run's peak stresses
+    simulated_peaks: dict[str, PeakSafety] | None  #: per gear name: the peak stresses' safeties
     notes: tuple[str, ...]
     #: the edition-dependent factors of the ISO column under ISO 6336:2006 and :2019
     editions: tuple[EditionRow, ...] = ()
@@ -110,7 +129,8 @@ class CaseRating:
             "iso": self.iso.to_dict(),
             "duty_cycle": None if self.duty_cycle is None else self.duty_cycle.to_dict(),
             "simulated": None if self.simulated is None else {
-                **self.simulated.to_dict(), "peaks": self.simulated_peaks},
+                **self.simulated.to_dict(), "peaks": None if self.simulated_peaks is None
+                else {k: v.to_dict() for k, v in self.simulated_peaks.items()}},
             "editions": [r.to_dict() for r in self.editions],
             "notes": list(self.notes),
         }
@@ -254,7 +274,7 @@ def _duty_bins(loaded: LoadedCase, geo: GeometryResult) -> list[LoadBin] | None:
                     b.speed * RPM_PER_RAD_S, b.time_share) for b in bins]
 
 
-def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
+def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict[str, PeakSafety] | None:
     """Safeties of the run's peak stresses against the ISO strengths at the required life.
 
     The peaks of `gearcli stress` come from the converged dynamic pair forces at their actual
@@ -283,7 +303,7 @@ def _peaks(result: RatingResult, sim: SimulatedLoad) -> dict | None:
             s_f = s * k_f * y
             row.update(sigma_F_peak_MPa=s, sigma_F_MPa=s_f, S_F=g.sigma_FG_MPa / s_f,
                        S_F_min=g.S_F_min)
-        out[g.name] = row
+        out[g.name] = PeakSafety(**row)
     return out
 
 

@@ -18,6 +18,7 @@ from gearcli.errors import GearcliError
 from gearcli.model.iso6336.document import RatingResult
 from gearcli.pipeline.rating import (
     CaseRating,
+    PeakSafety,
     SimulatedLoad,
     rate_case,
     rating_input,
@@ -75,11 +76,11 @@ def _column(result: RatingResult, source: str, peaks: dict | None = None) -> Rat
     """The safeties of one column of the rating (with the peak safeties of ``peaks``)."""
     gears = {}
     for g in (result.pinion, result.gear):
-        peak = (peaks or {}).get(g.name, {})
+        peak = (peaks or {}).get(g.name) or PeakSafety()
         gears[g.name] = GearSafeties(
             S_H=g.S_H, S_H_min=g.S_H_min, pitting="pass" if g.pitting_ok else "fail",
             S_F=g.S_F, S_F_min=g.S_F_min, bending="pass" if g.bending_ok else "fail",
-            S_H_peak=peak.get("S_H"), S_F_peak=peak.get("S_F"))
+            S_H_peak=peak.S_H, S_F_peak=peak.S_F)
     return RatingColumn(
         dynamic_factor=result.factor("K_v").value, dynamic_factor_source=source,
         pinion=gears["pinion"], gear=gears["gear"],

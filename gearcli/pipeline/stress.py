@@ -395,7 +395,7 @@ def write_stress(res: StressResult, doc: dict | None = None) -> dict:
 def _peaks_of(res: StressResult) -> dict:
     """stress.json's per-gear peaks (their positions are marked on the figure)."""
     doc = stress_document(res)
-    return {"pinion": doc.pinion.to_dict(), "gear": doc.gear.to_dict()}
+    return {"pinion": doc.pinion, "gear": doc.gear}
 
 
 def save_stress_plot(res: StressResult, path: str | Path, cycles: float = 3.0) -> None:

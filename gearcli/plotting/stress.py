@@ -30,19 +30,17 @@ def _marks(ax, marks_mm: dict[str, float]) -> None:
 
 
 def critical_points(peaks: dict | None) -> dict[str, list[tuple[str, float, float]]]:
-    """The critical positions of stress.json's per-gear peaks ``peaks`` = {"pinion": {...},
-    "gear": {...}} (``peak_sigma_H``, ``peak_sigma_F``: ``MPa``, ``x_from_A_mm``), the peaks the
-    simulated rating divides σ_HG, σ_FG by (docs/theory.md, "ISO 6336 rating" §9):
-    {"H": [(label, x [mm from A], σ [MPa])], "F": [...]}, a contact peak shared by both gears
-    listed once."""
+    """The critical positions of stress.json's per-gear peaks ``peaks`` = {"pinion":
+    GearPeaks, "gear": GearPeaks} (gearcli.results; their ``peak_sigma_H``, ``peak_sigma_F``:
+    ``MPa``, ``x_from_A_mm``), the peaks the simulated rating divides σ_HG, σ_FG by
+    (docs/theory.md, "ISO 6336 rating" §9): {"H": [(label, x [mm from A], σ [MPa])],
+    "F": [...]}, a contact peak shared by both gears listed once."""
     out: dict[str, list[tuple[str, float, float]]] = {"H": [], "F": []}
-    for role in ("pinion", "gear"):
-        gear = (peaks or {}).get(role) or {}
-        for kind, key in (("H", "peak_sigma_H"), ("F", "peak_sigma_F")):
-            p = gear.get(key) or {}
-            if p.get("MPa") is None or p.get("x_from_A_mm") is None:
+    for role, gear in (peaks or {}).items():
+        for kind, p in (("H", gear.peak_sigma_H), ("F", gear.peak_sigma_F)):
+            if p.MPa is None or p.x_from_A_mm is None:
                 continue
-            point = (float(p["x_from_A_mm"]), float(p["MPa"]))
+            point = (float(p.x_from_A_mm), float(p.MPa))
             if kind == "H" and any(q[1:] == point for q in out["H"]):
                 continue
             label = f"σ_H peak ({role})" if kind == "H" else f"σ_F peak {role}"

@@ -173,8 +173,7 @@ def _stress(data: ReportData):
         ss["t_s"], stack("x_slot{}_mm", c), stack("force_slot{}_N", c),
         stack("sigma_H_slot{}_MPa", ss), stack("sigma_F_pinion_slot{}_MPa", ss),
         stack("sigma_F_gear_slot{}_MPa", ss), geometry=geo, static=st.static,
-        window_s=tuple(st.window_s), peaks={"pinion": st.pinion.to_dict(),
-                                            "gear": st.gear.to_dict()},
+        window_s=tuple(st.window_s), peaks={"pinion": st.pinion, "gear": st.gear},
         f_z_Hz=data.scalars.gear_mesh_frequency_Hz or 0.0,  # as `gearcli stress --plot`
         title=f"{st.case}: tooth stresses (z1 = {geo.pinion.teeth}, "
               f"z2 = {geo.gear.teeth})")

@@ -103,15 +103,15 @@ def test_simulated_peaks_are_the_stress_peaks(run):
     for which, g in (("pinion", rated.simulated.pinion), ("gear", rated.simulated.gear)):
         ref = getattr(stress, which)
         row = peaks[g.name]
-        assert row["sigma_H_peak_MPa"] == pytest.approx(ref.sigma_H_peak_MPa, rel=1e-12)
-        assert row["sigma_F_peak_MPa"] == pytest.approx(ref.sigma_F_peak_MPa, rel=1e-12)
+        assert row.sigma_H_peak_MPa == pytest.approx(ref.sigma_H_peak_MPa, rel=1e-12)
+        assert row.sigma_F_peak_MPa == pytest.approx(ref.sigma_F_peak_MPa, rel=1e-12)
         # the loads the torsional model does not see: K_A K_γ K_Hβ (K_Fβ), and Y_β Y_B Y_DT
         k_h = _factor(rated.simulated, "K_A") * _factor(rated.simulated, "K_γ") \
             * _factor(rated.simulated, "K_Hβ")
         k_f = _factor(rated.simulated, "K_A") * _factor(rated.simulated, "K_γ") \
             * _factor(rated.simulated, "K_Fβ")
         y = math.prod(g.factor(s).value for s in ("Y_β", "Y_B", "Y_DT"))
-        assert row["S_H"] == pytest.approx(
+        assert row.S_H == pytest.approx(
             g.sigma_HG_MPa / (ref.sigma_H_peak_MPa * math.sqrt(k_h)), rel=1e-12)
-        assert row["S_F"] == pytest.approx(
+        assert row.S_F == pytest.approx(
             g.sigma_FG_MPa / (ref.sigma_F_peak_MPa * k_f * y), rel=1e-12)

@@ -206,8 +206,8 @@ def test_simulated_dynamic_factor_needs_a_run_and_takes_the_runs():
     assert r.simulated.pinion.S_H == pytest.approx(r.iso.pinion.S_H * ratio, rel=1e-12)
     # the peak carries the dynamics, not K_A 1.25, K_γ 1.10, K_Hβ 2.06 (the case's, as printed):
     # σ_H,sim = 1100 √(1.25 × 1.10 × 2.06) = 1851.30 N/mm²
-    assert r.simulated_peaks["pinion"]["sigma_H_MPa"] == pytest.approx(1851.30, abs=0.005)
-    assert r.simulated_peaks["pinion"]["S_H"] == pytest.approx(
+    assert r.simulated_peaks["pinion"].sigma_H_MPa == pytest.approx(1851.30, abs=0.005)
+    assert r.simulated_peaks["pinion"].S_H == pytest.approx(
         r.simulated.pinion.sigma_HG_MPa / (1100.0 * math.sqrt(1.25 * 1.10 * 2.06)), rel=1e-12)
     json.dumps(r.to_dict())
 

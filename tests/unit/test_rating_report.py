@@ -50,12 +50,16 @@ def test_geometry_table_rows_carry_the_printed_inspection_dimensions():
 
 
 def test_critical_points_are_the_stress_peaks():
-    peaks = {"pinion": {"peak_sigma_H": {"MPa": 457.0, "x_from_A_mm": 11.2},
-                        "peak_sigma_F": {"MPa": 32.7, "x_from_A_mm": 11.4}},
-             "gear": {"peak_sigma_H": {"MPa": 457.0, "x_from_A_mm": 11.2},
-                      "peak_sigma_F": {"MPa": 37.2, "x_from_A_mm": 11.2}}}
+    from gearcli.results.stress import GearPeaks, StressPeak
+
+    def gear(h, f):
+        return GearPeaks(peak_sigma_H=StressPeak(MPa=h[0], x_from_A_mm=h[1]),
+                         peak_sigma_F=StressPeak(MPa=f[0], x_from_A_mm=f[1]))
+
+    peaks = {"pinion": gear((457.0, 11.2), (32.7, 11.4)),
+             "gear": gear((457.0, 11.2), (37.2, 11.2))}
     pts = critical_points(peaks)
     assert pts["H"] == [("σ_H peak (pinion)", 11.2, 457.0)]  # shared by both flanks: once
     assert pts["F"] == [("σ_F peak pinion", 11.4, 32.7), ("σ_F peak gear", 11.2, 37.2)]
-    assert critical_points({"pinion": {"peak_sigma_H": {"MPa": None}}}) == {"H": [], "F": []}
+    assert critical_points({"pinion": GearPeaks()}) == {"H": [], "F": []}
     assert critical_points(None) == {"H": [], "F": []}

@@ -46,6 +46,9 @@ REMAINING = {
         "document with fields yet",
     ("cli/rate.py", "print_rating"):
         "the rating document (gearcli rate) printed from its dict (to_dict()), not its fields",
+    ("report/rating.py", "rating_table"):
+        "the rating document (rating.json, every factor) read from its dict, as print_rating; "
+        "its safeties are typed in summary.json (results/rating.py), its factor rows not yet",
     ("pipeline/rating.py", "rating_input"):
         "not a result document: _iso_kv's own dict of the ISO K_v reading",
     ("pipeline/rating.py", "_iso_kv"):
