@@ -7,7 +7,14 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
+from gearcli.cli.common import (
+    check_figure_path,
+    display_units,
+    emit,
+    format_value,
+    handle_errors,
+    table_options,
+)
 
 # (label, json key, stored unit) rows of the per-gear and per-pair tables (shown in the display
 # units, gearcli/display_units.py).
@@ -73,6 +80,7 @@ INSPECTION_ROWS = [
 
 @app.command()
 @handle_errors
+@table_options
 def geometry(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     as_json: bool = typer.Option(False, "--json", help="Print JSON (keys carry units)."),
@@ -110,12 +118,10 @@ def geometry(
 
 
 def _print_tables(data: dict, units: str) -> None:
-    from rich.console import Console
     from rich.table import Table
 
     from gearcli.display_units import convert
 
-    console = Console()
     t = Table(title=f"Gear geometry — {data['case']}", title_justify="left")
     t.add_column("quantity")
     t.add_column("pinion", justify="right")
@@ -125,7 +131,7 @@ def _print_tables(data: dict, units: str) -> None:
         (pinion, gear), shown = convert([data["pinion"].get(key), data["gear"].get(key)], unit,
                                         units)
         t.add_row(label, format_value(pinion), format_value(gear), shown)
-    console.print(t)
+    emit(t)
     p = Table(title="Pair", title_justify="left")
     p.add_column("quantity")
     p.add_column("value", justify="right")
@@ -134,9 +140,9 @@ def _print_tables(data: dict, units: str) -> None:
         if data["pair"].get(key) is not None:
             value, shown = convert(data["pair"][key], unit, units)
             p.add_row(label, format_value(value), shown)
-    console.print(p)
+    emit(p)
     if data.get("inspection") is not None:
-        console.print(_inspection_table(data["inspection"], units))
+        emit(_inspection_table(data["inspection"], units))
 
 
 def _inspection_table(inspection: dict, units: str):

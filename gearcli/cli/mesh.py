@@ -7,11 +7,19 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
+from gearcli.cli.common import (
+    check_figure_path,
+    display_units,
+    emit,
+    format_value,
+    handle_errors,
+    table_options,
+)
 
 
 @app.command()
 @handle_errors
+@table_options
 def mesh(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     load: float | None = typer.Option(
@@ -95,20 +103,18 @@ def _table(title: str, rows: list[tuple[str, float, str]], units: str):
 
 
 def _print(doc, units: str) -> None:
-    from rich.console import Console
 
-    console = Console()
-    console.print(f"[bold]{doc.case}[/bold]: loaded contact at "
+    emit(f"[bold]{doc.case}[/bold]: loaded contact at "
                   f"{format_value(doc.force_N)} N, {doc.contact_law}")
     ste, st = doc.ste, doc.stiffness
-    console.print(_table("Static transmission error", [
+    emit(_table("Static transmission error", [
         ("mean", ste.mean_um, "µm"),
         ("peak-to-peak", ste.peak_to_peak_um, "µm"),
         ("peak-to-peak at the pinion", ste.peak_to_peak_arcsec, "arcsec"),
         *((f"{k} amplitude", v, "µm") for k, v in ste.harmonics_um.items()),
         ("unloaded TE peak-to-peak", ste.unloaded_te_peak_to_peak_um, "µm"),
     ], units))
-    console.print(_table("Mesh stiffness", [
+    emit(_table("Mesh stiffness", [
         ("mean over the cycle", st.mesh_mean_N_mm, "N/mm"),
         ("single-pair zone (mean)", st.single_pair_zone_N_mm, "N/mm"),
         ("double-pair zone (mean)", st.double_pair_zone_N_mm, "N/mm"),
@@ -128,7 +134,7 @@ def _print(doc, units: str) -> None:
         if kv.k_v is not None:
             rows += [("resonance ratio N = n1/n_E1", kv.resonance_ratio, "–"),
                      (f"K_v ({kv.speed_range})", kv.k_v, "–")]
-        console.print(_table("ISO 6336-1 Method B dynamic factor (K_A = 1)", rows, units))
+        emit(_table("ISO 6336-1 Method B dynamic factor (K_A = 1)", rows, units))
     if doc.harris is not None:
         from rich.markup import escape
         from rich.table import Table
@@ -141,11 +147,11 @@ def _print(doc, units: str) -> None:
         h.add_column(escape(f"STE peak-to-peak [{unit}]"))  # rich reads "[m]" as markup
         for f, p in zip(doc.harris.force_N, ptp, strict=True):
             h.add_row(format_value(f), format_value(p))
-        console.print(h)
+        emit(h)
     if doc.fe_check is not None:
-        console.print(_fe_table(doc.fe_check, units))
+        emit(_fe_table(doc.fe_check, units))
     for note in doc.notes:
-        console.print(f"note: {note}")
+        emit(f"note: {note}")
 
 
 def _fe_table(fe, units: str):

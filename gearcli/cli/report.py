@@ -7,7 +7,13 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import display_units, handle_errors, status_reporter
+from gearcli.cli.common import (
+    display_units,
+    handle_errors,
+    report_findings,
+    status_reporter,
+    table_options,
+)
 
 
 @app.command()
@@ -44,6 +50,7 @@ def report(
 
 @app.command()
 @handle_errors
+@table_options
 def run(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     out: Path = typer.Option(..., "-o", "--out", help="Results folder."),
@@ -65,7 +72,7 @@ def run(
     """
     from gearcli import api
     from gearcli.cli.analyze import print_checks
-    from gearcli.errors import CheckFailed, InvalidResultError, OutputError
+    from gearcli.errors import InvalidResultError, OutputError
     from gearcli.io.outdir import atomic_dir, check_target
     from gearcli.pipeline.analysis_io import write_analysis
     from gearcli.pipeline.outputs import write_simulation_files
@@ -87,7 +94,7 @@ def run(
             status("analysing and writing the report")
         with atomic_dir(out, force) as tmp:
             write_simulation_files(result, tmp, set_)
-            analysis = api.analyze(tmp)
+            analysis = api.analyze(tmp, remedies=True)
             doc = write_analysis(analysis)
             rating_note = _write_rating(tmp, result.loaded)
             name = build_report(tmp, fmt, None, units, svg).name
@@ -104,9 +111,7 @@ def run(
         if rating_note:
             typer.echo(f"not rated (ISO 6336): {rating_note}", err=True)
     typer.echo(f"report written to {path}")
-    if not analysis.passed:
-        failed = [c.name for c in analysis.checks if c.failed]
-        raise CheckFailed(f"{out}: check(s) failed: {', '.join(failed)}")
+    report_findings(analysis.checks, str(path))
 
 
 def _write_rating(folder: Path, loaded) -> str:

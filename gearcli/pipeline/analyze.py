@@ -71,8 +71,10 @@ class Analysis:
 
 
 def analyze(folder: str | Path, window: tuple[float, float] | None = None,
-            strict: bool = False) -> Analysis:
-    """Analyse a results folder; bad input raises ResultsError (exit 1)."""
+            strict: bool = False, remedies: bool = False) -> Analysis:
+    """Analyse a results folder; bad input raises ResultsError (exit 1). ``remedies``: a
+    failed check gets its remedy (gearcli/pipeline/remedy.py; a relief search and one short
+    run for a failed dynamic factor or contact loss)."""
     run = read_run(folder)
     loaded = load_case_text(json.dumps(run.manifest["resolved_case"]),
                             str(Path(folder) / "manifest.json"))
@@ -110,6 +112,10 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
                                   resonance_margins=resonance.margins)
     result = Analysis(run, win, metrics, spectra, lines)
     result.checks = _checks(result, case, s, resonance.check)
+    if remedies:
+        from gearcli.pipeline.remedy import add_remedies
+
+        add_remedies(result.checks, loaded, metrics)
     result.warnings = list(run.summary.warnings)
     if strict:
         result.checks.append(Check("no_warnings", len(result.warnings), "0 (--strict)",
@@ -337,7 +343,7 @@ def _checks(res: Analysis, case, s: Summary, resonance: Check) -> list[Check]:
                      f"({100.0 * ck.contact_loss_fraction_max:g} %)",
                      loss <= ck.contact_loss_fraction_max,
                      f"{100.0 * loss:.3g} % of the window without drive-flank contact (tooth "
-                     "separation); value and limit as fractions"))
+                     "separation); analysis.json holds value and limit as fractions"))
     if ck.dte_peak_to_peak_max is not None:
         out.append(Check("dte_peak_to_peak_mm", m.dte_peak_to_peak_mm,
                          f"<= {ck.dte_peak_to_peak_max:g} mm",

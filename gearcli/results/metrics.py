@@ -46,7 +46,7 @@ METRICS: dict[str, Metric] = {
     "input_power_W": Metric("input power", "W"),
     "friction_loss_W": Metric("friction loss", "W"),
     "damping_loss_W": Metric("mesh damping loss", "W"),
-    "mesh_efficiency": Metric("mesh efficiency", "–"),
+    "mesh_efficiency": Metric("mesh efficiency", "fraction"),
     "drive_torque_mean_Nmm": Metric("drive torque, mean", "N*mm"),
     "drive_torque_ripple_Nmm": Metric("drive torque, peak to peak", "N*mm"),
     "gear_mesh_frequency_Hz": Metric("gear-mesh frequency f_z", "Hz"),
