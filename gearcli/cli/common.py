@@ -322,7 +322,9 @@ def print_table(table) -> None:
             wide = console.options.update_width(100_000)
             width = Measurement.get(console, wide, table).maximum
             title = len(_plain_cell(table.title or ""))
-            console = Console(width=max(width, title, 80))
+            if title > width:  # rich wraps a title to the table's width
+                table.min_width = width = title
+            console = Console(width=max(width, 80))
         console.print(table)
         return
     title, headers, rows = table_data(table)
@@ -397,38 +399,14 @@ def print_quantity_table(title: str, rows) -> None:
     print_table(t)
 
 
-def check_display(ck, units: str = "engineering") -> tuple[str, str, str]:
-    """(value, unit, limit) of a check as the tables show it: one unit per column, a fraction
-    in % (its limit too), a length in the display ``units``."""
-    import re
-
-    value, unit, limit = ck.value, "", ck.limit
-    name = ck.name
-    if name.endswith("_fraction") and isinstance(value, float):
-        value, unit = 100.0 * value, "%"
-        m = re.search(r"\(([^()]*%)\)", limit)
-        if m:
-            limit = limit[:limit.index("(")].split()[0] + " " + m.group(1)
-    elif name.endswith("_percent"):
-        unit = "%"
-    elif name.endswith("_mm") and isinstance(value, float):
-        from gearcli.display_units import unit_and_factor
-
-        unit, k = unit_and_factor("mm", units, fine=True)
-        value = k * value
-    elif name in ("no_aliasing", "gmf_line_present"):
-        unit = "Hz"
-    elif isinstance(value, float):
-        unit = "–"
-    return format_value(value), unit, limit
-
-
 def print_checks_table(checks, units: str = "engineering") -> None:
     """The Checks table (check, value, unit, limit, result) of analyze and modal
     (gearcli.results.Check); the notes and remedies below it, each once (in csv and json they
     are columns)."""
     from rich.markup import escape
     from rich.table import Table
+
+    from gearcli.report.tables import check_cells
 
     columns = ["check", "value", "unit", "limit", "result"]
     inline = table_format() in ("csv", "json")
@@ -439,7 +417,7 @@ def print_checks_table(checks, units: str = "engineering") -> None:
     for ck in checks:
         verdict = ("[yellow]not checked[/yellow]" if ck.checked is False
                    else "[green]pass[/green]" if ck.passed else "[red]FAIL[/red]")
-        value, unit, limit = check_display(ck, units)
+        value, unit, limit = check_cells(ck, units)
         remedy = ck.remedy.text if getattr(ck, "remedy", None) is not None else ""
         extra = [escape(ck.note), escape(remedy)] if inline else []
         c.add_row(escape(ck.name), escape(value), escape(unit), escape(limit), verdict, *extra)

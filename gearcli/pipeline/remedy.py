@@ -162,6 +162,17 @@ def resonance_remedy(margins, margin_percent: float, teeth: int) -> Remedy | Non
                   avoid_pinion_speed_rpm=tuple((lo, hi) for lo, hi, _ in bands))
 
 
+def _relief_or_none(loaded: LoadedCase, metrics) -> Remedy | bool:
+    """:func:`relief_remedy`, or False when the case has none to offer (the search or its run
+    refused the case: a remedy never turns a finished analysis into an error)."""
+    from gearcli.errors import GearcliError
+
+    try:
+        return relief_remedy(loaded, metrics.window_s[0], metrics.gear_mesh_frequency_Hz or 0.0)
+    except GearcliError:
+        return False
+
+
 def add_remedies(checks: list[Check], loaded: LoadedCase, metrics) -> list[Check]:
     """``checks`` with a remedy on each failed check that has one (in place, returned)."""
     import dataclasses
@@ -171,11 +182,10 @@ def add_remedies(checks: list[Check], loaded: LoadedCase, metrics) -> list[Check
         if not ck.failed:
             continue
         remedy = None
-        if ck.name in RELIEF_CHECKS and loaded.case.load is not None:
+        if ck.name in RELIEF_CHECKS and (metrics.force_static_N or 0.0) > 0.0:
             if relief is None:
-                relief = relief_remedy(loaded, metrics.window_s[0],
-                                       metrics.gear_mesh_frequency_Hz or 0.0)
-            remedy = relief
+                relief = _relief_or_none(loaded, metrics)
+            remedy = relief or None
         elif ck.name == "resonance_margin_percent":
             remedy = resonance_remedy(metrics.resonance_margins,
                                       loaded.case.checks.resonance_margin_percent,
