@@ -53,6 +53,10 @@ METRICS: dict[str, Metric] = {
     "pinion_shaft_Hz": Metric("pinion shaft frequency n1", "Hz"),
     "gear_shaft_Hz": Metric("gear shaft frequency n2", "Hz"),
     "mesh_natural_frequency_Hz": Metric("mesh mode natural frequency f_n", "Hz"),
+    # the mesh-frequency lines of a sweep's points (summary.csv)
+    "gear_speed_gmf_amplitude_rad_s": Metric("gear speed, amplitude at f_z", "rad/s"),
+    "dte_gmf_amplitude_mm": Metric("DTE, amplitude at f_z", "mm", True),
+    "force_gmf_amplitude_N": Metric("normal force, amplitude at f_z", "N"),
     "mesh_damping_ratio": Metric("mesh mode damping ratio ζ", "–"),
     "mesh_stiffness_N_mm": Metric("mesh stiffness (linearised)", "N/mm"),
     "single_pair_stiffness_N_mm": Metric("mesh stiffness, single pair (linearised)", "N/mm"),

@@ -38,7 +38,7 @@ def test_table_formats_keep_every_cell_uncut():
     plain = format_rows("plain", "Checks", headers, rows)
     assert "speed_ratio_error_percent" in plain and plain.splitlines()[0] == "Checks"
     assert json.loads(format_rows("json", "Checks", headers, rows)) == {
-        "table": "Checks", "columns": headers, "rows": [dict(zip(headers, rows[0]))]}
+        "table": "Checks", "columns": headers, "rows": [dict(zip(headers, rows[0], strict=True))]}
     import csv
     import io
 

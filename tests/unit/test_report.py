@@ -162,8 +162,8 @@ def test_html_checks_table_names_every_check_with_its_result(short_dir, html_rep
     _, text = html_report
     rows, classes = _table(_parse(text), "Checks")
     doc = json.loads((short_dir / "analysis.json").read_text())
-    assert rows[0] == ["check", "value", "limit", "result", "note"]
-    body = {r[0]: (r[3], cls) for r, cls in zip(rows[1:], classes[1:], strict=True)}
+    assert rows[0] == ["check", "value", "unit", "limit", "result", "note"]  # one unit a column
+    body = {r[0]: (r[4], cls) for r, cls in zip(rows[1:], classes[1:], strict=True)}
     assert set(body) == {c["name"] for c in doc["checks"]}
     for c in doc["checks"]:
         result, cls = body[c["name"]]
