@@ -219,7 +219,7 @@ def test_markdown_references_existing_figures(short_dir, md_report):
     assert len(links) == len(list((short_dir / "figures").glob("*.png")))
     for link in links:
         assert link.startswith("figures/") and (path.parent / link).is_file()
-    assert "| check | value | limit | result | note |" in text
+    assert "| check | value | unit | limit | result | note |" in text
     for c in json.loads((short_dir / "analysis.json").read_text())["checks"]:
         assert c["name"].replace("_", r"\_") in text
 
