@@ -81,3 +81,33 @@ def test_the_study_templates_sweep(name, tmp_path):
     rows = (out / "summary.csv").read_text().splitlines()
     status = rows[0].split(",").index("status")
     assert len(rows) > 2 and all(r.split(",")[status] == "ok" for r in rows[1:]), rows
+
+
+def test_a_fresh_pair_runs_to_a_report_titled_by_its_own_name(tmp_path):
+    """`new` -> `run` (simulate, analyze, report): exit 0, every check passed or not checked,
+    the report titled by the file's name, not the seed's (issue 29)."""
+    target = tmp_path / "gearbox-stage1.yaml"
+    assert runner.invoke(app, ["new", str(target)]).exit_code == 0
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["run", str(target), "-o", str(out), "--format", "md"])
+    assert res.exit_code == 0, res.output
+    assert "findings" not in res.stderr and "FAIL" not in res.stdout
+    text = (out / "report.md").read_text()
+    assert text.startswith("# gearcli report: gearbox-stage1\n")
+    assert "17 teeth" not in text and "seed" not in text.split("\n## ")[0].lower()
+
+
+def test_the_seed_runs_to_its_findings_with_a_remedy(tmp_path):
+    """The seed fails its dynamic factor and contact loss (its Adams contact): `run` exits 4
+    and says so as findings with the remedy, not as an error line (issue 29). Shortened to
+    2 s (the failures show from the first steady second)."""
+    target = tmp_path / "seed.yaml"
+    assert runner.invoke(app, ["new", "--template", "seed", str(target)]).exit_code == 0
+    res = runner.invoke(app, ["run", str(target), "-o", str(tmp_path / "out"), "--set",
+                              "run.end_time=2", "--format", "md"])
+    assert res.exit_code == 4, res.output
+    assert "error" not in res.stderr
+    assert "findings: 2 check(s) failed: dynamic_factor, contact_loss_fraction" in res.stderr
+    assert "remedy (dynamic_factor, contact_loss_fraction): a linear tip relief" in res.stdout
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "Remedy (dynamic\\_factor, contact\\_loss\\_fraction)" in report
