@@ -430,7 +430,7 @@ def print_checks_table(checks, units: str = "engineering") -> None:
     print_lines(f"remedy ({', '.join(names)}): {text}" for text, names in remedies.items())
 
 
-def report_findings(checks, where: str) -> None:
+def report_findings(checks, where: str | None = None) -> None:
     """The end of a command whose checks failed: one "findings" line naming them (the verdicts
     and remedies are above and in ``where``), exit 4 without an error line; all passed: nothing.
     """
@@ -439,6 +439,7 @@ def report_findings(checks, where: str) -> None:
         return
     with_remedy = [c.name for c in checks if c.failed and getattr(c, "remedy", None)]
     extra = f"; a remedy for {', '.join(with_remedy)} above" if with_remedy else ""
+    where = f"; verdicts in {where}" if where else ""
     _echo_err(f"findings: {len(failed)} check(s) failed: {', '.join(failed)}{extra} "
-              f"(exit 4; verdicts in {where})")
+              f"(exit 4{where})")
     raise typer.Exit(int(ExitCode.CHECK_FAILED))

@@ -132,34 +132,42 @@ def relief_remedy(loaded: LoadedCase, window_start_s: float, f_z_Hz: float) -> R
                       f"{k}={v}" for k, v in overrides.items() if not k.endswith("shape")))
 
 
-def speed_bands(margins: tuple[ResonanceMargin, ...], margin_percent: float,
-                teeth: int) -> list[tuple[float, float, ResonanceMargin]]:
-    """Pinion speed bands [rpm] where a harmonic k f_z lies within ``margin_percent`` of a mode
-    with a resonant peak: k z1 n1 / 60 in f_n (1 ± m), merged where they overlap, for the pairs
-    that violate the margin (lowest first)."""
+def avoid_bands(pairs, margin_percent: float) -> list[tuple[float, float, str]]:
+    """Pinion speed bands [rpm] to avoid: for each (excitation per pinion revolution, mode
+    frequency [Hz], label) the speeds n1 where the excitation n1/60 × per_rev lies within
+    ``margin_percent`` of the mode, f_n (1 ± m) × 60 / per_rev; lowest first."""
     m = margin_percent / 100.0
-    bands = []
-    for r in margins:
-        if not r.resonant_peak or r.margin_percent >= margin_percent or not r.mode_Hz:
-            continue
-        lo = r.mode_Hz * (1.0 - m) / r.harmonic / teeth * 60.0
-        hi = r.mode_Hz * (1.0 + m) / r.harmonic / teeth * 60.0
-        bands.append((lo, hi, r))
-    return sorted(bands, key=lambda b: b[0])
+    return sorted(((f_n * (1.0 - m) * 60.0 / per_rev, f_n * (1.0 + m) * 60.0 / per_rev, label)
+                   for per_rev, f_n, label in pairs if per_rev > 0.0 and f_n), key=lambda b: b[0])
 
 
-def resonance_remedy(margins, margin_percent: float, teeth: int) -> Remedy | None:
-    """The speed bands to avoid (:func:`speed_bands`), or None without a violated pair."""
-    bands = speed_bands(margins or (), margin_percent, teeth)
+def speed_bands(margins: tuple[ResonanceMargin, ...], margin_percent: float,
+                teeth: int) -> list[tuple[float, float, str]]:
+    """:func:`avoid_bands` of analyze's (harmonic, mode) pairs that violate the margin and
+    have a resonant peak: the harmonic k f_z is k z1 excitations per pinion revolution."""
+    return avoid_bands(((r.harmonic * teeth, r.mode_Hz,
+                         f"{r.harmonic} x f_z near "
+                         f"{'the mesh mode' if r.mode is None else f'mode {r.mode}'} at "
+                         f"{r.mode_Hz:.1f} Hz")
+                        for r in margins
+                        if r.resonant_peak and r.margin_percent < margin_percent),
+                       margin_percent)
+
+
+def band_remedy(bands, margin_percent: float) -> Remedy | None:
+    """The remedy naming the speed ``bands`` (:func:`avoid_bands`), or None without one."""
     if not bands:
         return None
-    parts = [f"{lo:.0f}-{hi:.0f} rpm ({r.harmonic} x f_z near "
-             f"{'the mesh mode' if r.mode is None else f'mode {r.mode}'} at {r.mode_Hz:.1f} Hz)"
-             for lo, hi, r in bands]
+    parts = [f"{lo:.0f}-{hi:.0f} rpm ({label})" for lo, hi, label in bands]
     return Remedy(kind="speed_band",
                   text=f"avoid pinion speeds {'; '.join(parts)} (±{margin_percent:g} % of "
                        "each mode)",
                   avoid_pinion_speed_rpm=tuple((lo, hi) for lo, hi, _ in bands))
+
+
+def resonance_remedy(margins, margin_percent: float, teeth: int) -> Remedy | None:
+    """The speed bands to avoid (:func:`speed_bands`), or None without a violated pair."""
+    return band_remedy(speed_bands(margins or (), margin_percent, teeth), margin_percent)
 
 
 def _relief_or_none(loaded: LoadedCase, metrics) -> Remedy | bool:

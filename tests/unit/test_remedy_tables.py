@@ -45,3 +45,25 @@ def test_table_formats_keep_every_cell_uncut():
     text = format_rows("csv", "Checks", headers, rows)
     assert text.startswith("# Checks\n")
     assert list(csv.reader(io.StringIO(text.split("\n", 1)[1]))) == [headers, rows[0]]
+
+
+def test_modal_names_the_speed_band_around_the_resonance_it_fails():
+    """The seed with a realistic mesh damping (5 N·s/mm: ζ ≈ 0.09, a resonant peak) puts
+    2 x f_z = 283.3 Hz within 0.8 % of the mesh mode at 281.2 Hz: modal fails its margin and
+    names 281.2 Hz (1 ± 10 %) × 60 / (2 × 17) = 446.6-545.8 rpm, which holds the case's
+    500 rpm; findings, not an error line."""
+    from typer.testing import CliRunner
+
+    from gearcli.cli import app
+    from tests.conftest import SEED
+
+    res = CliRunner().invoke(app, ["modal", str(SEED), "--set", "contact.max_damping=5",
+                                   "--json"])
+    assert res.exit_code == 4, res.output
+    (check,) = json.loads(res.stdout)["checks"]
+    remedy = check["remedy"]
+    assert remedy["kind"] == "speed_band"
+    (lo, hi), *_ = remedy["avoid_pinion_speed_rpm"]
+    assert (lo, hi) == pytest.approx((446.6, 545.8), abs=0.2)
+    assert lo < 500.0 < hi
+    assert res.stderr.startswith("findings: 1 check(s) failed: resonance_margin_percent")
