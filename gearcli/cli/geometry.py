@@ -10,7 +10,6 @@ from gearcli.cli.app import app
 from gearcli.cli.common import (
     check_figure_path,
     display_units,
-    emit,
     format_value,
     handle_errors,
     table_options,
@@ -120,6 +119,7 @@ def geometry(
 def _print_tables(data: dict, units: str) -> None:
     from rich.table import Table
 
+    from gearcli.cli.common import emit
     from gearcli.display_units import convert
 
     t = Table(title=f"Gear geometry — {data['case']}", title_justify="left")
