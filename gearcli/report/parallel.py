@@ -7,7 +7,11 @@ is pickled on the way there; each worker returns only its FigureFile), so it is 
 where it is safe: a single-threaded process (a fork copies no other thread, and with other
 threads running a lock they hold would stay locked in the child: pytest-xdist workers, a
 notebook's kernel, Dask), on Linux (fork is the platform's way, not macOS's), with at least
-:data:`MIN_JOBS` figures and two CPUs. Elsewhere the figures are drawn here, one by one: the
+:data:`MIN_JOBS` figures and two CPUs, and only on a machine with a CPU to spare (load
+average below the CPU count minus one): on the busy 2-core development machine (load average
+6-9) two workers were slower than one (wall 11.9-16.9 s against 9.6-12.9 s, CPU +10-30 %:
+each worker warms matplotlib's text-layout caches again), while on a quiet one they share the
+figures' ~60 % of the report's CPU time. Elsewhere the figures are drawn here, one by one: the
 files are the same byte for byte (tests/unit/test_report_parallel.py). GEARCLI_REPORT_JOBS=1
 forces one process. The workers ignore SIGINT and die on SIGTERM (the parent's handlers of
 `gearcli/cli/common.py` stay the parent's): an interrupted report is the parent's to clean up.
@@ -42,6 +46,8 @@ def workers(n_jobs: int) -> int:
         cpus = len(os.sched_getaffinity(0))
     except (AttributeError, OSError):
         cpus = os.cpu_count() or 1
+    if not env and os.getloadavg()[0] > cpus - 1.0:  # no CPU to spare
+        return 1
     return max(1, min(limit, cpus, n_jobs))
 
 

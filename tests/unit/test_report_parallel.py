@@ -57,3 +57,10 @@ def test_no_fork_beside_other_threads_or_for_few_figures(monkeypatch):
     assert parallel.workers(parallel.MIN_JOBS - 1) == 1
     monkeypatch.setenv("GEARCLI_REPORT_JOBS", "1")
     assert parallel.workers(8) == 1
+
+
+def test_no_fork_on_a_busy_machine(monkeypatch):
+    """Measured: on a busy machine two workers were slower than one (parallel.py)."""
+    monkeypatch.delenv("GEARCLI_REPORT_JOBS", raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (64.0, 64.0, 64.0))
+    assert parallel.workers(8) == 1
