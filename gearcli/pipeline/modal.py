@@ -204,7 +204,7 @@ def _margin_check(res: ModalAnalysis, limit: float) -> Check:
     if peaked and not ok:
         p = peaked[0]
         note += f"; violated by {p.order} vs mode {p.mode} ({p.margin_percent:.1f} %)"
-        from gearcli.pipeline.remedy import avoid_bands, band_remedy
+        from gearcli.pipeline.speed_bands import avoid_bands, band_remedy
 
         rev_s = res.case_speed_deg_s / 360.0  # per_rev: excitations per pinion revolution
         remedy = band_remedy(avoid_bands(

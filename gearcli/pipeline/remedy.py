@@ -5,20 +5,24 @@
   minimises the loaded static transmission error at the case load (`gearcli mesh`'s loaded
   contact, model/ltca.py), and the dynamic factor and contact loss of a short run with it.
 * A failed ``resonance_margin_percent``: the pinion speed bands where a checked harmonic
-  k f_z lies within the margin of a mode with a resonant peak.
+  k f_z lies within the margin of a mode with a resonant peak (gearcli/pipeline/speed_bands.py,
+  shared with `gearcli modal`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
 from gearcli.case.load import LoadedCase
-from gearcli.results import Check, Remedy, ResonanceMargin
+from gearcli.pipeline.speed_bands import resonance_remedy
+from gearcli.results import AnalysisMetrics, Check, Remedy
 
-#: Checks a tip relief addresses (the mesh's excitation: STE).
-RELIEF_CHECKS = ("dynamic_factor", "contact_loss_fraction")
+#: Checks a tip relief addresses (the mesh's excitation, STE): the metrics whose field says so.
+RELIEF_CHECKS = tuple(f.name for f in dataclasses.fields(AnalysisMetrics)
+                      if f.metadata.get("remedy") == "tip_relief")
 #: Grid of the relief search: amounts s x (mean loaded STE of the unmodified pair), s in
 #: 0 .. RELIEF_SPAN; then a golden-section refinement between the best point's neighbours.
 RELIEF_SPAN, RELIEF_POINTS, RELIEF_REFINE = 2.5, 11, 8
@@ -132,44 +136,6 @@ def relief_remedy(loaded: LoadedCase, window_start_s: float, f_z_Hz: float) -> R
                       f"{k}={v}" for k, v in overrides.items() if not k.endswith("shape")))
 
 
-def avoid_bands(pairs, margin_percent: float) -> list[tuple[float, float, str]]:
-    """Pinion speed bands [rpm] to avoid: for each (excitation per pinion revolution, mode
-    frequency [Hz], label) the speeds n1 where the excitation n1/60 × per_rev lies within
-    ``margin_percent`` of the mode, f_n (1 ± m) × 60 / per_rev; lowest first."""
-    m = margin_percent / 100.0
-    return sorted(((f_n * (1.0 - m) * 60.0 / per_rev, f_n * (1.0 + m) * 60.0 / per_rev, label)
-                   for per_rev, f_n, label in pairs if per_rev > 0.0 and f_n), key=lambda b: b[0])
-
-
-def speed_bands(margins: tuple[ResonanceMargin, ...], margin_percent: float,
-                teeth: int) -> list[tuple[float, float, str]]:
-    """:func:`avoid_bands` of analyze's (harmonic, mode) pairs that violate the margin and
-    have a resonant peak: the harmonic k f_z is k z1 excitations per pinion revolution."""
-    return avoid_bands(((r.harmonic * teeth, r.mode_Hz,
-                         f"{r.harmonic} x f_z near "
-                         f"{'the mesh mode' if r.mode is None else f'mode {r.mode}'} at "
-                         f"{r.mode_Hz:.1f} Hz")
-                        for r in margins
-                        if r.resonant_peak and r.margin_percent < margin_percent),
-                       margin_percent)
-
-
-def band_remedy(bands, margin_percent: float) -> Remedy | None:
-    """The remedy naming the speed ``bands`` (:func:`avoid_bands`), or None without one."""
-    if not bands:
-        return None
-    parts = [f"{lo:.0f}-{hi:.0f} rpm ({label})" for lo, hi, label in bands]
-    return Remedy(kind="speed_band",
-                  text=f"avoid pinion speeds {'; '.join(parts)} (±{margin_percent:g} % of "
-                       "each mode)",
-                  avoid_pinion_speed_rpm=tuple((lo, hi) for lo, hi, _ in bands))
-
-
-def resonance_remedy(margins, margin_percent: float, teeth: int) -> Remedy | None:
-    """The speed bands to avoid (:func:`speed_bands`), or None without a violated pair."""
-    return band_remedy(speed_bands(margins or (), margin_percent, teeth), margin_percent)
-
-
 def _relief_or_none(loaded: LoadedCase, metrics) -> Remedy | bool:
     """:func:`relief_remedy`, or False when the case has none to offer (the search or its run
     refused the case: a remedy never turns a finished analysis into an error)."""
@@ -183,8 +149,6 @@ def _relief_or_none(loaded: LoadedCase, metrics) -> Remedy | bool:
 
 def add_remedies(checks: list[Check], loaded: LoadedCase, metrics) -> list[Check]:
     """``checks`` with a remedy on each failed check that has one (in place, returned)."""
-    import dataclasses
-
     relief = None
     for i, ck in enumerate(checks):
         if not ck.failed:

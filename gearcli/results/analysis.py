@@ -46,11 +46,14 @@ class AnalysisMetrics(Document):
     force_max_source: str = metric_field("force_max_source", "")
     force_min_N: float = metric_field("force_min_N", show="report")
     force_static_N: float = metric_field("force_static_N", show=_TABLES)
-    dynamic_factor: float | None = metric_field("dynamic_factor", None, _TABLES + " headline")
+    #: remedy: what gearcli/pipeline/remedy.py offers when the check of this metric fails
+    dynamic_factor: float | None = metric_field("dynamic_factor", None, _TABLES + " headline",
+                                                remedy="tip_relief")
     dte_mean_mm: float = metric_field("dte_mean_mm", show="report")
     dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm", show=_TABLES + " headline")
     dte_rms_mm: float = metric_field("dte_rms_mm", show=_TABLES)
-    contact_loss_fraction: float = metric_field("contact_loss_fraction", show=_TABLES)
+    contact_loss_fraction: float = metric_field("contact_loss_fraction", show=_TABLES,
+                                                remedy="tip_relief")
     coast_impacts: int = metric_field("coast_impacts", 0, _TABLES)
     friction_loss_W: float | None = metric_field("friction_loss_W", None, _TABLES)
     damping_loss_W: float | None = metric_field("damping_loss_W", None, _TABLES)

@@ -5,7 +5,7 @@ import json
 import pytest
 
 from gearcli.cli.common import format_rows
-from gearcli.pipeline.remedy import resonance_remedy, speed_bands
+from gearcli.pipeline.speed_bands import resonance_remedy, speed_bands
 from gearcli.report.tables import check_cells
 from gearcli.results import Check, ResonanceMargin
 
