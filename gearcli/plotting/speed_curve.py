@@ -17,8 +17,9 @@ def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
                      iso_factors: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> Figure:
     """Dynamic factor [-] against N = f_z / f_n [-] (f_n the case's mesh mode) for the run-up
     and the run-down of gearcli/pipeline/speed_curve.py (``rows``: its levels,
-    gearcli.results.SpeedLevel); points outside the model's validity
-    are marked with a grey cross at the top of the axes, not plotted as values; dotted lines
+    gearcli.results.SpeedLevel); the lines break at the levels that are not ok, invalid ones
+    (outside the model's validity) marked with a grey cross at the top of the axes, failed
+    ones (the run did not finish) with a plus; dotted lines
     at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO) arrays: ISO 6336-1 Method B's K_v on the
     same axis (its own resonance ratio n1/n_E1 on a secondary axis), computed with
     ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend states."""
@@ -28,14 +29,19 @@ def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
     ax = fig.add_subplot()
     top = max((r.dynamic_factor for r in rows if r.status == "ok"), default=2.0)
     for direction, (colour, marker, label) in _STYLE.items():
-        ok = [r for r in rows if r.direction == direction and r.status == "ok"]
-        ok.sort(key=lambda r: r.resonance_ratio)
-        ax.plot([r.resonance_ratio for r in ok], [r.dynamic_factor for r in ok],
+        # every level of the direction, NaN where it is not ok: the line breaks there
+        levels = sorted((r for r in rows if r.direction == direction),
+                        key=lambda r: r.resonance_ratio)
+        ax.plot([r.resonance_ratio for r in levels],
+                [r.dynamic_factor if r.status == "ok" else math.nan for r in levels],
                 marker=marker, color=colour, lw=1.2, ms=4, label=f"gearcli {label}")
-        bad = [r for r in rows if r.direction == direction and r.status != "ok"]
-        if bad:
-            ax.plot([r.resonance_ratio for r in bad], [1.05 * top] * len(bad), "x",
-                    color="0.5", label=f"{label}: outside the model's validity")
+        for status, what in (("invalid", "invalid (outside the model's validity)"),
+                             ("failed", "failed (the run did not finish)")):
+            bad = [r for r in levels if r.status == status]
+            if bad:
+                ax.plot([r.resonance_ratio for r in bad], [1.05 * top] * len(bad),
+                        "x" if status == "invalid" else "+", color="0.5", ls="none",
+                        label=f"{label}: {what}")
     if iso is not None:
         x_iso, k_v, n_iso = iso
         ax.plot(x_iso, k_v, color="0.25", lw=1.6, ls="--",

@@ -102,3 +102,20 @@ def test_trends_md_names_invalid_and_failed_points_apart_and_labels_metrics():
     table = [ln for ln in text.splitlines() if ln.startswith("| gears")]
     assert table and not any("dte_peak_to_peak_mm" in ln for ln in table)
     assert any("DTE, peak to peak [µm]" in ln for ln in table)
+
+
+def test_the_speed_curve_breaks_at_invalid_and_failed_levels():
+    from gearcli.plotting.speed_curve import plot_speed_curve
+    from gearcli.results import SpeedLevel
+
+    statuses = ["ok", "invalid", "ok", "failed", "ok"]
+    rows = [SpeedLevel(point=i, direction="up", resonance_ratio=0.2 * (i + 1),
+                       dynamic_factor=1.0 + 0.1 * i, status=s)
+            for i, s in enumerate(statuses)]
+    ax = plot_speed_curve(rows, 1000.0).axes[0]
+    (line,) = [ln for ln in ax.get_lines() if ln.get_label() == "gearcli run-up"]
+    y = np.asarray(line.get_ydata(), float)
+    assert list(np.isnan(y)) == [s != "ok" for s in statuses]
+    labels = ax.get_legend_handles_labels()[1]
+    assert "run-up: invalid (outside the model's validity)" in labels
+    assert "run-up: failed (the run did not finish)" in labels
