@@ -206,3 +206,7 @@ def test_a_failed_dynamic_factor_names_the_tip_relief_and_the_dynamic_factor_wit
                                 "--table-format", "plain"])
     assert plain.exit_code == 4 and "remedy" not in plain.stdout
     assert "findings: 2 check(s) failed" in plain.stderr and "error" not in plain.stderr
+    boxed = runner.invoke(app, ["analyze", str(seed_dir), "--force", "--no-remedy"])
+    # piped: the boxes as wide as they need (issue 29: "speed_ratio_e…" at 80 columns)
+    assert "│ speed_ratio_error_percent " in boxed.stdout and "…" not in boxed.stdout
+    assert max(len(line) for line in boxed.stdout.splitlines()) > 80

@@ -67,3 +67,31 @@ def test_modal_names_the_speed_band_around_the_resonance_it_fails():
     assert (lo, hi) == pytest.approx((446.6, 545.8), abs=0.2)
     assert lo < 500.0 < hi
     assert res.stderr.startswith("findings: 1 check(s) failed: resonance_margin_percent")
+
+
+def test_piped_tables_are_not_cut_and_every_format_parses():
+    """In a pipe (CliRunner is one) the boxes use the width the table needs: no cell or title
+    ends in "…" at 80 columns; json gives one object per table and line, csv a block each."""
+    import csv
+    import io
+
+    from typer.testing import CliRunner
+
+    from gearcli.cli import app
+    from tests.conftest import SEED
+
+    runner = CliRunner()
+    boxed = runner.invoke(app, ["geometry", str(SEED)])
+    assert boxed.exit_code == 0, boxed.output
+    assert "…" not in boxed.stdout
+    as_json = runner.invoke(app, ["geometry", str(SEED), "--table-format", "json"])
+    tables = [json.loads(line) for line in as_json.stdout.splitlines() if line.strip()]
+    titles = [t.get("table") for t in tables if "table" in t]
+    assert titles[:2] == ["Gear geometry — seed", "Pair"]
+    assert all(len(r) == len(t["columns"]) for t in tables if "rows" in t for r in t["rows"])
+    root = runner.invoke(app, ["--table-format", "csv", "geometry", str(SEED)])
+    blocks = [b for b in root.stdout.split("\n# ") if b.strip()]
+    first = list(csv.reader(io.StringIO(blocks[0].split("\n", 1)[1])))
+    assert first[0] == ["quantity", "pinion", "gear", "unit"] and len(first) > 5
+    bad = runner.invoke(app, ["geometry", str(SEED), "--table-format", "xml"])
+    assert bad.exit_code == 1 and "expected one of table, plain, csv, json" in bad.stderr
