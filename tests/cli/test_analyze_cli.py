@@ -210,3 +210,14 @@ def test_a_failed_dynamic_factor_names_the_tip_relief_and_the_dynamic_factor_wit
     # piped: the boxes as wide as they need (issue 29: "speed_ratio_e…" at 80 columns)
     assert "│ speed_ratio_error_percent " in boxed.stdout and "…" not in boxed.stdout
     assert max(len(line) for line in boxed.stdout.splitlines()) > 80
+
+
+def test_the_api_checks_equal_the_cli_checks(seed_dir):
+    """One set of verdicts (issue 29): `gearcli analyze --json` and gearcli.analyze give the
+    same checks, "not checked" and remedies included."""
+    import gearcli
+
+    cli = json.loads(_analyze(seed_dir).stdout)["checks"]
+    api = gearcli.analyze(seed_dir).document()["checks"]
+    assert cli == api
+    assert any(c.get("checked") is False for c in api) and any("remedy" in c for c in api)
