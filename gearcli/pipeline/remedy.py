@@ -1,4 +1,4 @@
-"""Remedies for failed checks (docs/theory.md §7, "Verdicts with a remedy").
+"""Remedies for failed checks (docs/theory.md, "Remedies of failed checks").
 
 * A failed ``dynamic_factor`` or ``contact_loss_fraction``: the linear long tip relief (the
   same on both gears, from the tip down to the limit of single-pair contact) whose amount
@@ -38,21 +38,20 @@ def relief_overrides(amount_mm: float, length_mm: float) -> dict[str, str]:
     the line of action) on both gears."""
     return {f"modifications.tip_relief.{gear}.{key}": value
             for gear in ("pinion", "gear")
-            for key, value in (("amount", f"{float(amount_mm)!r} mm"),
-                                ("length", f"{float(length_mm)!r} mm"),
+            for key, value in (("amount", f"{float(amount_mm):.6g} mm"),
+                               ("length", f"{float(length_mm):.6g} mm"),
                                ("shape", "linear"))}
 
 
 def _with(loaded: LoadedCase, overrides: dict[str, str]) -> LoadedCase:
+    """The case with ``overrides`` (key path -> value text) applied, validated."""
     from gearcli.case.load import validate_source
     from gearcli.case.overrides import apply_overrides
     from gearcli.case.schema import Case
 
     src = loaded.source
     data = apply_overrides(src.data, [f"{k}={v}" for k, v in overrides.items()], Case)
-    from dataclasses import replace
-
-    return validate_source(replace(src, data=data), loaded.name)
+    return validate_source(dataclasses.replace(src, data=data), loaded.name)
 
 
 def optimum_tip_relief(loaded: LoadedCase) -> tuple[float, float, float, float]:
@@ -98,12 +97,10 @@ def _strip_relief(loaded: LoadedCase) -> LoadedCase:
     mods = data.get("modifications") if isinstance(data, dict) else None
     if not (isinstance(mods, dict) and mods.get("tip_relief")):
         return loaded
-    from dataclasses import replace
-
     from gearcli.case.load import validate_source
 
     new = dict(data, modifications={k: v for k, v in mods.items() if k != "tip_relief"})
-    return validate_source(replace(loaded.source, data=new), loaded.name)
+    return validate_source(dataclasses.replace(loaded.source, data=new), loaded.name)
 
 
 def relief_remedy(loaded: LoadedCase, window_start_s: float, f_z_Hz: float) -> Remedy:
@@ -116,22 +113,22 @@ def relief_remedy(loaded: LoadedCase, window_start_s: float, f_z_Hz: float) -> R
     if f_z_Hz and f_z_Hz > 0.0:
         end = min(end, window_start_s + SHORT_RUN_MESH_CYCLES / f_z_Hz)
     overrides = relief_overrides(amount, length)
-    short = dict(overrides, **{"run.end_time": f"{float(end)!r} s"})
+    short = dict(overrides, **{"run.end_time": f"{float(end):.6g} s"})
     sim = run_simulation(_with(_strip_relief(loaded), short), notice=None, zoom=False)
     s = sim.summary
-    k_v = s.dynamic_factor if sim.status == "ok" else None
+    factor = s.dynamic_factor if sim.status == "ok" else None
     loss = s.contact_loss_fraction if sim.status == "ok" else None
     text = (f"a linear tip relief of {1e3 * amount:.3g} µm over {length:.3g} mm of the line of "
             f"action on both gears minimises the loaded STE at the case load "
             f"({1e3 * ste_without:.3g} -> {1e3 * ste_with:.3g} µm peak to peak)")
-    if k_v is not None:
-        text += (f"; with it the dynamic factor is {k_v:.3g} and the contact loss "
+    if factor is not None:
+        text += (f"; with it the dynamic factor is {factor:.3g} and the contact loss "
                  f"{100.0 * loss:.3g} % (a {end:.3g} s run)")
     else:
         text += f"; the run with it is not valid: {sim.invalid_reason}"
     return Remedy(kind="tip_relief", text=text, tip_relief_amount_mm=amount,
                   tip_relief_length_mm=length, ste_peak_to_peak_um=1e3 * ste_with,
-                  ste_peak_to_peak_before_um=1e3 * ste_without, dynamic_factor=k_v,
+                  ste_peak_to_peak_before_um=1e3 * ste_without, dynamic_factor=factor,
                   contact_loss_fraction=loss, run_end_time_s=end, set=tuple(
                       f"{k}={v}" for k, v in overrides.items() if not k.endswith("shape")))
 
