@@ -278,12 +278,12 @@ def resonance_check(modes: tuple[StoredMode, ...], mesh_mode: tuple[float, float
                 f"sweeps a band and a mode inside it is crossed (margin 0); " + note)
     # A mode with zeta >= 1/sqrt(2) has no resonant peak (one rule: gearcli.model.modal).
     no_peak = [(num, zeta) for num, _, zeta in modes if not has_resonant_peak(zeta)]
+    peaked = [r for r in rows if r.resonant_peak]
     if no_peak and near.mode is None:
         note += f"; the mode has no resonant peak (damping ratio {no_peak[0][1]:.2f} >= 0.707)"
-    elif no_peak:
+    elif no_peak and peaked:  # without any, the "not checked" note below says it: once
         note += (f"; mode(s) {', '.join(str(n) for n, _ in no_peak)} have no resonant peak "
                  "(damping ratio >= 0.707) and are not checked")
-    peaked = [r for r in rows if r.resonant_peak]
     margins = rows if stored else None
     if not peaked:
         return Resonance(Check("resonance_margin_percent", None, limit, True,
@@ -342,8 +342,8 @@ def _checks(res: Analysis, case, s: Summary, resonance: Check) -> list[Check]:
                      f"<= {ck.contact_loss_fraction_max:g} "
                      f"({100.0 * ck.contact_loss_fraction_max:g} %)",
                      loss <= ck.contact_loss_fraction_max,
-                     f"{100.0 * loss:.3g} % of the window without drive-flank contact (tooth "
-                     "separation); analysis.json holds value and limit as fractions"))
+                     "share of the window without drive-flank contact (tooth separation); "
+                     "analysis.json holds value and limit as fractions"))
     if ck.dte_peak_to_peak_max is not None:
         out.append(Check("dte_peak_to_peak_mm", m.dte_peak_to_peak_mm,
                          f"<= {ck.dte_peak_to_peak_max:g} mm",
