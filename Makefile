@@ -30,9 +30,9 @@ warm:
 demo: $(STAMP)
 	@mkdir -p $(dir $(OUT))
 	$(BIN)/gearcli geometry $(CASE) --plot $(OUT)-geometry.svg --force
+	@# exit 4: the seed's findings (failed checks, each with its remedy), said by gearcli above
 	@$(BIN)/gearcli run $(CASE) -o $(OUT) --force; rc=$$?; \
-	if [ $$rc -eq 4 ]; then echo "(exit 4: a check failed or the run is outside the model's \
-	validity; the verdicts are in $(OUT)/report.html)"; elif [ $$rc -ne 0 ]; then exit $$rc; fi
+	if [ $$rc -ne 0 ] && [ $$rc -ne 4 ]; then exit $$rc; fi
 
 # The suite's duration, measured with `time make test` (1098 tests, warm solver cache, chromium
 # present, 2-core VM at load average 7-14 from other jobs): 13 min wall, 4 min of CPU (user +

@@ -40,6 +40,7 @@ import math
 import os
 import platform
 import re
+import resource
 import shutil
 import statistics
 import subprocess
@@ -413,17 +414,26 @@ def report_timing(args) -> None:
         subprocess.run(GEARCLI + ["analyze", str(folder), "--quiet"], capture_output=True)
         report = GEARCLI + ["report", str(folder), "--force", "--quiet"]
         cmds = {"import matplotlib.pyplot": [sys.executable, "-c", "import matplotlib.pyplot"],
-                "report": report, "report --svg": report + ["--svg"]}
+                "report": report, "report --svg": report + ["--svg"],
+                "report, one process": report}
         envs: dict[str, dict | None] = dict.fromkeys(cmds)
+        # the figures in one process (gearcli/report/parallel.py forks two workers only with
+        # a CPU to spare: on a busy machine "report" is this too)
+        envs["report, one process"] = {**os.environ, "GEARCLI_REPORT_JOBS": "1"}
         if args.report_base:  # the same command from another checkout's gearcli package
             cmds["report (base)"] = report
             envs["report (base)"] = {**os.environ, "PYTHONPATH": str(Path(args.report_base))}
         for name, cmd in cmds.items():  # warm: bytecode, font cache, numba cache
             wall(cmd, 1, envs[name])
         times: dict[str, list[float]] = {k: [] for k in cmds}
+        cpu: dict[str, list[float]] = {k: [] for k in cmds}  # user + sys of the process
         for _ in range(args.rounds):
             for name, cmd in cmds.items():
+                before = resource.getrusage(resource.RUSAGE_CHILDREN)
                 times[name] += wall(cmd, 1, envs[name])
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                cpu[name].append(after.ru_utime - before.ru_utime
+                                 + after.ru_stime - before.ru_stime)
     med = {k: statistics.median(v) for k, v in times.items()}
     floor = med["import matplotlib.pyplot"]
     row('python -c "import matplotlib.pyplot"', f"median {floor:.2f} s, min "
@@ -433,6 +443,15 @@ def report_timing(args) -> None:
             row(f"gearcli {name} seed, warm (import matplotlib.pyplot = 1)",
                 f"median {med[name]:.2f} s, min {min(times[name]):.2f} s; "
                 f"{med[name] / floor:.1f}x", "<= 3 s quiet")
+    # CPU time (user + sys, workers included) is what a quiet machine's wall time of one
+    # process approaches; on a loaded machine it is the steadier measure
+    cpu_med = {k: statistics.median(v) for k, v in cpu.items()}
+    cpu_floor = cpu_med["import matplotlib.pyplot"]
+    for name in cmds:
+        row(f"CPU time of {name}" + ("" if name.startswith("import") else
+                                     " (import matplotlib.pyplot = 1)"),
+            f"median {cpu_med[name]:.2f} s" + ("" if name.startswith("import") else
+                                               f"; {cpu_med[name] / cpu_floor:.1f}x"))
 
 
 def rating_timing(args) -> None:

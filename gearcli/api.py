@@ -203,7 +203,8 @@ def _folder_of(run, stack) -> Path:
     return Path(run)
 
 
-def analyze(run, window: tuple[float, float] | None = None, strict: bool = False):
+def analyze(run, window: tuple[float, float] | None = None, strict: bool = False,
+            remedies: bool = True):
     """Metrics, spectra and checks of a run (`gearcli analyze`).
 
     Parameters
@@ -215,6 +216,11 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
         the steady window.
     strict : bool
         Warnings count as failed checks.
+    remedies : bool
+        A failed check gets its remedy (``check.remedy``): for the dynamic factor and contact
+        loss the tip relief that minimises the loaded STE at the case load and the dynamic
+        factor of a short run with it; for the resonance margin the speeds to avoid. False
+        skips them (the relief search and its run take a few seconds).
 
     Returns
     -------
@@ -231,7 +237,7 @@ def analyze(run, window: tuple[float, float] | None = None, strict: bool = False
         window = quantity_arguments(window, units.TIME, "window", 2)
     flag_argument(strict, "strict")
     with contextlib.ExitStack() as stack:
-        return run_analysis(_folder_of(run, stack), window, strict)
+        return run_analysis(_folder_of(run, stack), window, strict, remedies)
 
 
 def spectra_frame(analysis):

@@ -14,12 +14,15 @@ from gearcli.cli.common import (
     option_quantities,
     print_checks_table,
     print_quantity_table,
+    report_findings,
+    table_options,
 )
 from gearcli.io.files import write_stdout
 
 
 @app.command()
 @handle_errors
+@table_options
 def analyze(
     folder: Path = typer.Argument(..., help="Results folder written by gearcli simulate."),
     window: tuple[str, str] | None = typer.Option(
@@ -28,6 +31,10 @@ def analyze(
         metavar="T0 T1"),
     as_json: bool = typer.Option(False, "--json", help="Print analysis.json to stdout."),
     strict: bool = typer.Option(False, "--strict", help="Warnings count as failed checks."),
+    remedy: bool = typer.Option(True, "--remedy/--no-remedy", help="A failed dynamic factor or "
+                                "contact loss names the tip relief that minimises the loaded "
+                                "STE and the dynamic factor with it (a short run); a failed "
+                                "resonance margin the speeds to avoid."),
     force: bool = typer.Option(False, "--force", help="Replace an earlier analysis in DIR."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No tables; errors only."),
     orders: Path | None = typer.Option(
@@ -51,7 +58,6 @@ def analyze(
     import json
 
     from gearcli import api
-    from gearcli.errors import CheckFailed
     from gearcli.io.files import check_no_earlier, record_outputs, save_figure
     from gearcli.io.owner import folder_lock
     from gearcli.pipeline.analysis_io import ANALYSIS_FILES, write_analysis
@@ -65,7 +71,8 @@ def analyze(
         check_no_earlier(folder, ANALYSIS_FILES, force, "analysis")
         check_figure_path("--orders", orders, force)
         check_figure_path("--spectra", spectra, force)
-        analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"), strict)
+        analysis = api.analyze(folder, option_quantities(window, "TIME", "--window"),
+                               strict, remedy)
         result = analysis
         doc = write_analysis(result)
         from gearcli.results import AnalysisDocument
@@ -85,9 +92,7 @@ def analyze(
         write_stdout(json.dumps(doc, indent=2) + "\n")
     elif not quiet:
         print_checks(typed, display_units())
-    if not result.passed:
-        failed = [c.name for c in result.checks if c.failed]
-        raise CheckFailed(f"{folder}: check(s) failed: {', '.join(failed)}")
+    report_findings(result.checks, f"{folder}/analysis.json")
 
 
 def _save_order_map(result, path: Path, units: str) -> None:
@@ -115,4 +120,4 @@ def print_checks(doc, units: str = "engineering") -> None:
     w0, w1 = m.window_s
     print_quantity_table(f"{doc.case}: window {w0:.3f}-{w1:.3f} s ({m.window_reason})",
                          rows)
-    print_checks_table(doc.checks)
+    print_checks_table(doc.checks, units)

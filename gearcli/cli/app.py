@@ -69,7 +69,10 @@ UNIT_SYSTEMS = ("engineering", "si")
 
 #: Settings of the root options for the command that runs (set by the root callback on every
 #: invocation, so one process running several commands, as tests do, starts each afresh).
-settings = {"units": "engineering"}
+settings = {"units": "engineering", "tables": "table"}
+
+#: How tables are printed (gearcli/cli/common.py TABLE_FORMATS; listed here for `--help`).
+TABLE_FORMATS = ("table", "plain", "csv", "json")
 
 
 @app.callback()
@@ -83,6 +86,11 @@ def _root(
         help="Display units of the tables, figures and reports: engineering (rpm, mm, µm, "
              "N·m, N/µm, MPa) or si (rad/s, m, N·m, N/m). Files keep their unit-suffixed "
              "columns. Also GEARCLI_UNITS."),
+    tables: str = typer.Option(
+        "table", "--table-format", envvar="GEARCLI_TABLE_FORMAT", metavar="|".join(TABLE_FORMATS),
+        help="Terminal tables as boxes ('table': full width when piped, nothing cut), 'plain' "
+             "aligned columns, 'csv' blocks or 'json' lines (one object per table); also each "
+             "command's --table-format, GEARCLI_TABLE_FORMAT."),
 ) -> None:
     """Dynamics of spur gear pairs from a YAML case file.
 
@@ -97,4 +105,9 @@ def _root(
         typer.echo(f"error: {given}{units}: expected one of {', '.join(UNIT_SYSTEMS)}",
                    err=True)
         raise typer.Exit(1)
+    if tables not in TABLE_FORMATS:
+        typer.echo(f"error: --table-format {tables}: expected one of {', '.join(TABLE_FORMATS)}",
+                   err=True)
+        raise typer.Exit(1)
     settings["units"] = units
+    settings["tables"] = tables

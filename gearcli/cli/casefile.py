@@ -61,15 +61,18 @@ def schema(
 @handle_errors
 def new(path: Path = typer.Argument(..., help="Where to write the starter case (.yaml); "
                                      "'-' prints it."),
-        template: str = typer.Option("pair", "--template", "-t", metavar="pair|seed|drivetrain",
+        template: str = typer.Option("pair", "--template", "-t",
+                                     metavar="pair|seed|drivetrain|speed-curve|study",
                                      help="pair (default): a commented spur pair in "
                                           "engineering units (rpm, N*m, mm) that runs clean; "
                                           "seed: the seed article's Adams case; drivetrain: "
                                           "the seed pair on bearings between shafts and "
-                                          "inertias.")) -> None:
+                                          "inertias; speed-curve and study: study files for "
+                                          "gearcli sweep (a run-up/run-down, a grid) with "
+                                          "the pair inline.")) -> None:
     """Write a commented starter case; never overwrites a file.
 
-    Example: gearcli new mypair.yaml, gearcli new --template seed seed.yaml, or
+    Example: gearcli new mypair.yaml, gearcli new --template study study.yaml, or
     gearcli new - > mycase.yaml"""
     from gearcli.case.starter import TEMPLATES, starter_text
     from gearcli.errors import OutputError
@@ -82,5 +85,11 @@ def new(path: Path = typer.Argument(..., help="Where to write the starter case (
         typer.echo(text, nl=False)
         return
     write_new_text(path, text)
+    from gearcli.case.starter import STUDY_TEMPLATES
+
+    if template in STUDY_TEMPLATES:
+        typer.echo(f"wrote {path} (the '{template}' template; edit it, then: gearcli sweep "
+                   f"{path} -o out/{path.stem})")
+        return
     typer.echo(f"wrote {path} (the '{template}' template; edit it, then: gearcli geometry "
                f"{path}, gearcli simulate {path})")

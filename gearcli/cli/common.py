@@ -15,6 +15,7 @@ from pathlib import Path
 import typer
 
 from gearcli import interrupts
+from gearcli.cli.app import TABLE_FORMATS
 from gearcli.errors import ExitCode, GearcliError
 from gearcli.guards import clip_message
 from gearcli.interrupts import Terminated
@@ -243,9 +244,154 @@ def format_value(value) -> str:
     return f"{value:.6g}"
 
 
+#: How tables are printed (``gearcli --table-format`` / ``--table-format`` of a command /
+#: GEARCLI_TABLE_FORMAT): "table" boxes (full width when piped: nothing is cut), "plain"
+#: aligned columns without boxes or colour, "csv" a CSV block per table (its title as a
+#: ``# title`` line), "json" one JSON object per table and line ({"table", "columns", "rows"}).
+
+
+def table_format_option():
+    """The ``--table-format`` option of a command with tables (None: the root's setting)."""
+    return typer.Option(None, "--table-format", metavar="|".join(TABLE_FORMATS),
+                        help="Tables as boxes ('table', full width when piped), 'plain' "
+                             "columns, 'csv' or 'json' lines (default: gearcli "
+                             "--table-format, GEARCLI_TABLE_FORMAT, else table).")
+
+
+def table_options(func):
+    """A command with tables: adds its ``--table-format`` option (:func:`table_format_option`)
+    and sets it before the command runs (under :func:`handle_errors`)."""
+    import inspect
+
+    sig = inspect.signature(func)
+    param = inspect.Parameter("table_fmt", inspect.Parameter.KEYWORD_ONLY,
+                              default=table_format_option(), annotation=str | None)
+
+    @functools.wraps(func)
+    def wrapper(*args, table_fmt=None, **kwargs):
+        set_table_format(table_fmt)
+        return func(*args, **kwargs)
+
+    wrapper.__signature__ = sig.replace(parameters=[*sig.parameters.values(), param])
+    wrapper.__annotations__ = dict(func.__annotations__, table_fmt=str | None)
+    return wrapper
+
+
+def set_table_format(value: str | None) -> None:
+    """A command's ``--table-format`` (None keeps the root's); an unknown one exits 1."""
+    if value is None:
+        return
+    if value not in TABLE_FORMATS:
+        from gearcli.errors import OutputError
+
+        raise OutputError(f"--table-format {value}: expected one of {', '.join(TABLE_FORMATS)}")
+    from gearcli.cli.app import settings
+
+    settings["tables"] = value
+
+
+def table_format() -> str:
+    from gearcli.cli.app import settings
+
+    return settings.get("tables", "table")
+
+
+def _plain_cell(cell) -> str:
+    """A rich cell (markup text, Text or None) as plain text."""
+    from rich.text import Text
+
+    if cell is None:
+        return ""
+    if isinstance(cell, Text):
+        return cell.plain
+    return Text.from_markup(str(cell)).plain
+
+
+def table_data(table) -> tuple[str, list[str], list[list[str]]]:
+    """(title, column headers, rows) of a rich Table, as plain text."""
+    headers = [_plain_cell(c.header) for c in table.columns]
+    cells = [[_plain_cell(x) for x in c._cells] for c in table.columns]
+    rows = [list(r) for r in zip(*cells, strict=True)] if cells else []
+    return _plain_cell(table.title or ""), headers, rows
+
+
+def print_table(table) -> None:
+    """Print a rich Table in the chosen :func:`table_format`."""
+    fmt = table_format()
+    if fmt == "table":
+        from rich.console import Console
+        from rich.measure import Measurement
+
+        console = Console()
+        if not console.is_terminal:  # piped: as wide as the table needs, nothing cut
+            wide = console.options.update_width(100_000)
+            width = Measurement.get(console, wide, table).maximum
+            title = len(_plain_cell(table.title or ""))
+            if title > width:  # rich wraps a title to the table's width
+                table.min_width = width = title
+            console = Console(width=max(width, 80))
+        console.print(table)
+        return
+    title, headers, rows = table_data(table)
+    typer.echo(format_rows(fmt, title, headers, rows))
+
+
+def format_rows(fmt: str, title: str, headers: list[str], rows: list[list[str]]) -> str:
+    """A table as text in the format ``fmt`` ("plain", "csv" or "json")."""
+    if fmt == "json":
+        import json
+
+        return json.dumps({"table": title, "columns": headers,
+                           "rows": [dict(zip(headers, r, strict=True)) for r in rows]},
+                          ensure_ascii=False)
+    if fmt == "csv":
+        import csv
+        import io
+
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        writer.writerow(headers)
+        writer.writerows(rows)
+        return (f"# {title}\n" if title else "") + buf.getvalue()
+    widths = [max([len(h)] + [len(r[i]) for r in rows]) for i, h in enumerate(headers)]
+    lines = [title] if title else []
+    lines += ["  ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip()
+              for line in [headers, *rows]]
+    return "\n".join(lines) + "\n"
+
+
+def emit(item) -> None:
+    """A command's console output: a rich Table through :func:`print_table`, a line of text
+    (rich markup) as plain text; in csv a ``# text`` comment, in json {"text": ...}."""
+    from rich.table import Table
+
+    if isinstance(item, Table):
+        print_table(item)
+        return
+    text = _plain_cell(item)
+    fmt = table_format()
+    if fmt == "csv":
+        text = "\n".join(f"# {line}" for line in text.splitlines())
+    elif fmt == "json":
+        import json
+
+        text = json.dumps({"text": text}, ensure_ascii=False)
+    typer.echo(text)
+
+
+def print_lines(lines) -> None:
+    """Lines below a table (notes, remedies): each once, in order; none in csv/json."""
+    if table_format() in ("csv", "json"):
+        return
+    seen = set()
+    for line in lines:
+        if line and line not in seen:
+            seen.add(line)
+            typer.echo(line)
+
+
 def print_quantity_table(title: str, rows) -> None:
-    """A (quantity, value, unit) table on the terminal (rich)."""
-    from rich.console import Console
+    """A (quantity, value, unit) table (rich; :func:`print_table`)."""
     from rich.markup import escape
     from rich.table import Table
 
@@ -255,22 +401,50 @@ def print_quantity_table(title: str, rows) -> None:
     t.add_column("unit")
     for label, value, unit in rows:  # escaped: rich reads "[m]" or "[rpm]" as markup
         t.add_row(escape(label), escape(format_value(value)), escape(unit))
-    Console().print(t)
+    print_table(t)
 
 
-def print_checks_table(checks) -> None:
-    """The Checks table (name, value, limit, pass/FAIL, note) of analyze and modal
-    (gearcli.results.Check)."""
-    from rich.console import Console
+def print_checks_table(checks, units: str = "engineering") -> None:
+    """The Checks table (check, value, unit, limit, result) of analyze and modal
+    (gearcli.results.Check); the notes and remedies below it, each once (in csv and json they
+    are columns)."""
     from rich.markup import escape
     from rich.table import Table
 
+    from gearcli.report.tables import check_cells
+
+    columns = ["check", "value", "unit", "limit", "result"]
+    inline = table_format() in ("csv", "json")
     c = Table(title="Checks", title_justify="left")
-    for col in ("check", "value", "limit", "result", "note"):
-        c.add_column(col)
+    for col in columns + (["note", "remedy"] if inline else []):
+        c.add_column(col, justify="right" if col == "value" else "left")
+    notes, remedies = [], {}
     for ck in checks:
         verdict = ("[yellow]not checked[/yellow]" if ck.checked is False
                    else "[green]pass[/green]" if ck.passed else "[red]FAIL[/red]")
-        c.add_row(escape(ck.name), escape(format_value(ck.value)), escape(ck.limit), verdict,
-                  escape(ck.note))
-    Console().print(c)
+        value, unit, limit = check_cells(ck, units)
+        remedy = ck.remedy.text if getattr(ck, "remedy", None) is not None else ""
+        extra = [escape(ck.note), escape(remedy)] if inline else []
+        c.add_row(escape(ck.name), escape(value), escape(unit), escape(limit), verdict, *extra)
+        if ck.note:
+            notes.append(f"  {ck.name}: {ck.note}")
+        if remedy:
+            remedies.setdefault(remedy, []).append(ck.name)
+    print_table(c)
+    print_lines(notes)
+    print_lines(f"remedy ({', '.join(names)}): {text}" for text, names in remedies.items())
+
+
+def report_findings(checks, where: str | None = None, also=()) -> None:
+    """The end of a command whose checks failed: one "findings" line naming them (the verdicts
+    and remedies are above and in ``where``), exit 4 without an error line; all passed: nothing.
+    ``also``: further failed verdicts by name (e.g. the ISO 6336 rating of `run`)."""
+    failed = [c.name for c in checks if c.failed] + list(also)
+    if not failed:
+        return
+    with_remedy = [c.name for c in checks if c.failed and getattr(c, "remedy", None)]
+    extra = f"; a remedy for {', '.join(with_remedy)} above" if with_remedy else ""
+    where = f"; verdicts in {where}" if where else ""
+    _echo_err(f"findings: {len(failed)} check(s) failed: {', '.join(failed)}{extra} "
+              f"(exit 4{where})")
+    raise typer.Exit(int(ExitCode.CHECK_FAILED))

@@ -7,7 +7,13 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
+from gearcli.cli.common import (
+    check_figure_path,
+    display_units,
+    format_value,
+    handle_errors,
+    table_options,
+)
 from gearcli.io.files import write_stdout
 
 # (label, json key, stored unit) rows of the per-gear and per-pair tables (shown in the display
@@ -74,6 +80,7 @@ INSPECTION_ROWS = [
 
 @app.command()
 @handle_errors
+@table_options
 def geometry(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     as_json: bool = typer.Option(False, "--json", help="Print JSON (keys carry units)."),
@@ -111,13 +118,12 @@ def geometry(
 
 
 def _print_tables(data: dict, units: str) -> None:
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
+    from gearcli.cli.common import emit
     from gearcli.display_units import convert
 
-    console = Console()
     t = Table(title=escape(f"Gear geometry — {data['case']}"), title_justify="left")
     t.add_column("quantity")
     t.add_column("pinion", justify="right")
@@ -127,7 +133,7 @@ def _print_tables(data: dict, units: str) -> None:
         (pinion, gear), shown = convert([data["pinion"].get(key), data["gear"].get(key)], unit,
                                         units)
         t.add_row(label, format_value(pinion), format_value(gear), shown)
-    console.print(t)
+    emit(t)
     p = Table(title="Pair", title_justify="left")
     p.add_column("quantity")
     p.add_column("value", justify="right")
@@ -136,9 +142,9 @@ def _print_tables(data: dict, units: str) -> None:
         if data["pair"].get(key) is not None:
             value, shown = convert(data["pair"][key], unit, units)
             p.add_row(label, format_value(value), shown)
-    console.print(p)
+    emit(p)
     if data.get("inspection") is not None:
-        console.print(_inspection_table(data["inspection"], units))
+        emit(_inspection_table(data["inspection"], units))
 
 
 def _inspection_table(inspection: dict, units: str):

@@ -7,12 +7,20 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import check_figure_path, display_units, format_value, handle_errors
+from gearcli.cli.common import (
+    check_figure_path,
+    display_units,
+    emit,
+    format_value,
+    handle_errors,
+    table_options,
+)
 from gearcli.io.files import write_stdout
 
 
 @app.command()
 @handle_errors
+@table_options
 def mesh(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     load: float | None = typer.Option(
@@ -109,21 +117,19 @@ def _table(title: str, rows: list[tuple[str, float, str]], units: str):
 
 
 def _print(doc, units: str) -> None:
-    from rich.console import Console
     from rich.markup import escape
 
-    console = Console()
-    console.print(f"[bold]{escape(doc.case)}[/bold]: loaded contact at "
-                  f"{format_value(doc.force_N)} N, {doc.contact_law}")
+    emit(f"[bold]{escape(doc.case)}[/bold]: loaded contact at "
+         f"{format_value(doc.force_N)} N, {doc.contact_law}")
     ste, st = doc.ste, doc.stiffness
-    console.print(_table("Static transmission error", [
+    emit(_table("Static transmission error", [
         ("mean", ste.mean_um, "µm"),
         ("peak-to-peak", ste.peak_to_peak_um, "µm"),
         ("peak-to-peak at the pinion", ste.peak_to_peak_arcsec, "arcsec"),
         *((f"{k} amplitude", v, "µm") for k, v in ste.harmonics_um.items()),
         ("unloaded TE peak-to-peak", ste.unloaded_te_peak_to_peak_um, "µm"),
     ], units))
-    console.print(_table("Mesh stiffness", [
+    emit(_table("Mesh stiffness", [
         ("mean over the cycle", st.mesh_mean_N_mm, "N/mm"),
         ("single-pair zone (mean)", st.single_pair_zone_N_mm, "N/mm"),
         ("double-pair zone (mean)", st.double_pair_zone_N_mm, "N/mm"),
@@ -143,9 +149,8 @@ def _print(doc, units: str) -> None:
         if kv.k_v is not None:
             rows += [("resonance ratio N = n1/n_E1", kv.resonance_ratio, "–"),
                      (f"K_v ({kv.speed_range})", kv.k_v, "–")]
-        console.print(_table("ISO 6336-1 Method B dynamic factor (K_A = 1)", rows, units))
+        emit(_table("ISO 6336-1 Method B dynamic factor (K_A = 1)", rows, units))
     if doc.harris is not None:
-        from rich.markup import escape
         from rich.table import Table
 
         from gearcli.display_units import convert
@@ -156,13 +161,13 @@ def _print(doc, units: str) -> None:
         h.add_column(escape(f"STE peak-to-peak [{unit}]"))  # rich reads "[m]" as markup
         for f, p in zip(doc.harris.force_N, ptp, strict=True):
             h.add_row(format_value(f), format_value(p))
-        console.print(h)
+        emit(h)
     if doc.fe_check is not None:
-        console.print(_fe_table(doc.fe_check, units))
+        emit(_fe_table(doc.fe_check, units))
     if doc.faulted_revolution is not None:
         r = doc.faulted_revolution
-        console.print(_table(f"Faulted mesh over one pinion revolution ({', '.join(r.faults)}; "
-                             "the tables above: the healthy pair)", [
+        emit(_table(f"Faulted mesh over one pinion revolution ({', '.join(r.faults)}; "
+                    "the tables above: the healthy pair)", [
             ("mesh stiffness, minimum", r.stiffness_min_N_mm, "N/mm"),
             ("  healthy", r.stiffness_healthy_min_N_mm, "N/mm"),
             ("largest stiffness drop 1 − k_f/k", r.stiffness_largest_drop, "–"),
@@ -172,7 +177,7 @@ def _print(doc, units: str) -> None:
             ("share of the revolution without a carrying pair", r.no_contact_share, "–"),
         ], units))
     for note in doc.notes:
-        console.print(f"note: {escape(note)}")
+        emit(f"note: {escape(note)}")
 
 
 def _fe_table(fe, units: str):

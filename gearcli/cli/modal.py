@@ -11,16 +11,20 @@ from gearcli.cli.app import app
 from gearcli.cli.common import (
     check_figure_path,
     display_units,
+    emit,
     format_value,
     handle_errors,
     option_quantities,
     print_checks_table,
+    report_findings,
+    table_options,
 )
 from gearcli.io.files import write_stdout
 
 
 @app.command()
 @handle_errors
+@table_options
 def modal(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     as_json: bool = typer.Option(False, "--json", help="Print the report as JSON."),
@@ -46,7 +50,6 @@ def modal(
     import json
 
     from gearcli import api
-    from gearcli.errors import CheckFailed
     from gearcli.pipeline.modal import save_campbell_plot
 
     check_figure_path("--plot", plot, force)
@@ -67,19 +70,15 @@ def modal(
             typer.echo(f"note: {note}")
         if plot is not None:
             typer.echo(f"wrote {plot}")
-    if not res.passed:
-        failed = [c.name for c in res.checks if c.failed]
-        raise CheckFailed(f"{case}: check(s) failed: {', '.join(failed)}")
+    report_findings(res.checks)
 
 
 def _print(doc, checks, units: str) -> None:
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
     from gearcli.display_units import convert
 
-    console = Console()
     lin = doc.linearisation
 
     def q(value, unit, zone=""):
@@ -88,7 +87,7 @@ def _print(doc, checks, units: str) -> None:
         x, u = convert(value, unit, units)
         return f"{x:.4g} {u}"
 
-    console.print(
+    emit(
         f"[bold]{escape(doc.case)}[/bold]: {doc.model} model, drive '{escape(doc.drive)}', "
         f"linearised at F = {lin['static_force_N']:.1f} N: k_mesh = "
         f"{q(lin['mesh_stiffness_N_mm'], 'N/mm')} (single pair "
@@ -107,7 +106,7 @@ def _print(doc, checks, units: str) -> None:
             f"{format_value(zeta)} (overdamped)"
         shape = ", ".join(f"{v:+.3f}" for v in m.shape.values())
         t.add_row(str(m.mode), f, z, escape(m.description), shape)
-    console.print(t)
+    emit(t)
     (lo, hi), unit = convert(list(doc.speed_range_deg_s), "deg/s", units)
     c = Table(title=f"Crossings (pinion speed, {lo:.4g}-{hi:.4g} {unit})", title_justify="left")
     for col in ("order", "mode", "f [Hz]", f"pinion speed [{unit}]"):
@@ -116,5 +115,5 @@ def _print(doc, checks, units: str) -> None:
         if x.in_range:
             c.add_row(escape(x.order), str(x.mode), format_value(x.frequency_Hz),
                       format_value(convert(x.pinion_speed_deg_s, "deg/s", units)[0]))
-    console.print(c)
-    print_checks_table(checks)
+    emit(c)
+    print_checks_table(checks, units)

@@ -7,12 +7,13 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import handle_errors
+from gearcli.cli.common import emit, handle_errors, table_options
 from gearcli.io.files import write_stdout
 
 
 @app.command()
 @handle_errors
+@table_options
 def monitor(
     run: Path = typer.Argument(..., help="Results folder written by gearcli simulate."),
     baseline: Path | None = typer.Option(
@@ -86,7 +87,6 @@ def monitor(
 
 def print_monitor(doc) -> None:
     """One table per shaft: metric, value, definition and its reference."""
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
@@ -94,7 +94,6 @@ def print_monitor(doc) -> None:
     from gearcli.results.monitor import METRIC_DEFINITIONS
 
     w0, w1 = doc.window_s
-    console = Console()
     for s in doc.shafts:
         t = Table(title=escape(f"{doc.case}, {s.shaft} ({s.teeth} teeth): TSA of {s.n_revolutions} "
                                f"revolution(s) in {w0:.3f}-{w1:.3f} s, {doc.signal} "
@@ -106,4 +105,4 @@ def print_monitor(doc) -> None:
             value = s.value(name)
             t.add_row(name, escape("—" if value is None else format_value(value)),
                       escape(definition), escape(ref))
-        console.print(t)
+        emit(t)

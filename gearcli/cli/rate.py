@@ -7,12 +7,13 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import handle_errors
+from gearcli.cli.common import emit, handle_errors, table_options
 from gearcli.io.files import write_stdout
 
 
 @app.command()
 @handle_errors
+@table_options
 def rate(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     as_json: bool = typer.Option(False, "--json", help="Print rating.json to stdout."),
@@ -120,12 +121,10 @@ def gear_rows(doc: dict) -> list[tuple[str, str, str, str, str, str]]:
 
 def print_rating(doc: dict) -> None:
     """The rating as tables: pair factors, the gears' factors side by side, the verdicts."""
-    from rich.console import Console
     from rich.markup import escape
 
-    console = Console()
     iso, load = doc["iso"], doc["load"]
-    console.print(f"[bold]{escape(doc['case'])}[/bold]: ISO 6336:{iso['edition']} Method B, pinion "
+    emit(f"[bold]{escape(doc['case'])}[/bold]: ISO 6336:{iso['edition']} Method B, pinion "
                   f"torque {fmt(load['pinion_torque_Nm'])} N·m per mesh path at "
                   f"{fmt(load['pinion_speed_rpm'])} rpm, life {fmt(load['life_h'])} h; K_v "
                   f"{load['dynamic_factor_source']}")
@@ -134,19 +133,19 @@ def print_rating(doc: dict) -> None:
                                             ("name", "left")])
     for f in iso["pair"]:
         pair.add_row(f["symbol"], fmt(f["value"]), f["unit"], f["clause"], f["name"])
-    console.print(pair)
+    emit(pair)
     gears = _table("Pinion and gear (ISO 6336-2, -3, -5)", [
         ("symbol", "left"), ("pinion", "right"), ("gear", "right"), ("unit", "left"),
         ("clause", "left"), ("name", "left")])
     for row in gear_rows(iso):
         gears.add_row(*row)
-    console.print(gears)
-    console.print(verdict_table(iso, doc.get("duty_cycle")))
+    emit(gears)
+    emit(verdict_table(iso, doc.get("duty_cycle")))
     if doc.get("editions"):
-        console.print(edition_table(doc["editions"], iso["edition"]))
+        emit(edition_table(doc["editions"], iso["edition"]))
     for note in doc["notes"]:
-        console.print(f"note: {escape(note)}")
-    console.print(f"verdict: {doc['verdict'].upper()}")
+        emit(f"note: {escape(note)}")
+    emit(f"verdict: {doc['verdict'].upper()}")
 
 
 def verdict_table(iso: dict, duty: dict | None):

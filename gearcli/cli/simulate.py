@@ -12,12 +12,14 @@ from gearcli.cli.common import (
     handle_errors,
     print_quantity_table,
     status_reporter,
+    table_options,
 )
 from gearcli.io.files import write_stdout
 
 
 @app.command()
 @handle_errors
+@table_options
 def simulate(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
     out: str = typer.Option(..., "-o", "--out", help="Results folder, or '-' for CSV on stdout."),

@@ -7,12 +7,19 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import check_figure_path, handle_errors, option_quantities
+from gearcli.cli.common import (
+    check_figure_path,
+    emit,
+    handle_errors,
+    option_quantities,
+    table_options,
+)
 from gearcli.io.files import write_stdout
 
 
 @app.command()
 @handle_errors
+@table_options
 def stress(
     folder: Path = typer.Argument(..., help="Results folder written by gearcli simulate."),
     as_json: bool = typer.Option(False, "--json", help="Print stress.json to stdout."),
@@ -70,14 +77,12 @@ def _tooth(tooth) -> str:
 
 def print_tables(doc) -> None:
     """One table per gear: ISO static values, dynamic peaks, ratios, safety factors."""
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
-    console = Console()
     st = doc.static
     w = doc.window_s
-    console.print(f"{escape(doc.case)}: static load F_n = {st.force_normal_N:.6g} N "
+    emit(f"{escape(doc.case)}: static load F_n = {st.force_normal_N:.6g} N "
                   f"(F_t = {st.force_tangential_N:.6g} N), σ_H0 (pitch point, Z_H Z_E) = "
                   f"{st.sigma_H0_MPa:.4g} MPa; window {w[0]:.4g}-{w[1]:.4g} s "
                   f"({doc.window_reason})")
@@ -113,6 +118,6 @@ def print_tables(doc) -> None:
                      ("safety S_F = σ_Flim Y_ST / σ_F,max", _f(sf.S_F, ".3f"), "")]
         for row in rows:
             t.add_row(*row)
-        console.print(t)
+        emit(t)
     for text in doc.warnings:
-        console.print(f"[yellow]warning:[/yellow] {escape(text)}")
+        emit(f"[yellow]warning:[/yellow] {escape(text)}")

@@ -111,7 +111,8 @@ def sweep(
         invalid = int((df["status"] == "invalid").sum())
         checked = f", {checks_failed} failed the study's checks" if "checks" in df.columns else ""
         typer.echo(f"{a['total']} points: {a['ran']} run, {a['skipped']} already done, "
-                   f"{a['failed']} failed, {invalid} outside the model's validity{checked} "
+                   f"{a['failed']} failed (the run did not finish), {invalid} invalid "
+                   f"(outside the model's validity){checked} "
                    f"({a['wall_time_s']:.1f} s); results in {out}/ (summary.csv, trends.md)")
         if a["labels"] is not None:
             kinds = sorted({r.get("fault_kind", "") for r in a["labels"]})

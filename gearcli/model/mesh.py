@@ -18,8 +18,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from gearcli.core.stepfunc import step as adams_step  # Adams STEP (one implementation)
-
 
 def static_reference_N(load_torque_Nmm, r_b2_mm: float, omega2_rad_s,
                        damping: tuple[float, float]):
@@ -94,6 +92,10 @@ def mesh_mode(
     p_s = deflection(f, eps_alpha)
     k_pair = stiffness(p_s)
     k_mesh = eps_alpha * k_pair
+    # Adams STEP (one implementation); imported here: it is compiled (numba), and readers of
+    # static_reference_N (the report) need no numba
+    from gearcli.core.stepfunc import step as adams_step
+
     c_mesh = eps_alpha * adams_step(p_s, 0.0, 0.0, d_max, c_max)
     if pinion_free:
         m = 1.0 / (r_b1_mm**2 / J1_t_mm2 + r_b2_mm**2 / J2_t_mm2)

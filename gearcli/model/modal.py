@@ -55,7 +55,6 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-import scipy.linalg
 
 # the model, its descriptions and the resonance map live in topic modules; their public names
 # are importable from here (gearcli.model.modal is the one entry point)
@@ -210,6 +209,9 @@ def linear_modes(system: LinearSystem) -> ModalResult:
     Modes are sorted by ω_n, rigid-body modes first. Raises ValueError naming the field for a
     non-physical system (:meth:`LinearSystem.validate`).
     """
+    import scipy.linalg  # here, not at the top: readers of has_resonant_peak (the report's
+    # Campbell diagram) need no scipy (~0.3-0.8 s to import)
+
     system.validate()
     M, K, C = system.matrices()
     n = M.shape[0]

@@ -74,8 +74,10 @@ class Analysis:
 
 
 def analyze(folder: str | Path, window: tuple[float, float] | None = None,
-            strict: bool = False) -> Analysis:
-    """Analyse a results folder; bad input raises ResultsError (exit 1)."""
+            strict: bool = False, remedies: bool = False) -> Analysis:
+    """Analyse a results folder; bad input raises ResultsError (exit 1). ``remedies``: a
+    failed check gets its remedy (gearcli/pipeline/remedy.py; a relief search and one short
+    run for a failed dynamic factor or contact loss)."""
     run = read_run(folder)
     loaded = load_case_text(json.dumps(run.manifest["resolved_case"]),
                             str(Path(folder) / "manifest.json"))
@@ -113,6 +115,10 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
                                   resonance_margins=resonance.margins)
     result = Analysis(run, win, metrics, spectra, lines, case=case)
     result.checks = _checks(result, case, s, resonance.check)
+    if remedies:
+        from gearcli.pipeline.remedy import add_remedies
+
+        add_remedies(result.checks, loaded, metrics)
     result.warnings = list(run.summary.warnings)
     if strict:
         result.checks.append(Check("no_warnings", len(result.warnings), "0 (--strict)",
@@ -275,12 +281,12 @@ def resonance_check(modes: tuple[StoredMode, ...], mesh_mode: tuple[float, float
                 f"sweeps a band and a mode inside it is crossed (margin 0); " + note)
     # A mode with zeta >= 1/sqrt(2) has no resonant peak (one rule: gearcli.model.modal).
     no_peak = [(num, zeta) for num, _, zeta in modes if not has_resonant_peak(zeta)]
+    peaked = [r for r in rows if r.resonant_peak]
     if no_peak and near.mode is None:
         note += f"; the mode has no resonant peak (damping ratio {no_peak[0][1]:.2f} >= 0.707)"
-    elif no_peak:
+    elif no_peak and peaked:  # without any, the "not checked" note below says it: once
         note += (f"; mode(s) {', '.join(str(n) for n, _ in no_peak)} have no resonant peak "
                  "(damping ratio >= 0.707) and are not checked")
-    peaked = [r for r in rows if r.resonant_peak]
     margins = rows if stored else None
     if not peaked:
         return Resonance(Check("resonance_margin_percent", None, limit, True,
@@ -339,8 +345,8 @@ def _checks(res: Analysis, case, s: Summary, resonance: Check) -> list[Check]:
                      f"<= {ck.contact_loss_fraction_max:g} "
                      f"({100.0 * ck.contact_loss_fraction_max:g} %)",
                      loss <= ck.contact_loss_fraction_max,
-                     f"{100.0 * loss:.3g} % of the window without drive-flank contact (tooth "
-                     "separation); value and limit as fractions"))
+                     "share of the window without drive-flank contact (tooth separation); "
+                     "analysis.json holds value and limit as fractions"))
     if ck.dte_peak_to_peak_max is not None:
         out.append(Check("dte_peak_to_peak_mm", m.dte_peak_to_peak_mm,
                          f"<= {ck.dte_peak_to_peak_max:g} mm",

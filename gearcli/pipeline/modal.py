@@ -200,10 +200,18 @@ def _margin_check(res: ModalAnalysis, limit: float) -> Check:
         return Check(name, near.margin_percent, lim, True, "not checked: no mode has a "
                           "resonant peak; " + note, checked=False)
     ok = peaked[0].margin_percent >= limit
+    remedy = None
     if peaked and not ok:
         p = peaked[0]
         note += f"; violated by {p.order} vs mode {p.mode} ({p.margin_percent:.1f} %)"
-    return Check(name, near.margin_percent, lim, ok, note)
+        from gearcli.pipeline.speed_bands import avoid_bands, band_remedy
+
+        rev_s = res.case_speed_deg_s / 360.0  # per_rev: excitations per pinion revolution
+        remedy = band_remedy(avoid_bands(
+            ((m.excitation_Hz / rev_s, m.mode_Hz, f"{m.order} near mode {m.mode} at "
+              f"{m.mode_Hz:.1f} Hz") for m in peaked if m.margin_percent < limit), limit),
+            limit)
+    return Check(name, near.margin_percent, lim, ok, note, remedy=remedy)
 
 
 def modal_document(res: ModalAnalysis) -> ModalDocument:
@@ -258,8 +266,7 @@ def modal_document(res: ModalAnalysis) -> ModalDocument:
         margins_at_case_speed=tuple(OrderMargin(x.order, x.mode, x.excitation_Hz, x.mode_Hz,
                                                 x.margin_percent, x.has_peak)
                                     for x in res.margins),
-        checks=[{"name": c.name, "value": c.value, "limit": c.limit, "passed": c.passed,
-                 "checked": c.checked, "note": c.note} for c in res.checks],
+        checks=[c.to_dict() for c in res.checks],  # the remedy only where there is one
         passed=res.passed,
     )
 

@@ -46,8 +46,6 @@ def cyclic_gc_paused():
             gc.enable()
 
 
-#: What the first run's compilation takes (bench/RESULTS.md, issue 16; 2-core machine) [s].
-COMPILE_TIME_S = 15
 
 
 def last_ramp_s(case) -> float:
@@ -69,9 +67,10 @@ def announce_compilation(notice=stderr_notice) -> bool:
 
     if kernel_cached() is not False:
         return False
-    if notice is not None:
-        notice(f"compiling the solver once, ~{COMPILE_TIME_S} s (later runs load it from the "
-               "cache)")
+    if notice is not None:  # a measured estimate (gearcli/pipeline/compile_time.py)
+        from gearcli.pipeline.compile_time import notice_text
+
+        notice(notice_text())
     return True
 
 
@@ -112,7 +111,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     params = ki.params.copy()
     params[P.extrema_t_start] = window.t0_s
     if status:
-        status(f"compiling the solver (once, ~{COMPILE_TIME_S} s)" if compiling
+        status("compiling the solver (once; see the notice)" if compiling
                else "integrating")
     t0 = time.perf_counter()
     with cyclic_gc_paused():
@@ -120,6 +119,10 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
                       load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
                       progress=progress, **ki.arrays)
     wall = time.perf_counter() - t0
+    if compiling:  # what the next notice on this machine estimates from
+        from gearcli.pipeline.compile_time import record
+
+        record(wall)
     from gearcli.core.layout import STATUS_RUNAWAY_PENETRATION
     from gearcli.pipeline.validity import cut_at_table_exit
 

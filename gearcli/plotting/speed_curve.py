@@ -20,9 +20,10 @@ def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
                      iso_without_low_load=None, grade: int | None = None) -> Figure:
     """Dynamic factor [-] against N = f_z / f_n [-] (f_n the case's mesh mode) for the run-up
     and the run-down of gearcli/pipeline/speed_curve.py (``rows``: its levels,
-    gearcli.results.SpeedLevel); levels that did not settle (status "unsettled") are ringed;
-    points outside the model's validity are marked with a grey cross at the top of the axes,
-    not plotted as values; dotted lines at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO)
+    gearcli.results.SpeedLevel); the lines break at the levels without a value, invalid ones
+    (outside the model's validity) marked with a grey cross at the top of the axes, failed
+    ones (the run did not finish) with a plus; levels that did not settle (status
+    "unsettled") are ringed; dotted lines at f_n/2, f_n and 2 f_n. ``iso`` = (N, K_v, N_ISO)
     arrays: ISO 6336-1 Method B's K_v on the same axis (its own resonance ratio n1/n_E1 on a
     secondary axis), computed with ``iso_factors`` = (B_p, B_f, B_k) [-], which the legend
     states; ``iso_without_low_load``: K_v [-] on the same points without the standard's low-load
@@ -34,19 +35,24 @@ def plot_speed_curve(rows, f_n_Hz: float, title: str = "", iso=None,
     valued = ("ok", "unsettled")  # levels with a value; unsettled ones ringed
     top = max((r.dynamic_factor for r in rows if r.status in valued), default=2.0)
     for direction, (colour, marker, label) in _STYLE.items():
-        ok = [r for r in rows if r.direction == direction and r.status in valued]
-        ok.sort(key=lambda r: r.resonance_ratio)
-        ax.plot([r.resonance_ratio for r in ok], [r.dynamic_factor for r in ok],
+        # every level of the direction, NaN where it has no value: the line breaks there
+        levels = sorted((r for r in rows if r.direction == direction),
+                        key=lambda r: r.resonance_ratio)
+        ax.plot([r.resonance_ratio for r in levels],
+                [r.dynamic_factor if r.status in valued else math.nan for r in levels],
                 marker=marker, color=colour, lw=1.2, ms=4, label=f"gearcli {label}")
-        loose = [r for r in ok if r.status == "unsettled"]
+        loose = [r for r in levels if r.status == "unsettled"]
         if loose:
             ax.plot([r.resonance_ratio for r in loose], [r.dynamic_factor for r in loose], "o",
                     mfc="none", mec=colour, ms=10, mew=1.2,
                     label=f"{label}: not settled (status unsettled)")
-        bad = [r for r in rows if r.direction == direction and r.status not in valued]
-        if bad:
-            ax.plot([r.resonance_ratio for r in bad], [1.05 * top] * len(bad), "x",
-                    color="0.5", label=f"{label}: outside the model's validity")
+        for status, what in (("invalid", "invalid (outside the model's validity)"),
+                             ("failed", "failed (the run did not finish)")):
+            bad = [r for r in levels if r.status == status]
+            if bad:
+                ax.plot([r.resonance_ratio for r in bad], [1.05 * top] * len(bad),
+                        "x" if status == "invalid" else "+", color="0.5", ls="none",
+                        label=f"{label}: {what}")
     if iso is not None:
         x_iso, k_v, n_iso = iso
         of_grade = f", ISO 1328-1 class {grade}" if grade is not None else ""

@@ -96,6 +96,13 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
     warnings = data.warnings
     overrides = [str(o) for o in data.run.manifest.get("overrides") or []]
     summary = [verdict]
+    remedies: dict[str, list[str]] = {}
+    for c in checks:
+        if c.remedy is not None and c.failed:
+            remedies.setdefault(c.remedy.text, []).append(str(c.name))
+    if remedies:
+        summary.append(Bullets(tuple(f"Remedy ({', '.join(names)}): {text}"
+                                     for text, names in remedies.items())))
     if overrides:
         summary.append(Paragraph("Case file values changed on the command line (the tables "
                                  "show the values used): " + "; ".join(overrides)))

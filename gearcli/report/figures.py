@@ -154,7 +154,9 @@ def build_figures(data: ReportData, out_dir: Path, svg: bool = False) -> list[Fi
                      "modifications change: the once-per-revolution DTE they add (mean over each "
                      "mesh cycle) and the relief along the path of contact.",
                      lambda: _modifications(data, period)))
-    return [_save(name, caption, draw(), out_dir, svg) for name, caption, draw in jobs]
+    from gearcli.report.parallel import render
+
+    return render(jobs, _save, out_dir, svg)  # in two processes where that is safe
 
 
 def _stress(data: ReportData):

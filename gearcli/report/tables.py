@@ -365,16 +365,50 @@ def modes_table(data: ReportData) -> Table | None:
                  "shapes: gearcli modal")
 
 
+def check_cells(ck, units: str = "engineering") -> tuple[str, str, str]:
+    """(value, unit, limit) of a check as the tables show it: one unit per column, a fraction
+    in % (its limit too), a length in the display ``units``."""
+    import re
+
+    value, unit, limit = ck.value, "", ck.limit
+    name = ck.name
+    if name.endswith("_fraction") and isinstance(value, float):
+        value, unit = 100.0 * value, "%"
+        m = re.search(r"\(([^()]*%)\)", limit)
+        if m:
+            limit = limit[:limit.index("(")].split()[0] + " " + m.group(1)
+    elif name.endswith("_percent"):
+        unit = "%"
+    elif name.endswith("_mm") and isinstance(value, float):
+        from gearcli.display_units import unit_and_factor
+
+        unit, k = unit_and_factor("mm", units, fine=True)
+        value = k * value
+        limit = re.sub(r"([-+\d.eE]+) mm\b", lambda g: f"{k * float(g.group(1)):.4g} {unit}",
+                       limit)
+    elif name in ("no_aliasing", "gmf_line_present"):
+        unit = "Hz"
+    elif isinstance(value, float):
+        unit = "–"
+    return fmt(value) if not isinstance(value, str) else value, unit, limit
+
+
 def checks_table(data: ReportData) -> Table:
-    """Every check of analysis.json, marked pass or fail."""
+    """Every check of analysis.json, marked pass or fail: one unit per column (a fraction in
+    %), the note and the remedy of a failed check beside it."""
     rows, status = [], []
     for c in data.analysis.checks:
         ok = bool(c.passed)
         checked = c.checked is not False
         result = "not checked" if not checked else "pass" if ok else "FAIL"
-        rows.append((str(c.name), fmt(c.value), str(c.limit), result, str(c.note or "")))
+        value, unit, limit = check_cells(c, data.units)
+        note = str(c.note or "")
+        if c.remedy is not None:
+            note = (note + "; " if note else "") + "remedy: " + c.remedy.text
+        rows.append((str(c.name), value, unit, limit, result, note))
         status.append("" if not checked else "pass" if ok else "fail")
-    return Table("Checks", ("check", "value", "limit", "result", "note"), rows, status=status)
+    return Table("Checks", ("check", "value", "unit", "limit", "result", "note"), rows,
+                 status=status)
 
 
 def _key_label(key: str) -> str:

@@ -14,6 +14,7 @@ from gearcli.results.analysis import (
     AnalysisDocument,
     AnalysisMetrics,
     Check,
+    Remedy,
     ResonanceMargin,
     SpectrumLine,
 )
@@ -36,7 +37,8 @@ from gearcli.results.stress import GearStress, StressDocument
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
 
 __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "StoredMode",
-           "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin", "Check",
+           "AnalysisDocument", "AnalysisMetrics", "SpectrumLine", "ResonanceMargin",
+           "Remedy", "Check",
            "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
            "SpeedLevel", "MonitorDocument", "ShaftMonitor", "Document", "PLACES", "shown",
            "shown_values", "sweep_metrics", "json_schema", "KINDS", "GearSafeties",

@@ -46,11 +46,14 @@ class AnalysisMetrics(Document):
     force_max_source: str = metric_field("force_max_source", "")
     force_min_N: float = metric_field("force_min_N", show="report")
     force_static_N: float = metric_field("force_static_N", show=_TABLES)
-    dynamic_factor: float | None = metric_field("dynamic_factor", None, _TABLES + " headline")
+    #: remedy: what gearcli/pipeline/remedy.py offers when the check of this metric fails
+    dynamic_factor: float | None = metric_field("dynamic_factor", None, _TABLES + " headline",
+                                                remedy="tip_relief")
     dte_mean_mm: float = metric_field("dte_mean_mm", show="report")
     dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm", show=_TABLES + " headline")
     dte_rms_mm: float = metric_field("dte_rms_mm", show=_TABLES)
-    contact_loss_fraction: float = metric_field("contact_loss_fraction", show=_TABLES)
+    contact_loss_fraction: float = metric_field("contact_loss_fraction", show=_TABLES,
+                                                remedy="tip_relief")
     coast_impacts: int = metric_field("coast_impacts", 0, _TABLES)
     friction_loss_W: float | None = metric_field("friction_loss_W", None, _TABLES)
     damping_loss_W: float | None = metric_field("damping_loss_W", None, _TABLES)
@@ -73,6 +76,33 @@ class AnalysisMetrics(Document):
         "resonance_margins", None, omit_none=True, nested=ResonanceMargin)
 
 
+@dataclasses.dataclass(frozen=True)
+class Remedy(Document):
+    """What would make a failed check pass (gearcli/pipeline/remedy.py; analysis.json's
+    ``checks[].remedy``): ``kind`` "tip_relief" (the relief that minimises the loaded STE at
+    the case load, with the dynamic factor of a short run with it) or "speed_band" (the
+    pinion speeds to avoid); ``text`` says it in one sentence."""
+
+    kind: str = metric_field("kind", "")
+    text: str = metric_field("text", "")
+    tip_relief_amount_mm: float | None = metric_field("tip_relief_amount_mm", None,
+                                                      omit_none=True)
+    tip_relief_length_mm: float | None = metric_field("tip_relief_length_mm", None,
+                                                      omit_none=True)
+    ste_peak_to_peak_um: float | None = metric_field("ste_peak_to_peak_um", None, omit_none=True)
+    ste_peak_to_peak_before_um: float | None = metric_field("ste_peak_to_peak_before_um", None,
+                                                            omit_none=True)
+    dynamic_factor: float | None = metric_field("dynamic_factor", None, omit_none=True)
+    contact_loss_fraction: float | None = metric_field("contact_loss_fraction", None,
+                                                       omit_none=True)
+    run_end_time_s: float | None = metric_field("run_end_time_s", None, omit_none=True)
+    #: the case overrides (``--set``) that apply the relief
+    set: tuple[str, ...] = metric_field("set", ())
+    #: (lowest, highest) pinion speed [rpm] of each band to avoid
+    avoid_pinion_speed_rpm: tuple[tuple[float, float], ...] = metric_field(
+        "avoid_pinion_speed_rpm", ())
+
+
 @dataclasses.dataclass
 class Check(Document):
     """A check of `gearcli analyze` or `gearcli modal` (analysis.json's and the modal JSON's
@@ -87,6 +117,8 @@ class Check(Document):
     #: False when the check could not apply (the note says why); ``passed`` is then None,
     #: ``verdict`` "not checked", and the overall pass/fail ignores it
     checked: bool = True
+    #: what would make a failed check pass (gearcli/pipeline/remedy.py); None: none offered
+    remedy: Remedy | None = metric_field("remedy", None, omit_none=True, nested=Remedy)
 
     def __post_init__(self) -> None:
         if self.checked is False:

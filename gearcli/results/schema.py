@@ -6,7 +6,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from gearcli.results.analysis import AnalysisMetrics
+from gearcli.results.analysis import AnalysisMetrics, Remedy
 from gearcli.results.models import (
     IsoResonance,
     MeshSte,
@@ -100,7 +100,9 @@ def json_schema(kind: str = "summary") -> dict:
              "properties": {"name": {"type": "string"}, "limit": {"type": "string"},
                             "passed": {"type": ["boolean", "null"]},
                             "checked": {"type": "boolean"},
-                            "note": {"type": "string"}}}
+                            "note": {"type": "string"},
+                            # what would make a failed check pass (gearcli/pipeline/remedy.py)
+                            "remedy": typed(Remedy)}}
     checks = {"type": "array", "items": check}
     if kind == "analysis":
         props = {"schema_version": version, "case": {"type": "string"},

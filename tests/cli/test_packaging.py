@@ -99,3 +99,35 @@ def test_licence_and_changelog():
     changelog = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
     assert "## [Unreleased]" in changelog
     assert f"## [{gearcli.__version__}] - " in changelog
+
+
+@pytest.mark.slow
+def test_the_wheel_installed_into_a_clean_venv_runs_gearcli(wheel, tmp_path):
+    """`pip install` of the wheel into a new venv (offline: its dependencies are reached through
+    a path entry to this environment's site-packages, whose own gearcli, an editable install,
+    is not loaded: path entries do not run .pth files) gives a `gearcli` that runs from the
+    venv, not from the sources: --version, and `new`, which reads the bundled starter case."""
+    import sysconfig
+
+    venv = tmp_path / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True,
+                   timeout=300)
+    python = venv / "bin" / "python"
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env.update(PIP_NO_INDEX="1", PIP_DISABLE_PIP_VERSION_CHECK="1")
+    done = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install",
+                           "--no-deps", "--no-index", "-q", wheel.filename],
+                          capture_output=True, text=True, env=env, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    site = subprocess.run([str(python), "-c", "import sysconfig; "
+                           "print(sysconfig.get_paths()['purelib'])"], capture_output=True,
+                          text=True, check=True).stdout.strip()
+    (Path(site) / "deps.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    run = {"cwd": tmp_path, "env": env, "capture_output": True, "text": True, "timeout": 300}
+    where = subprocess.run([str(python), "-c", "import gearcli; print(gearcli.__file__)"], **run)
+    assert where.stdout.strip().startswith(str(venv)), where.stdout + where.stderr
+    version = subprocess.run([str(venv / "bin" / "gearcli"), "--version"], **run)
+    assert version.returncode == 0 and version.stdout == f"gearcli {gearcli.__version__}\n"
+    new = subprocess.run([str(venv / "bin" / "gearcli"), "new", "pair.yaml"], **run)
+    assert new.returncode == 0, new.stderr
+    assert (tmp_path / "pair.yaml").read_bytes() == (PACKAGE / "data" / "pair.yaml").read_bytes()

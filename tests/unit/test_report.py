@@ -162,8 +162,8 @@ def test_html_checks_table_names_every_check_with_its_result(short_dir, html_rep
     _, text = html_report
     rows, classes = _table(_parse(text), "Checks")
     doc = json.loads((short_dir / "analysis.json").read_text())
-    assert rows[0] == ["check", "value", "limit", "result", "note"]
-    body = {r[0]: (r[3], cls) for r, cls in zip(rows[1:], classes[1:], strict=True)}
+    assert rows[0] == ["check", "value", "unit", "limit", "result", "note"]  # one unit a column
+    body = {r[0]: (r[4], cls) for r, cls in zip(rows[1:], classes[1:], strict=True)}
     assert set(body) == {c["name"] for c in doc["checks"]}
     for c in doc["checks"]:
         result, cls = body[c["name"]]
@@ -219,7 +219,7 @@ def test_markdown_references_existing_figures(short_dir, md_report):
     assert len(links) == len(list((short_dir / "figures").glob("*.png")))
     for link in links:
         assert link.startswith("figures/") and (path.parent / link).is_file()
-    assert "| check | value | limit | result | note |" in text
+    assert "| check | value | unit | limit | result | note |" in text
     for c in json.loads((short_dir / "analysis.json").read_text())["checks"]:
         assert c["name"].replace("_", r"\_") in text
 

@@ -140,8 +140,10 @@ def trend_rows(df, study: Study) -> list[dict]:
     return rows
 
 
-def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Path]:
-    """Write trends.csv, trends.md and the plots; returns the paths written."""
+def write_trends(folder: str | Path, study: Study, rows: list[dict],
+                 units: str = "engineering") -> list[Path]:
+    """Write trends.csv, trends.md and the plots (labels and values in the display ``units``,
+    gearcli/display_units.py); returns the paths written."""
     import pandas as pd
 
     from gearcli.pipeline.sweep.run import summary_columns
@@ -156,39 +158,70 @@ def write_trends(folder: str | Path, study: Study, rows: list[dict]) -> list[Pat
     tdf = pd.DataFrame(trends, columns=list(TREND_COLUMNS))
     paths = [out / "trends.csv", out / "trends.md"]
     write_atomic(paths[0], tdf.to_csv(index=False, float_format="%.6g"), out)
-    write_atomic(paths[1], _markdown(study, df, trends), out)
+    write_atomic(paths[1], _markdown(study, df, trends, units), out)
     for m in (*TREND_METRICS, *PLOT_METRICS):  # metrics the study left out: empty panels
         if m not in df.columns:
             df[m] = np.nan
-    paths += _plots(out, study, df)
+    paths += _plots(out, study, df, units)
     record_outputs(out, [p.name for p in paths])
     return paths
 
 
-def _markdown(study: Study, df, trends: list[dict]) -> str:
-    n_ok = int((df["status"] == "ok").sum())
+def _counts(df) -> str:
+    """"N points (design), n ok, m invalid, k failed": invalid = outside the model's validity
+    (the run finished), failed = the run did not finish (an error)."""
+    status = df["status"]
+    return (f"{int((status == 'ok').sum())} ok, {int((status == 'invalid').sum())} invalid "
+            f"(outside the model's validity), {int((status == 'failed').sum())} failed (the "
+            "run did not finish)")
+
+
+def _markdown(study: Study, df, trends: list[dict], units: str = "engineering") -> str:
     lines = [f"# Trends: {study.name}", "",
-             f"{len(df)} points ({study.design}), {n_ok} ok, {len(df) - n_ok} failed. "
+             f"{len(df)} points ({study.design}): {_counts(df)}. "
              "Change = metric at the highest level against the lowest (grids: the main effect, "
              "the mean over the other parameters; one-at-a-time: the others at their base); "
-             f"direction from the Spearman rank correlation (|rho| >= {MONOTONIC_RHO}).", "",
+             f"direction from the Spearman rank correlation (|rho| >= {MONOTONIC_RHO}); "
+             "values in display units (trends.csv: the stored units of its keys).", "",
              "| parameter | tested range | metric | at min | at max | change | direction |",
              "|---|---|---|---|---|---|---|"]
     for t in trends:
+        label, k = metric_axis(t["metric"], units)
         if "change_percent" not in t:
-            lines.append(f"| {t['parameter']} | — | {t['metric']} | — | — | — | "
+            lines.append(f"| {t['parameter']} | — | {label} | — | — | — | "
                          f"{t['direction']} |")
             continue
         lines.append(f"| {t['parameter']} | {t['parameter_min']:.4g} … {t['parameter_max']:.4g}"
-                     f" | {t['metric']} | {t['metric_at_min']:.4g} | {t['metric_at_max']:.4g} "
+                     f" | {label} | {k * t['metric_at_min']:.4g} | {k * t['metric_at_max']:.4g} "
                      f"| {_change(t)} | {t['direction']} "
                      f"(rho {t['spearman_rho']:+.2f}) |")
-    failed = df[df["status"] != "ok"]
-    if len(failed):
-        lines += ["", "## Failed points", ""]
-        lines += [f"- point {int(r['point'])}: {r['error']}" for _, r in failed.iterrows()]
+    for status, title in (("invalid", "Invalid points (outside the model's validity)"),
+                          ("failed", "Failed points (the run did not finish)")):
+        bad = df[df["status"] == status]
+        if len(bad):
+            lines += ["", f"## {title}", ""]
+            lines += [f"- point {int(r['point'])}: {r['error']}" for _, r in bad.iterrows()]
     lines += ["", "Plots: " + ", ".join(f"`{p}`" for p in _plot_names(study)), ""]
     return "\n".join(lines)
+
+
+def metric_axis(metric: str, units: str = "engineering") -> tuple[str, float]:
+    """(axis label "label [unit]", factor stored -> display unit) of a metric from its field
+    metadata (gearcli/results/metrics.py) in the display ``units``."""
+    from gearcli.results.metrics import METRICS, display
+
+    if metric not in METRICS:
+        return metric.replace("_", " "), 1.0
+    label, value, unit = display(metric, 1.0, units)
+    return (f"{label} [{unit}]" if unit not in ("", "–") else label), float(value)
+
+
+def parameter_axis(p) -> str:
+    """The axis label of a parameter: the gear-mesh frequency by name, else its key path and
+    unit as the study gives it."""
+    if p.key == MESH_FREQUENCY:
+        return "gear-mesh frequency f_z [Hz]"
+    return p.column
 
 
 def _change(t: dict) -> str:
@@ -208,54 +241,98 @@ def _slug(text: str) -> str:
     return "".join(c if c.isalnum() else "_" for c in text).strip("_")
 
 
-def _plots(out: Path, study: Study, df) -> list[Path]:
+def _plots(out: Path, study: Study, df, units: str = "engineering") -> list[Path]:
+    paths = []
+    for p in study.parameters:
+        path = out / f"trend_{_slug(p.column)}.png"
+        save_figure(trend_figure(study, df, p, units), path, 100, path.parent)
+        paths.append(path)
+    speed = next((p for p in study.parameters if p.key == MESH_FREQUENCY), None)
+    if speed is not None:
+        path = out / "speed_sweep.png"
+        save_figure(speed_figure(study, df, speed, units), path, 100, path.parent)
+        paths.append(path)
+    return paths
+
+
+def trend_figure(study: Study, df, p, units: str = "engineering"):
+    """The trend figure of parameter ``p``: one panel per trend metric, a line per
+    combination of the other parameters (:func:`_trend_lines`), broken (NaN) at the invalid
+    and failed points, which are marked on the axis (:func:`_mark_bad_points`)."""
     # Figure objects, not pyplot: no backend is chosen for (or windows opened in) the caller's
     # process, e.g. a notebook calling gearcli.sweep
     from matplotlib.figure import Figure
 
-    paths = []
-    for p in study.parameters:
-        fig = Figure(figsize=(10, 7), layout="constrained")
-        axes = fig.subplots(2, 2)
-        for ax, m in zip(axes.flat, TREND_METRICS, strict=True):
-            lines = _trend_lines(df, study, p, m)
-            for label, x, y in lines:
-                ax.plot(x, y, "o-", ms=3, label=plain(label) if label else None)
-            if any(label for label, _, _ in lines):
-                ax.legend(fontsize=7)
-            ax.set_xlabel(p.column)
-            ax.set_ylabel(m)
-            ax.grid(alpha=0.3)
-        fig.suptitle(plain(f"{study.name}: effect of {p.column}"))
-        path = out / f"trend_{_slug(p.column)}.png"
-        save_figure(fig, path, 100, path.parent)
-        paths.append(path)
-    speed = next((p for p in study.parameters if p.key == MESH_FREQUENCY), None)
-    if speed is not None:
-        paths.append(_speed_plot(out, study, df, speed, Figure))
-    return paths
+    fig = Figure(figsize=(10, 7), layout="constrained")
+    axes = fig.subplots(2, 2)
+    for ax, m in zip(axes.flat, TREND_METRICS, strict=True):
+        label, k = metric_axis(m, units)
+        lines = _trend_lines(df, study, p, m)
+        for name, x, y in lines:
+            ax.plot(x, k * np.asarray(y, float), "o-", ms=3, label=plain(name) if name else None)
+        _mark_bad_points(ax, df, p.column)
+        ax.set_xlabel(parameter_axis(p))
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
+    fig.suptitle(plain(f"{study.name}: effect of {parameter_axis(p)}"))
+    return fig
+
+
+def _mark_bad_points(ax, df, column: str) -> None:
+    """Invalid points (outside the model's validity) as red crosses and failed ones (the run
+    did not finish) as black pluses on the parameter axis, named in the legend."""
+    for status, marker, color in (("invalid", "x", "tab:red"), ("failed", "+", "k")):
+        bad = df[df["status"] == status]
+        x = np.asarray(bad[column], dtype=float) if column in bad else np.array([])
+        x = x[np.isfinite(x)]
+        if x.size:
+            ax.plot(x, np.full(x.size, 0.02), marker, color=color, ms=7, ls="none",
+                    transform=ax.get_xaxis_transform(), label=f"{status} ({x.size} points)")
+
+
+def _with_gaps(ok, bad, column: str, metric: str):
+    """(x, y) of one line: the ok points' values and NaN at the other points' levels, sorted by
+    ``column``, so that the line breaks where a point is invalid or failed."""
+    x = np.concatenate([np.asarray(ok[column], float), np.asarray(bad[column], float)])
+    y = np.concatenate([np.asarray(ok[metric], float), np.full(len(bad), np.nan)])
+    keep = np.isfinite(x)
+    x, y = x[keep], y[keep]
+    order = np.argsort(x, kind="stable")
+    x, y = x[order], y[order]
+    if x.size:  # one value per level: a level with an ok value keeps it
+        levels = np.unique(x)
+        y = np.array([np.nanmean(y[x == v]) if np.isfinite(y[x == v]).any() else np.nan
+                      for v in levels])
+        x = levels
+    return x, y
 
 
 def _trend_lines(df, study: Study, p, metric: str):
     """(label, x, y) lines of one trend panel: a grid's combinations of the other parameters
-    one line each (the metric at each level of ``p`` with the others fixed), or the main
-    effect when there are more than MAX_LINES; other designs: parameter_levels."""
+    one line each (the metric at each level of ``p`` with the others fixed, NaN at the levels
+    whose point is invalid or failed), or the main effect when there are more than MAX_LINES;
+    other designs: parameter_levels, with NaN at the levels no ok point has."""
     others = [q.column for q in study.parameters if q is not p]
     if study.design != "grid" or not others:
         x, y = parameter_levels(df, study, p.column, metric)
-        return [("", x, y)]
+        return [("", *_gaps_at_bad_levels(df, p.column, x, y))]
     ok = df[df["status"] == "ok"]
-    groups = list(ok.groupby(others, dropna=False))
+    groups = list(df.groupby(others, dropna=False))
     if len(groups) > MAX_LINES:
         x, y = parameter_levels(df, study, p.column, metric)
-        return [(f"main effect (mean over {len(groups)} combinations)", x, y)]
+        return [(f"main effect (mean over {len(groups)} combinations)",
+                 *_gaps_at_bad_levels(df, p.column, x, y))]
     lines = []
     for key, g in groups:
         key = key if isinstance(key, tuple) else (key,)
-        g = g.sort_values(p.column)
         label = ", ".join(f"{c} = {v:g}" if isinstance(v, int | float) else f"{c} = {v}"
                           for c, v in zip(others, key, strict=True))
-        lines.append((label, g[p.column].to_numpy(float), g[metric].to_numpy(float)))
+        good = g[g["status"] == "ok"]
+        if good.empty and not ok.empty:
+            continue
+        lines.append((label, *_with_gaps(good, g[g["status"] != "ok"], p.column, metric)))
     return lines
 
 
@@ -266,31 +343,42 @@ def summaries(df) -> list[Summary]:
     return [Summary.from_document(cells) for cells in df.to_dict("records")]
 
 
-def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N803
-    """Dynamic factor and DTE standard deviation against f_z, one curve per combination of
-    the other parameters, with the mesh natural frequency f_n and f_n/2, f_n/3 marked, and the
-    points outside the model's validity or failed as crosses on the axis."""
-    ok = df[df["status"] == "ok"]
+def _gaps_at_bad_levels(df, column: str, x, y):
+    """``(x, y)`` with NaN inserted at the levels of ``column`` that only invalid or failed
+    points have (the line breaks there)."""
+    bad = np.asarray(df.loc[df["status"] != "ok", column], dtype=float)
+    extra = np.setdiff1d(bad[np.isfinite(bad)], np.asarray(x, float))
+    if not extra.size:
+        return np.asarray(x, float), np.asarray(y, float)
+    xs = np.concatenate([np.asarray(x, float), extra])
+    ys = np.concatenate([np.asarray(y, float), np.full(extra.size, np.nan)])
+    order = np.argsort(xs, kind="stable")
+    return xs[order], ys[order]
+
+
+def speed_figure(study: Study, df, speed, units: str = "engineering"):
+    """Dynamic factor and DTE standard deviation (in the display unit: µm) against f_z, one
+    curve per combination of the other parameters, broken at the invalid and failed points
+    (marked on the axis), with the mesh natural frequency f_n and f_n/2, f_n/3 marked."""
+    from matplotlib.figure import Figure
+
     others = [p.column for p in study.parameters if p is not speed]
-    groups = ok.groupby(others, dropna=False) if others else [((), ok)]
+    groups = df.groupby(others, dropna=False) if others else [((), df)]
     fig = Figure(figsize=(9, 7), layout="constrained")
     axes = fig.subplots(2, 1, sharex=True)
+    panels = [(axes[0], "dynamic_factor"), (axes[1], "dte_rms_mm")]
     f_ns = []
     for key, g in groups:
-        g = g.sort_values(speed.column)
         key = key if isinstance(key, tuple) else (key,)
         label = ", ".join(f"{c} = {v:g}" for c, v in zip(others, key, strict=True)) or None
-        points = summaries(g)
-        axes[0].plot(g[speed.column], [s.dynamic_factor for s in points], "o-", ms=3,
-                     label=label)
-        axes[1].plot(g[speed.column], [s.dte_rms_mm for s in points], "o-", ms=3, label=label)
-        f_ns += [s.mesh_natural_frequency_Hz for s in points
-                 if s.mesh_natural_frequency_Hz is not None
-                 and math.isfinite(s.mesh_natural_frequency_Hz)]
-    for status, g in df[df["status"] != "ok"].groupby("status"):
-        for ax in axes:  # no metrics to plot: a cross on the f_z axis says where
-            ax.plot(g[speed.column], np.full(len(g), 0.02), "x", color="tab:red",
-                    transform=ax.get_xaxis_transform(), label=f"{status} ({len(g)} points)")
+        good, bad = g[g["status"] == "ok"], g[g["status"] != "ok"]
+        for ax, metric in panels:
+            x, y = _with_gaps(good, bad, speed.column, metric)
+            ax.plot(x, metric_axis(metric, units)[1] * y, "o-", ms=3, label=label)
+        f_ns += list(good["mesh_natural_frequency_Hz"].dropna())
+    for ax, metric in panels:
+        _mark_bad_points(ax, df, speed.column)
+        ax.set_ylabel(metric_axis(metric, units)[0])
     if f_ns:
         f_n = float(np.median(f_ns))
         for ax in axes:
@@ -298,14 +386,10 @@ def _speed_plot(out: Path, study: Study, df, speed, Figure) -> Path:  # noqa: N8
                 ax.axvline(f_n / k, color="k", ls=style, lw=0.8,
                            label=f"f_n/{k} = {f_n / k:.0f} Hz" if k > 1 else
                            f"f_n = {f_n:.0f} Hz")
-    axes[0].set_ylabel("dynamic factor")
-    axes[1].set_ylabel("DTE standard deviation [mm]")
-    axes[1].set_xlabel("gear-mesh frequency f_z [Hz]")
+    axes[1].set_xlabel(parameter_axis(speed))
     for ax in axes:
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
     fig.suptitle(plain(f"{study.name}: speed sweep"))
-    path = out / "speed_sweep.png"
-    save_figure(fig, path, 100, path.parent)
-    return path
+    return fig
