@@ -16,7 +16,8 @@ from gearcli.results.metrics import METRICS
 #: ("simulate") and `gearcli analyze` ("analyze"), the report's results table ("report"), the
 #: columns of a sweep's summary.csv ("sweep"), its trend table and figure ("trend") and the
 #: further panels of its speed figure ("trend_plot"), the report's summary line ("headline").
-PLACES = ("simulate", "analyze", "report", "sweep", "trend", "trend_plot", "headline")
+PLACES = ("simulate", "analyze", "report", "sweep", "trend", "trend_plot", "headline",
+          "speed_curve")
 
 
 def metric_field(key: str, default: Any = math.nan, show: str = "", *, required: bool = False,

@@ -168,14 +168,14 @@ class SpeedLevel(Document):
     pinion_speed_rpm: float = metric_field("pinion_speed_rpm", column="pinion_speed [rpm]")
     resonance_ratio: float = metric_field("resonance_ratio")  #: f_z / f_n of the case's mesh mode
     iso_resonance_ratio: float = metric_field("iso_resonance_ratio")  #: n1 / n_E1 (ISO 6336-1)
-    dynamic_factor: float = metric_field("dynamic_factor")
-    force_max_N: float = metric_field("force_max_N")
-    dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm")
-    contact_loss_fraction: float = metric_field("contact_loss_fraction")
+    dynamic_factor: float = metric_field("dynamic_factor", show="speed_curve")
+    force_max_N: float = metric_field("force_max_N", show="speed_curve")
+    dte_peak_to_peak_mm: float = metric_field("dte_peak_to_peak_mm", show="speed_curve")
+    contact_loss_fraction: float = metric_field("contact_loss_fraction", show="speed_curve")
     #: ISO 6336 S_H, S_F at this speed with its K_v = dynamic_factor, the smaller of the gears'
     #: (pipeline/run_rating.level_safeties); NaN when the case cannot be rated
-    safety_pitting_min: float = metric_field("safety_pitting_min")
-    safety_bending_min: float = metric_field("safety_bending_min")
+    safety_pitting_min: float = metric_field("safety_pitting_min", show="speed_curve")
+    safety_bending_min: float = metric_field("safety_bending_min", show="speed_curve")
     status: str = metric_field("status", "ok")  #: "ok", "invalid" or "failed"
     error: str = metric_field("error", "")
 

@@ -16,7 +16,7 @@ from gearcli.cli import app
 
 ROOT = Path(__file__).resolve().parents[2]
 CASE = str(ROOT / "cases" / "iso_pair.yaml")
-SETS = ["run.end_time=0.3",
+SETS = ["run.end_time=0.35",
         "faults=[{kind: root_crack, gear: pinion, tooth: 2, depth: 4 mm, angle: 45 deg}]",
         "sensors={sample_rate: 10 kHz, accelerometer: {housing: [{frequency: 3 kHz, "
         "damping_ratio: 0.05, modal_mass: 2 kg}]}, noise: {seed: 4, snr_db: 30}}"]
@@ -50,9 +50,9 @@ def test_figures_wav_and_sidebands(run, tmp_path):
     rate, samples = wavfile.read(wav)
     sensors = json.loads((run / "sensors.json").read_text())
     assert sensors["sample_rate_Hz"] == 10_000.0
-    # real time: the run's 0.3 s at 44.1 kHz, t_k = k/44100 for k = 0 ... floor(0.3 * 44100)
+    # real time: the run's 0.35 s at 44.1 kHz, t_k = k/44100 for k = 0 ... floor(0.35 * 44100)
     assert rate == 44_100 and samples.dtype == np.int16
-    assert samples.size == int(0.3 * 44_100) + 1
+    assert samples.size == round(0.35 * 44_100) + 1  # 0.35 * 44100 = 15434.999... in floats
     assert int(np.max(np.abs(samples))) == round(0.9 * 32767)  # peak-normalised, headroom
     assert abs(float(samples.mean())) < 0.01 * 32767  # mean removed (before normalising)
 
@@ -66,7 +66,7 @@ def test_unknown_signal_is_one_line(run):
 def test_te_signal_of_a_run_without_sensors_table_is_refused_cleanly(run, tmp_path):
     folder = tmp_path / "plain"
     res = runner.invoke(app, ["simulate", CASE, "-o", str(folder), "-q", "--set",
-                              "run.end_time=0.3"])
+                              "run.end_time=0.35"])
     assert res.exit_code == 0, res.output
     res = runner.invoke(app, ["monitor", str(folder), "--signal", "accel_m_s2"])
     assert res.exit_code == 1 and "no sensors table" in res.output

@@ -18,7 +18,7 @@ runner = CliRunner()
 
 def _run(folder: Path, *sets: str) -> str:
     args = ["run", CASE, "-o", str(folder), "-q", "--format", "md", "--set",
-            "run.end_time=0.3"]
+            "run.end_time=0.35"]
     for s in sets:
         args += ["--set", s]
     res = runner.invoke(app, args)

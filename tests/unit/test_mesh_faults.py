@@ -54,8 +54,10 @@ def test_crack_lowers_stiffness_only_around_its_tooth(crack):
     r, g = crack.revolution, crack.geometry.geometry
     s = crack.summary.faulted_revolution
     assert s.faults == ("root_crack pinion tooth 2",)
-    # docs/theory.md "Tooth faults": iso_pair q = 4 mm, 45°: 7.1 % largest reduction
-    assert s.stiffness_largest_drop == pytest.approx(0.071, abs=0.001)
+    # docs/theory.md "Tooth faults": iso_pair q = 4 mm, 45°: 6.5 % largest reduction (7.1 %
+    # with the linear Hertz term: Weber's softer contact term, §4b, dilutes the crack's bending
+    # compliance in the pair's total)
+    assert s.stiffness_largest_drop == pytest.approx(0.065, abs=0.001)
     drop = r.k_faulted_N_mm < r.k_healthy_N_mm * (1 - 1e-12)
     pitches = r.s1_mm[drop] / g.p_b_mm
     # tooth 2 is on the path from its entry at A to its exit at E: within ε_α pitches around

@@ -70,7 +70,8 @@ def test_the_scan_finds_a_literal_list():
 
 @pytest.mark.parametrize("place", results.PLACES)
 def test_every_place_shows_registered_metrics(place):
-    shown = results.shown(results.Summary, place) + results.shown(results.AnalysisMetrics, place)
+    shown = (results.shown(results.Summary, place) + results.shown(results.AnalysisMetrics, place)
+             + results.shown(results.SpeedLevel, place))
     assert set(shown) <= set(METRICS), place
     if place != "trend_plot":
         assert shown or results.sweep_metrics(place), place  # each place shows something

@@ -10,15 +10,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.results import SpeedLevel, shown
+
 #: A virtual parameter: the gear-mesh frequency f_z [Hz], set through ``drive.speed``.
 MESH_FREQUENCY = "mesh_frequency"
 #: Most speeds per direction of a speed curve (its staircase is one time-function expression,
 #: at most 2000 characters: gearcli/pipeline/speed_curve.py).
 MAX_SPEEDS = 40
 #: What each level of a speed curve measures: the metrics its ``metrics:`` and ``checks:`` may
-#: name (gearcli/pipeline/speed_curve.py).
-SPEED_CURVE_METRICS = ("dynamic_factor", "force_max_N", "dte_peak_to_peak_mm",
-                       "contact_loss_fraction")
+#: name (gearcli/pipeline/speed_curve.py; field metadata show="speed_curve" of SpeedLevel).
+SPEED_CURVE_METRICS = shown(SpeedLevel, "speed_curve")
 
 
 @dataclass(frozen=True)
