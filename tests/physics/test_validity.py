@@ -76,7 +76,7 @@ def test_sweep_marks_invalid_points_and_leaves_their_metrics_empty(tmp_path):
     out = tmp_path / "out"
     res = runner.invoke(app, ["sweep", str(study), "-o", str(out), "--jobs", "1"])
     assert res.exit_code == 0, res.output
-    assert "1 outside the model's validity" in res.output
+    assert "1 invalid (outside the model's validity)" in res.output
     import pandas as pd
 
     df = pd.read_csv(out / "summary.csv")

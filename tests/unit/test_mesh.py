@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from gearcli.model.mesh import adams_step, mesh_mode
+from gearcli.core.stepfunc import step as adams_step
+from gearcli.model.mesh import mesh_mode
 
 # Seed: F_s = 450e3 N*mm / r_b2, r_b2 = 125 cos 20 deg; discs of d = 170/250 mm, b = 100 mm.
 RB1, RB2 = 85 * math.cos(math.radians(20)), 125 * math.cos(math.radians(20))
