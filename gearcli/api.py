@@ -1,5 +1,5 @@
 """gearcli as a Python library: the functions the command line is made of, for notebooks and
-scripts (issue 17).
+scripts.
 
 Every function takes a case as a path, a mapping (the YAML as Python data) or a loaded case,
 raises the exceptions of :mod:`gearcli.errors` with the same one-line messages as the command

@@ -1,4 +1,4 @@
-"""Display units: one setting for tables, figures and reports (issue 19, docs/theory.md §1).
+"""Display units: one setting for tables, figures and reports (docs/theory.md §1).
 
 Files keep their unit-suffixed internal units (``force_N``, ``delta_mm``, ``omega1_rad_s``,
 summary.json's ``_deg_s`` speeds); what a person reads is converted here, to one of

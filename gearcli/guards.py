@@ -1,4 +1,4 @@
-"""Limits on user input, checked before any work is sized by it (issue 18).
+"""Limits on user input, checked before any work is sized by it.
 
 Every number here bounds how much a user value can make gearcli read, build, allocate or wait
 for. The checks raise ordinary one-line errors (the caller locates them); nothing in this module

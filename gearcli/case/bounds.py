@@ -1,4 +1,4 @@
-"""Plausible magnitudes of case values, checked once after validation (issue 18).
+"""Plausible magnitudes of case values, checked once after validation.
 
 The schema bounds signs and ranges that have a physical meaning (``module > 0``); this guard
 bounds magnitudes no gear pair has, by dimension, so that values such as ``module: 1e300``,

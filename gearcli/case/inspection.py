@@ -1,4 +1,4 @@
-"""The inspection dimensions of a case's gears (issue 28): span W_k, balls, M_dK, chordal
+"""The inspection dimensions of a case's gears: span W_k, balls, M_dK, chordal
 tooth thickness and height of both gears at the nominal thickness and at the tooth-thickness
 allowances (gearcli/model/iso6336/inspection.py; docs/theory.md, "ISO 6336 rating" §6). Used
 by `gearcli geometry` (pipeline.geometry), `gearcli rate` and the report's geometry table."""

@@ -11,7 +11,7 @@ parallel:
 half width of the reduced radius R′ = ρ1 ρ2/(ρ1 + ρ2) of the involutes, each tooth's depth
 h_P the contact point's distance from its centreline; outside the path the corner's and the
 mate's depths with the path end's R′. Without a load (``load_N_mm=None``) the linear term
-2/(π b E*) of Yang & Sun (1985), the law before issue 31.
+2/(π b E*) of Yang & Sun (1985), the law of gearcli 0.1.0.
     k_mesh(x)   = Σ_j k_pair(x + j p_b)     over the pairs with 0 ≤ x + j p_b ≤ g_α
 
 x [mm] is the pinion roll position from A along the line of action, the grid convention of
@@ -207,7 +207,7 @@ def pair_stiffness(pair: PairGeometry, x_mm, *, face_width_mm: float, E1_MPa: fl
         Line load w [N/mm] (normal force per face width) at which Weber's contact flattening
         to the tooth centrelines is taken as a secant compliance (the law's contact term,
         docs/theory.md §4b); the case's pipeline passes its static force / b. None: the
-        linear Hertz term 2/(π b E*) of Yang & Sun (1985), the law before issue 31, kept for
+        linear Hertz term 2/(π b E*) of Yang & Sun (1985), the law of gearcli 0.1.0, kept for
         comparison.
 
     Returns

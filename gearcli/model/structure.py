@@ -2,7 +2,7 @@
 
 `gearcli simulate` (the kernel, core/rhs.py) and `gearcli modal` (model/modal.py) both build
 their equations from a :class:`Structure`, so the time-domain and the modal results describe
-one model (issue 5). Internal units (gearcli.units): mm, N, s, t, rad.
+one model. Internal units (gearcli.units): mm, N, s, t, rad.
 
 Torsional chain (docs/theory.md §6), drive side to load side::
 

@@ -41,7 +41,7 @@ the load line. The tooth law's contact term is Weber's flattening to the tooth c
 (:mod:`gearcli.model.contact_compliance`, docs/theory.md §4b); :func:`hertz_compliance` here is
 the linear Hertz line contact of Yang & Sun (1985), k_h = π E b / (4 (1 − ν²)) for one
 material, 2/(π b E*) in compliance with the contact modulus 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2
-(Johnson 1985, ch. 4), the law's term before issue 31 (1.7–3.9 times stiffer than Weber's at
+(Johnson 1985, ch. 4), the law's term in gearcli 0.1.0 (1.7–3.9 times stiffer than Weber's at
 the load, docs/theory.md, FE section), kept for comparison.
 
 Plane strain (E' = E/(1 − ν²)) is the default: the face width of a spur gear is usually large

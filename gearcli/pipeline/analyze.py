@@ -233,7 +233,7 @@ class Resonance(NamedTuple):
 
 def resonance_check(modes: tuple[StoredMode, ...], mesh_mode: tuple[float, float], f_z: float,
                     ck, f_z_band: tuple[float, float] | None = None) -> Resonance:
-    """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (docs/theory.md §7; issue 5).
+    """Margin of the GMF harmonics k f_z (k = 1..N) to the modes (docs/theory.md §7).
 
     ``f_z_band`` = (lowest, highest) mesh frequency in the window [Hz]: when it spreads by more
     than :data:`SWEPT_BAND` of ``f_z`` (a run-up or run-down), each harmonic sweeps the band

@@ -1,4 +1,4 @@
-"""The input digest of a run (issue 29): what the case asks for at its final speed and load,
+"""The input digest of a run: what the case asks for at its final speed and load,
 in the magnitudes a person checks at a glance, with a "did you mean" for implausible ones.
 
 At the pinion speed ω1 (drive.speed's final value or drive.reference_speed) and the load torque

@@ -27,7 +27,7 @@ from gearcli.pipeline.geometry import GeometryResult
 from gearcli.pipeline.mesh_input import case_mesh, contact_stiffness, tooth_stiffness
 from gearcli.pipeline.structure import build_structure
 
-#: Output sampling: the analysed band reaches 10 mesh harmonics (issue 3); 2.56 samples per
+#: Output sampling: the analysed band reaches 10 mesh harmonics; 2.56 samples per
 #: period of the highest one is the usual anti-aliasing margin of vibration analysers.
 HARMONICS_RESOLVED = 10
 SAMPLES_PER_PERIOD = 2.56

@@ -1,4 +1,4 @@
-"""The ISO 6336 rating of a finished run, for `gearcli run` (issue 28): the ISO column and the
+"""The ISO 6336 rating of a finished run, for `gearcli run`: the ISO column and the
 "simulated" column beside it (pipeline.rating.rate_case with the run's
 :class:`~gearcli.pipeline.rating.SimulatedLoad`: K_v = F_max/F_static of the run, the peak σ_H,
 σ_F of `gearcli stress`); docs/theory.md, "ISO 6336 rating".

@@ -146,7 +146,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     return result
 
 
-#: Dense output samples per mesh period in the zoom table (issue 15: >= 100, so that no
+#: Dense output samples per mesh period in the zoom table (>= 100, so that no
 #: transient inside a mesh cycle is drawn as a one-sample line).
 ZOOM_POINTS_PER_PERIOD = 128
 #: Mesh periods on each side of the force maximum, and at the end of the run.

@@ -352,7 +352,7 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
         # a failed row: still placed on the axis
         resonance_ratio=r.resonance_ratio if math.isfinite(r.resonance_ratio)
         else r.mesh_frequency_Hz / f_n) for r in rows]
-    rows = with_level_safeties(base, rows)  # S_H, S_F at each speed (issue 28)
+    rows = with_level_safeties(base, rows)  # S_H, S_F at each speed
     return SpeedCurve(study.name, rows, f_n, [res.error for res in results if res.error],
                       str(study.file), study.base_case_json, iso, base.case.gears.pinion.teeth,
                       _notes(base.case), accuracy_doc(base), study.metrics,
@@ -454,7 +454,7 @@ def write_speed_curve(curve: SpeedCurve, out, force: bool) -> None:
                "iso_kv_curve": _iso_kv_doc(curve) if curve.iso else None,
                "accuracy": curve.accuracy,
                "errors": curve.errors, "notes": curve.notes}
-        doc["rating"] = write_rating_figure(curve, tmp)  # S_H, S_F against speed (issue 28)
+        doc["rating"] = write_rating_figure(curve, tmp)  # S_H, S_F against speed
         write_atomic(tmp / "speed_curve.json", json.dumps(doc, indent=2) + "\n")
         provenance = {"gearcli_manifest": 1, "kind": "speed_curve", "versions": versions(),
                       "study_file": str(curve.study_file), "command_line": sys.argv,

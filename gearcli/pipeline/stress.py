@@ -1,4 +1,4 @@
-"""`gearcli stress DIR`: contact and root stress histories from a results folder (issue 7).
+"""`gearcli stress DIR`: contact and root stress histories from a results folder.
 
 Reads the per-pair forces and roll positions that `gearcli simulate` wrote (timeseries.csv:
 ``force_slot{j}_N``, ``x_slot{j}_mm``, ``mesh_cycle``), finds each loaded pair's contact point

@@ -1,5 +1,5 @@
 """Order map of a run-up: the spectrogram of a signal against pinion speed, with the gear-mesh
-orders and the modes drawn (issue 19)."""
+orders and the modes drawn."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""User-supplied names in figures as plain text (issue 32).
+"""User-supplied names in figures as plain text.
 
 Matplotlib reads text between two ``$`` as mathtext, so a case named ``$\\frac{1$`` fails the
 figure (after all the computation) and ``$x$`` is drawn as math. :func:`plain` escapes every

@@ -45,7 +45,7 @@ class FigureFile:
 
 def build_figures(data: ReportData, out_dir: Path, svg: bool = False) -> list[FigureFile]:
     """Draw every figure of the report into ``out_dir`` (created) as PNG, and as SVG too when
-    ``svg`` (saving an SVG costs about as much as drawing the figure: issue 29). A link on
+    ``svg`` (saving an SVG costs about as much as drawing the figure). A link on
     the way out of the results folder is refused (io.files.make_folder)."""
     make_folder(out_dir, out_dir.parent)
     c = data.run.columns

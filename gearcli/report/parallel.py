@@ -1,4 +1,4 @@
-"""Draw the report's figures in two processes where that is safe (issue 29: a fast report).
+"""Draw the report's figures in two processes where that is safe (a fast report).
 
 matplotlib draws on one core; the report's figures are independent, so on Linux a forked
 worker per core (at most :data:`MAX_WORKERS`) draws and saves its share, the parent keeps the

@@ -1,4 +1,4 @@
-"""Typed result documents (issues 17, 27): the summary of a run, the metrics of its analysis, the
+"""Typed result documents: the summary of a run, the metrics of its analysis, the
 stress peaks of a gear and the modes of the linearised model, as frozen dataclasses.
 
 Each field's name is its key in the JSON document (summary.json ``scalars``, analysis.json

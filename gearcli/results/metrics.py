@@ -1,4 +1,4 @@
-"""Labels and stored units of the result metrics, defined once (issue 17): the CLI tables, the
+"""Labels and stored units of the result metrics, defined once: the CLI tables, the
 report tables and the Python API's typed results (gearcli/results/) read them from here, so a
 metric is added or renamed in one place. Keys are the names of summary.json's ``scalars`` and
 analysis.json's ``metrics`` (internal units, the unit in the name); the display unit follows the

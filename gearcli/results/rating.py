@@ -1,4 +1,4 @@
-"""The rating in summary.json of `gearcli run` (issue 28): S_H and S_F of each gear in the ISO
+"""The rating in summary.json of `gearcli run`: S_H and S_F of each gear in the ISO
 column (K_v of the case) and the simulated column (K_v = the run's F_max/F_static; with the
 safeties of the run's contact and root stress peaks), against their minimums, with verdicts
 (:class:`RatingSummary`, summary.json's ``rating``; the full rating with every factor is

@@ -152,7 +152,7 @@ class SummaryDocument(Document):
     scalars: Summary = metric_field("scalars", Summary(), nested=Summary)
     input_digest: InputDigest | None = metric_field("input_digest", None, omit_none=True,
                                                     nested=InputDigest)
-    #: S_H, S_F per gear, ISO and simulated (`gearcli run` of a case it can rate; issue 28)
+    #: S_H, S_F per gear, ISO and simulated (`gearcli run` of a case it can rate)
     rating: RatingSummary | None = metric_field("rating", None, omit_none=True,
                                                 nested=RatingSummary)
 
