@@ -2,7 +2,7 @@
 
 The one place where a stored summary.json is read by its keys: :func:`check_summary` refuses a
 document without the entries later steps read (the fields marked ``required`` in
-gearcli/results.py, with the schema_version check), then it becomes a typed
+gearcli/results/, with the schema_version check), then it becomes a typed
 :class:`gearcli.results.SummaryDocument`.
 """
 
@@ -91,7 +91,7 @@ _NUMBER, _OPTIONAL, _TEXT, _PAIR = "a number", "a number or null", "text", "two 
 
 
 def _kind(annotation: str) -> str:
-    """What a field's annotation (gearcli/results.py) asks of its stored value."""
+    """What a field's annotation (gearcli/results/) asks of its stored value."""
     if annotation.startswith("tuple[float, float]"):
         return _PAIR
     if annotation == "str":
