@@ -104,6 +104,27 @@ def test_analyze_on_a_full_disk_leaves_no_temporary_file(tmp_path, run_folder, m
     assert sorted(q.name for q in run.iterdir()) == before
 
 
+def test_analyze_whose_disk_fills_after_analysis_json_changes_nothing(tmp_path, run_folder,
+                                                                      monkeypatch):
+    """Found in issue 32's closing check (a tmpfs with 40 kB free): analysis.json was written,
+    spectrum.csv failed, and the message said "nothing was changed"; the three files now go
+    in together or not at all."""
+    run = _copy_run(run_folder, tmp_path / "run")
+    before = {q.name: q.read_bytes() for q in run.iterdir()}
+    real, calls = files.os.fsync, []
+
+    def full_at_the_second(fd):
+        calls.append(fd)
+        if len(calls) == 2:  # analysis.json fits, spectrum.csv does not
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(fd)
+
+    monkeypatch.setattr(files.os, "fsync", full_at_the_second)
+    res = _invoke(["analyze", run, "-q"], code=(1,))
+    assert "spectrum.csv" in res.output and "nothing was changed" in res.output
+    assert {q.name: q.read_bytes() for q in run.iterdir()} == before
+
+
 # --- links out of the results folder: sweep and report ---------------------------------------
 def test_sweep_refuses_links_out_of_its_folder(tmp_path):
     outside = tmp_path / "outside"
