@@ -125,6 +125,25 @@ def test_analyze_whose_disk_fills_after_analysis_json_changes_nothing(tmp_path, 
     assert {q.name: q.read_bytes() for q in run.iterdir()} == before
 
 
+def test_report_on_a_full_disk_leaves_no_figures_folder(tmp_path, analyzed_folder,
+                                                        monkeypatch):
+    """Found in issue 32's closing check (a tmpfs with 40 kB free): the failed report left an
+    empty figures/ that its manifest did not list, so even `report --force` refused it."""
+    run = _copy_run(analyzed_folder, tmp_path / "run")
+    before = sorted(q.name for q in run.iterdir())
+
+    def full(_fd):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    with monkeypatch.context() as m:
+        m.setattr(files.os, "fsync", full)
+        res = _invoke(["report", run, "--format", "md", "-q"], code=(1,))
+    assert "No space left" in res.output
+    assert sorted(q.name for q in run.iterdir()) == before  # no figures/, no temporary
+    _invoke(["report", run, "--format", "md", "-q"])  # room again: no --force needed
+    assert (run / "report.md").is_file()
+
+
 # --- links out of the results folder: sweep and report ---------------------------------------
 def test_sweep_refuses_links_out_of_its_folder(tmp_path):
     outside = tmp_path / "outside"
