@@ -271,6 +271,45 @@ def _holder(fd: int) -> tuple[str, bool]:
     return f" (process {text[0]})", alive and text[1] == "study"
 
 
+def refuse_if_a_study_runs(target: str | Path) -> None:
+    """Refuse at once, before any work, to write ``target`` while a study (a sweep, a speed
+    curve) holds its lock: ``simulate --force`` into a running sweep's folder would otherwise
+    solve first and be refused at the swap. Only reads the lock file's signature; it locks
+    (shared, without waiting) just to confirm a live study's signature."""
+    try:
+        import fcntl
+    except ImportError:
+        return
+    if str(target).strip() == "":
+        return
+    key = _key(Path(os.path.abspath(target)))
+    if key is None or _covered(key):
+        return
+    try:
+        fd = os.open(lock_path(key), os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
+                     | getattr(os, "O_CLOEXEC", 0))
+    except OSError:
+        return
+    try:
+        who, is_study = _holder(fd)
+        if not is_study:
+            return
+        try:
+            fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+            fcntl.flock(fd, fcntl.LOCK_UN)
+        except BlockingIOError:
+            raise OutputError(_study_message(Path(target), who)) from None
+        except OSError:
+            return
+    finally:
+        os.close(fd)
+
+
+def _study_message(target: Path, who: str) -> str:
+    return (f"{target}: a study is running there{who}, holding the lock {lock_path(target)}; "
+            "wait for it to finish or choose another folder")
+
+
 def _acquire(fcntl, fd: int, target: Path, wait_s: float) -> None:
     deadline = time.monotonic() + wait_s
     lock = lock_path(target)
@@ -281,9 +320,7 @@ def _acquire(fcntl, fd: int, target: Path, wait_s: float) -> None:
         except BlockingIOError:
             who, is_study = _holder(fd)
             if is_study:
-                raise OutputError(f"{target}: a study is running there{who}, holding the lock "
-                                  f"{lock}; wait for it to finish or choose another folder"
-                                  ) from None
+                raise OutputError(_study_message(target, who)) from None
             if time.monotonic() >= deadline:
                 raise OutputError(f"{target}: another gearcli is working there{who}, holding "
                                   f"the lock {lock} (waited {wait_s:g} s); try again when it "

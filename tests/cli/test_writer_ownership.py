@@ -354,6 +354,12 @@ def test_a_second_sweep_into_a_running_sweeps_folder_refuses_at_once(tmp_path, m
         res = _invoke(["sweep", b, "-o", out, "-j", "1", "-q"], code=(1,))
         assert "a study is running there" in res.output
         assert str(owner.lock_path(out)) in res.output
+        import gearcli.pipeline.simulate as sim
+
+        def never(*_a, **_k):
+            raise AssertionError("solved before refusing")
+
+        monkeypatch.setattr(sim, "build_kernel_input", never)  # refused before the work
         res = _invoke(["simulate", SEED, "-o", out, "-q", "--force", *SHORT], code=(1,))
         assert "a study is running there" in res.output
         # a sweep into a neighbouring folder goes ahead (its own lock); nothing to run here
