@@ -125,3 +125,52 @@ def _message(dim: Dim | None) -> str:
     return (f"expected {article} {dim.name} of magnitude at most {_shown(_limit(dim), dim)} "
             "(beyond any gear pair; the arithmetic would overflow)")
 
+
+
+#: Fewest solver steps in a mesh cycle that a run may take: one. The mesh stiffness varies in
+#: every mesh cycle (a pair enters and one leaves the contact, docs/theory.md §6.8); a solver
+#: step longer than the cycle does not resolve that excitation, so a run with more mesh cycles
+#: than the solver's step limit either stops at the limit or has not integrated the mesh: it is
+#: refused from the case. Measured accepted steps a cycle: 43 (seed), 52 (iso_pair), 11.6 and
+#: 4.1 (iso_pair scaled to 10x and 50x its mesh frequency: 210/430 teeth at module 0.5 mm,
+#: 1050/2150 at 0.1 mm); the bound stays below all of them.
+MIN_STEPS_PER_MESH_CYCLE = 1
+#: Samples of each piece of the drive speed's time function for the integral of the speed.
+_SPEED_SAMPLES = 64
+
+
+def mesh_cycles(case) -> float | None:
+    """Mesh cycles of the run, z1/(2π)·∫|ω1(t)| dt over [0, run.end_time] (trapezoids over
+    each piece of ``drive.speed``; ω1 the prescribed pinion or motor speed [rad/s]); None
+    for a torque drive (its speed is the run's result)."""
+    import numpy as np
+
+    drive = case.drive
+    if drive.type == "torque" or drive.speed is None:
+        return None
+    pp, end = drive.speed.pp, float(case.run.end_time)
+    try:
+        cuts = sorted({0.0, end, *(float(b) for b in pp.breakpoints if 0.0 < b < end)})
+        t = np.unique(np.concatenate([np.linspace(a, b, _SPEED_SAMPLES)
+                                      for a, b in zip(cuts[:-1], cuts[1:], strict=True)]))
+        w = np.abs(np.array([float(pp(x)) for x in t]))
+        angle_rad = float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(t)))
+    except (ValueError, OverflowError, ArithmeticError):
+        return None
+    return case.gears.pinion.teeth * angle_rad / (2.0 * math.pi)
+
+
+def solver_steps_error(case, max_steps: float) -> str | None:
+    """Why the run cannot end within the solver's ``max_steps`` (core/layout.py), or None:
+    its mesh cycles need at least :data:`MIN_STEPS_PER_MESH_CYCLE` step each. Known from
+    the case alone, so refused before anything is built, not at the step limit minutes
+    later."""
+    cycles = mesh_cycles(case)
+    if cycles is None or not cycles * MIN_STEPS_PER_MESH_CYCLE > max_steps:
+        return None
+    end, cap = float(case.run.end_time), max_steps / MIN_STEPS_PER_MESH_CYCLE
+    return (f"a run of {end:g} s with {case.gears.pinion.teeth:,} pinion teeth at drive.speed "
+            f"passes {cycles:.3g} mesh cycles, each needing a solver step at least "
+            f"({cycles * MIN_STEPS_PER_MESH_CYCLE:.3g} steps); the solver stops at "
+            f"{max_steps:.3g} steps: expected at most {cap:.3g} mesh cycles (run.end_time <= "
+            f"{end * cap / cycles:.3g} s, or fewer teeth or a lower speed)")

@@ -47,7 +47,16 @@ def report(
         if out is None:
             check_no_earlier(folder, ("figures", target.name), force, "report's figures")
         _note_monitor(write_run_monitor(folder), quiet)  # faults: the monitoring section
-        path = build_report(folder, fmt, out, display_units(), svg)
+        figures = folder / "figures"
+        new_figures = not (figures.exists() or figures.is_symlink())
+        try:
+            path = build_report(folder, fmt, out, display_units(), svg)
+        except BaseException:  # a full disk: no half-made figures folder that is nobody's
+            if new_figures and figures.is_dir() and not figures.is_symlink():
+                import shutil
+
+                shutil.rmtree(figures, ignore_errors=True)
+            raise
         record_outputs(folder, ["figures", *([path.name] if out is None else [])])
     if not quiet:
         typer.echo(f"report written to {path}")

@@ -169,6 +169,28 @@ def write_atomic(path: str | Path, data: bytes | str, within: str | Path | None 
         raise
 
 
+def write_atomic_files(files: dict, within: str | Path | None = None) -> None:
+    """Write a set of files ({path: data}) that belong together (analyze's analysis.json,
+    spectrum.csv and harmonics.csv): every one to its temporary file first, then the renames;
+    a full disk while writing any of them changes none (no temporary file left), rather than
+    leaving a new analysis.json beside the old spectrum.csv."""
+    staged: list[tuple[str, Path]] = []
+    try:
+        for path, data in files.items():
+            p = refuse_links(path, within)
+            staged.append((_temp_with(p, data.encode("utf-8") if isinstance(data, str)
+                                      else data), p))
+        for _tmp, p in staged:
+            refuse_links(p, within)
+        for tmp, p in staged:
+            os.replace(tmp, p)
+    except BaseException:
+        for tmp, _p in staged:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        raise
+
+
 def _temp_with(p: Path, raw: bytes) -> str:
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent or ".")

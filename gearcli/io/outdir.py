@@ -46,6 +46,9 @@ def check_target(target: str | Path, force: bool) -> Path:
     if str(target).strip() == "":
         raise OutputError("-o '': empty path; expected the name of a results folder")
     p = Path(target)
+    from gearcli.io.owner import refuse_if_a_study_runs
+
+    refuse_if_a_study_runs(p)  # a running sweep's folder: at once, not after the work
     if p.is_symlink():
         state = "a dangling symbolic link" if not p.exists() else "a symbolic link"
         raise OutputError(f"{p}: is {state}; expected a folder name (give the link's target "

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from gearcli.io.files import write_atomic
+from gearcli.io.files import write_atomic_files
 from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 from gearcli.io.tables import columns_to_csv
 from gearcli.pipeline.spectrum import SIGNALS
@@ -66,7 +66,7 @@ def harmonics_csv(res) -> str:
 def write_analysis(res) -> dict:
     doc = analysis_document(res)
     folder = res.run.folder
-    write_atomic(folder / "analysis.json", json.dumps(doc, indent=2) + "\n")
-    write_atomic(folder / "spectrum.csv", columns_to_csv(spectrum_columns(res)))
-    write_atomic(folder / "harmonics.csv", harmonics_csv(res))
+    write_atomic_files({folder / "analysis.json": json.dumps(doc, indent=2) + "\n",
+                        folder / "spectrum.csv": columns_to_csv(spectrum_columns(res)),
+                        folder / "harmonics.csv": harmonics_csv(res)})  # all or none
     return doc

@@ -237,6 +237,7 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
     than one mesh cycle), with the key to change. Runs shorter than the steady window needs
     are allowed and flagged (see :func:`collect_warnings`)."""
     from gearcli import guards
+    from gearcli.case.bounds import solver_steps_error
     from gearcli.core.layout import PARAM_DEFAULTS
     from gearcli.model.geometry import mesh_frequencies
 
@@ -250,6 +251,9 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
                 f" with {case.run.output_steps:,} output steps" if key == "output_steps" else
                 f" sampled at {rows / case.run.end_time:.6g} Hz")))
     max_steps = PARAM_DEFAULTS["max_steps"]
+    too_long = solver_steps_error(case, max_steps)  # the step limit, known up front
+    if too_long:
+        raise loaded.error_at(("run", "end_time"), too_long)
     if case.run.max_step is not None and case.run.end_time / case.run.max_step > max_steps:
         raise loaded.error_at(("run", "max_step"), f"a run of {case.run.end_time:g} s in steps of "
                            f"at most {case.run.max_step:g} s needs "

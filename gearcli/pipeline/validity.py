@@ -124,9 +124,11 @@ def cut_at_table_exit(kr, window):
     t_stop = float(kr.series[-1, 0]) if n > 1 else kr.extremum("t_reached_s")
     if window.t0_s < t_stop:
         window = Window(window.t0_s, t_stop, window.reason + ", cut where the run stopped")
-    else:
+    elif (kr.column("t_s") >= 0.5 * t_stop).any():
         window = Window(0.5 * t_stop, t_stop, "the run up to where it left the contact "
                         "tables, its second half")
+    else:  # stopped before the second output sample: the samples there are
+        window = Window(0.0, t_stop, "the run up to where it left the contact tables")
     return _sampled_extrema(kr, window.t0_s), window
 
 

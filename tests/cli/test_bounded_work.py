@@ -91,3 +91,54 @@ def test_a_parquet_series_with_more_rows_than_its_summary_is_refused(parquet_run
     r = runner.invoke(app, ["analyze", str(copy)])
     assert r.exit_code == 1, r.output
     assert "but summary.json says" in r.stderr
+
+
+# --- the solver's step limit, known from the case -------------------------------------------
+ISO = str(ROOT / "cases" / "iso_pair.yaml")
+HUGE = ["--set", "gears.pinion.teeth=10000", "--set", "gears.gear.teeth=10000",
+        "--set", "run.output_steps=1000"]  # few samples: only the steps are too many
+
+
+def test_a_run_past_the_solvers_step_limit_is_refused_before_building(tmp_path, monkeypatch):
+    """10 000 teeth at iso_pair's 1340 rpm for 30 s: 6.6e6 mesh cycles, each at least one
+    step; the solver stops at 5e6. Refused from the case, before the kernel input is built."""
+    import gearcli.pipeline.simulate as sim
+
+    def never(*_a, **_k):
+        raise AssertionError("built the run")
+
+    monkeypatch.setattr(sim, "build_kernel_input", never)
+    out = tmp_path / "big"
+    r = runner.invoke(app, ["simulate", ISO, "-o", str(out), *HUGE, "--set", "run.end_time=30"])
+    assert r.exit_code == 1, r.output
+    line = r.stderr.strip().splitlines()[0]
+    assert "run.end_time: got 30" in line and "mesh cycles" in line and "5e+06" in line
+    assert not out.exists()
+
+
+def test_the_step_bound_is_a_lower_bound_of_real_runs():
+    """The bound counts the mesh cycles of the speed ramp (seed: 5 s, 0 -> 8.33 rev/s in 1 s,
+    17 teeth: 637.5 cycles) and admits a run at 20 s of the 10 000-tooth pair (bound 22.6 s)."""
+    from gearcli.case.bounds import MIN_STEPS_PER_MESH_CYCLE, mesh_cycles, solver_steps_error
+    from gearcli.case.load import load_case
+    from gearcli.core.layout import PARAM_DEFAULTS
+
+    seed = load_case(SEED).case
+    assert mesh_cycles(seed) == pytest.approx(17 * (0.5 * 1 + 4) * 3000 / 360, rel=1e-9)
+    # the seed run took 27 630 accepted steps (summary.json): 43 a cycle, above the bound's 1
+    assert 27630 / mesh_cycles(seed) > MIN_STEPS_PER_MESH_CYCLE
+    big = load_case(ISO, ["gears.pinion.teeth=10000", "gears.gear.teeth=10000",
+                          "run.end_time=20"]).case
+    assert solver_steps_error(big, PARAM_DEFAULTS["max_steps"]) is None
+    assert solver_steps_error(big, 0.8 * PARAM_DEFAULTS["max_steps"]) is not None
+
+
+def test_a_run_stopped_before_its_second_sample_is_invalid_not_a_crash(tmp_path):
+    """Found in the closing check of issue 32: a run that left the contact tables before its
+    second output sample had an empty window and ended in exit 3 (numpy ptp of nothing)."""
+    out = tmp_path / "stop"
+    r = runner.invoke(app, ["simulate", ISO, "-o", str(out), *HUGE, "--set", "run.end_time=1",
+                            "--set", "load.torque=1e2 N*mm", "-q"])
+    assert r.exit_code == 4, r.output
+    assert "marked invalid" in r.stderr and "internal error" not in r.output
+    assert (out / "summary.json").is_file()

@@ -55,4 +55,5 @@ def test_force_keeps_the_users_files_and_drops_stale_results(tmp_path):
     assert os.readlink(run / "notes-link") == "notes.txt"
     assert not (run / "stress.json").exists()  # the earlier run's, not the new one's
     assert (run / "summary.json").is_file() and (run / "timeseries.csv").is_file()
-    assert not [q for q in tmp_path.iterdir() if q.name.startswith(".")]  # no temporary left
+    assert not [q for q in tmp_path.iterdir() if q.name.startswith(".")
+                and not q.name.endswith(".lock")]  # no temporary left (lock files stay)

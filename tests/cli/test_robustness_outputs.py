@@ -43,7 +43,8 @@ def _copy(finished, tmp_path):
 
 
 def _leftovers(folder):
-    return [p.name for p in folder.iterdir() if p.name.startswith(".")]
+    return [p.name for p in folder.iterdir()  # the lock files stay (io.owner.lock_path)
+            if p.name.startswith(".") and not p.name.endswith(".lock")]
 
 
 # --- run: all or nothing ---------------------------------------------------------------------

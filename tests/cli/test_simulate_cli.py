@@ -47,7 +47,8 @@ def test_simulate_refuses_to_overwrite(tmp_path):
     assert result.exit_code == 0
     assert json.loads((out / "manifest.json").read_text())["resolved_case"]["run"]["end_time"] \
         == "0.5 s"
-    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temp folders
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")
+                and p.name != ".run.lock"]  # no temp folders (the lock file stays)
 
 
 def test_simulate_to_stdout():

@@ -104,6 +104,46 @@ def test_analyze_on_a_full_disk_leaves_no_temporary_file(tmp_path, run_folder, m
     assert sorted(q.name for q in run.iterdir()) == before
 
 
+def test_analyze_whose_disk_fills_after_analysis_json_changes_nothing(tmp_path, run_folder,
+                                                                      monkeypatch):
+    """Found in issue 32's closing check (a tmpfs with 40 kB free): analysis.json was written,
+    spectrum.csv failed, and the message said "nothing was changed"; the three files now go
+    in together or not at all."""
+    run = _copy_run(run_folder, tmp_path / "run")
+    before = {q.name: q.read_bytes() for q in run.iterdir()}
+    real, calls = files.os.fsync, []
+
+    def full_at_the_second(fd):
+        calls.append(fd)
+        if len(calls) == 2:  # analysis.json fits, spectrum.csv does not
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(fd)
+
+    monkeypatch.setattr(files.os, "fsync", full_at_the_second)
+    res = _invoke(["analyze", run, "-q"], code=(1,))
+    assert "spectrum.csv" in res.output and "nothing was changed" in res.output
+    assert {q.name: q.read_bytes() for q in run.iterdir()} == before
+
+
+def test_report_on_a_full_disk_leaves_no_figures_folder(tmp_path, analyzed_folder,
+                                                        monkeypatch):
+    """Found in issue 32's closing check (a tmpfs with 40 kB free): the failed report left an
+    empty figures/ that its manifest did not list, so even `report --force` refused it."""
+    run = _copy_run(analyzed_folder, tmp_path / "run")
+    before = sorted(q.name for q in run.iterdir())
+
+    def full(_fd):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    with monkeypatch.context() as m:
+        m.setattr(files.os, "fsync", full)
+        res = _invoke(["report", run, "--format", "md", "-q"], code=(1,))
+    assert "No space left" in res.output
+    assert sorted(q.name for q in run.iterdir()) == before  # no figures/, no temporary
+    _invoke(["report", run, "--format", "md", "-q"])  # room again: no --force needed
+    assert (run / "report.md").is_file()
+
+
 # --- links out of the results folder: sweep and report ---------------------------------------
 def test_sweep_refuses_links_out_of_its_folder(tmp_path):
     outside = tmp_path / "outside"
@@ -202,7 +242,7 @@ def test_force_replaces_gearclis_own_report(tmp_path, analyzed_folder):
 @contextlib.contextmanager
 def _held_by_another(folder: Path):
     """The lock of ``folder`` as another gearcli holds it (its own open file description)."""
-    fd = os.open(folder.parent, os.O_RDONLY)
+    fd = os.open(owner.lock_path(folder), os.O_RDWR | os.O_CREAT)
     fcntl.flock(fd, fcntl.LOCK_EX)
     try:
         yield fd
@@ -231,14 +271,14 @@ def test_simulate_force_does_not_swap_under_a_running_analyze(tmp_path, run_fold
                        "--set", "load.torque=STEP(time, 0, 0, 0.1, 4e5)"], code=(1,))
     assert "another gearcli" in res.output
     assert (run / "timeseries.csv").read_bytes() == before  # the earlier run, whole
-    assert not [q for q in tmp_path.iterdir() if q.name.startswith(".")]
+    assert [q.name for q in tmp_path.iterdir() if q.name.startswith(".")] == [".run.lock"]
 
 
 def test_analyze_waits_for_the_lock_then_analyses_the_folder_as_it_is(tmp_path, run_folder,
                                                                     monkeypatch):
     run = _copy_run(run_folder, tmp_path / "run")
     monkeypatch.setenv("GEARCLI_LOCK_WAIT_S", "60")
-    fd = os.open(run.parent, os.O_RDONLY)
+    fd = os.open(owner.lock_path(run), os.O_RDWR | os.O_CREAT)
     fcntl.flock(fd, fcntl.LOCK_EX)
     released = []
 
@@ -255,6 +295,115 @@ def test_analyze_waits_for_the_lock_then_analyses_the_folder_as_it_is(tmp_path, 
     finally:
         t.join()
     assert released and (run / "analysis.json").is_file()
+
+
+def test_targets_in_one_parent_have_their_own_locks(tmp_path, run_folder, monkeypatch):
+    """make -j into out/a and out/b: one holding its folder does not stop the other."""
+    a = _copy_run(run_folder, tmp_path / "a")
+    b = _copy_run(run_folder, tmp_path / "b")
+    monkeypatch.setenv("GEARCLI_LOCK_WAIT_S", "0")  # no waiting: a shared lock would refuse
+    with _held_by_another(a):
+        _invoke(["analyze", b, "-q"])
+        res = _invoke(["analyze", a, "-q"], code=(1,))
+    assert (b / "analysis.json").is_file() and not (a / "analysis.json").exists()
+    assert str(owner.lock_path(a)) in res.output  # the refusal names the lock file
+    assert owner.lock_path(a) == tmp_path / ".a.lock"
+
+
+@contextlib.contextmanager
+def _sweep_running(monkeypatch, study: Path, out: Path):
+    """A sweep of ``study`` into ``out`` in another thread, stopped inside its points' runs
+    (in the middle of the study, holding its folder) until the block ends."""
+    from gearcli import api
+    from gearcli.pipeline.sweep import run as sweep_run
+
+    started, release, errors = threading.Event(), threading.Event(), []
+
+    def execute(*_args, **_kw):
+        if not started.is_set():  # the first sweep's; later ones run nothing
+            started.set()
+            release.wait(timeout=60)  # a safety net only: the block sets it
+        return iter(())
+
+    monkeypatch.setattr(sweep_run, "execute", execute)
+
+    def first():
+        try:
+            api.sweep(str(study), str(out), jobs=1)
+        except Exception as exc:  # reported by the test
+            errors.append(exc)
+
+    t = threading.Thread(target=first)
+    t.start()
+    try:
+        assert started.wait(timeout=60)
+        yield
+    finally:
+        release.set()
+        t.join()
+    assert not errors
+
+
+def test_a_second_sweep_into_a_running_sweeps_folder_refuses_at_once(tmp_path, monkeypatch):
+    a = write_study(tmp_path, ONE_POINT, "a.yaml")
+    b = write_study(tmp_path, "name: b\nparameters:\n  contact.max_damping: ['6 N*s/mm']\n",
+                    "b.yaml")
+    out = tmp_path / "sweep"
+    monkeypatch.setenv("GEARCLI_LOCK_WAIT_S", "600")  # a study holder is not waited for
+    with _sweep_running(monkeypatch, a, out):
+        res = _invoke(["sweep", b, "-o", out, "-j", "1", "-q"], code=(1,))
+        assert "a study is running there" in res.output
+        assert str(owner.lock_path(out)) in res.output
+        import gearcli.pipeline.simulate as sim
+
+        def never(*_a, **_k):
+            raise AssertionError("solved before refusing")
+
+        monkeypatch.setattr(sim, "build_kernel_input", never)  # refused before the work
+        res = _invoke(["simulate", SEED, "-o", out, "-q", "--force", *SHORT], code=(1,))
+        assert "a study is running there" in res.output
+        # a sweep into a neighbouring folder goes ahead (its own lock); nothing to run here
+        _invoke(["sweep", b, "-o", tmp_path / "other", "-j", "1", "-q"], code=(0, 1, 4))
+        assert not (tmp_path / "other" / "summary.csv").read_text().splitlines()[1:]
+    assert owner.read_manifest(out)["producer"]["command"] == "sweep"
+
+
+def test_a_speed_curve_refuses_a_folder_a_sweep_is_running_in(tmp_path, monkeypatch):
+    from gearcli.pipeline import speed_curve
+
+    study = write_study(tmp_path, ONE_POINT)
+    out = tmp_path / "sweep"
+
+    def never(*_a, **_k):
+        raise AssertionError("the speed curve ran")
+
+    monkeypatch.setattr(speed_curve, "run_speed_curve", never)
+    with _sweep_running(monkeypatch, study, out):
+        res = _invoke(["sweep", ROOT / "cases" / "studies" / "speed_curve.yaml", "-o", out,
+                       "-q", "--force"], code=(1,))
+    assert "a study is running there" in res.output
+
+
+def test_forked_workers_do_not_keep_the_lock(tmp_path):
+    """A sweep's forked workers close their copy of its lock: once the sweep lets go (or is
+    killed), the folder is free although a worker still runs."""
+    out = tmp_path / "sweep"
+    r, w = os.pipe()
+    with owner.folder_lock(out, wait_s=0, study=True):
+        pid = os.fork()
+        if pid == 0:  # the worker: waits until told to end
+            os.close(w)
+            os.read(r, 1)
+            os._exit(0)
+    try:
+        fd = os.open(owner.lock_path(out), os.O_RDWR)
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)  # BlockingIOError if the child held it
+        os.close(fd)
+    finally:
+        os.write(w, b"x")
+        os.waitpid(pid, 0)
+        os.close(r)
+        os.close(w)
 
 
 # --- refusals before the work ------------------------------------------------------------------

@@ -85,7 +85,7 @@ def test_replacing_keeps_the_folder_mode_and_moves_read_only_user_folders(tmp_pa
         assert (target / "ro").stat().st_ino == inode  # moved, not copied
         assert (target / "ro" / "data").read_text() == "k"
         assert target.stat().st_mode & 0o777 == 0o750
-        assert not list(tmp_path.glob(".run.*"))
+        assert not list(tmp_path.glob(".run.*.tmp*"))  # (.run.lock, the lock file, stays)
     finally:
         os.chmod(target / "ro", 0o755)
 
@@ -123,7 +123,7 @@ def test_a_read_only_results_folder_gets_its_mode_after_the_moves(tmp_path):
         assert target.stat().st_mode & 0o777 == 0o555
     finally:
         os.chmod(target, 0o755)
-    assert not list(tmp_path.glob(".run.*"))
+    assert not list(tmp_path.glob(".run.*.tmp*"))  # (.run.lock, the lock file, stays)
 
 
 def test_a_killed_write_with_a_half_written_result_is_not_taken_for_user_files(tmp_path):

@@ -3,12 +3,24 @@ the sweep writes, ``--force`` over gearcli's files only (docs/theory.md §8.1)."
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 
 from gearcli.errors import OutputError
 from gearcli.pipeline.sweep.study import Study
 
 SUMMARY = "summary.csv"
+
+
+@contextlib.contextmanager
+def study_lock(out: Path):
+    """Hold ``out`` for the whole of a study (a sweep or a speed curve): the lock of
+    :func:`gearcli.io.owner.folder_lock`, not waited for; a second study into the folder, or a
+    command replacing it, is refused at once while this one runs (its rows never mix)."""
+    from gearcli.io.owner import folder_lock
+
+    with folder_lock(out, wait_s=0, study=True):
+        yield
 
 
 def claim_folder(out: Path, study: Study, columns: list[str], force: bool) -> dict:

@@ -20,6 +20,9 @@ def study_frame(spec, out, jobs, scheduler, force: bool, keep_timeseries: bool,
     with contextlib.ExitStack() as stack:
         if out is None:
             out = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="gearcli-"))) / "s"
+        from gearcli.pipeline.sweep.folder import study_lock
+
+        stack.enter_context(study_lock(Path(out)))  # the whole study, trends included
         if spec.design == "speed_curve":
             from gearcli.io.outdir import check_target
             from gearcli.pipeline.speed_curve import run_speed_curve, write_speed_curve

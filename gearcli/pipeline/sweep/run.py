@@ -25,7 +25,7 @@ from gearcli.errors import GearcliError, OutputError
 from gearcli.io.files import record_outputs, write_atomic
 from gearcli.io.owner import check_producer
 from gearcli.pipeline.sweep import workers
-from gearcli.pipeline.sweep.folder import SUMMARY, claim_folder
+from gearcli.pipeline.sweep.folder import SUMMARY, claim_folder, study_lock
 from gearcli.pipeline.sweep.metrics import METRICS
 from gearcli.pipeline.sweep.study import Study
 from gearcli.pipeline.sweep.workers import (
@@ -205,7 +205,16 @@ def run_study(study: Study, folder: str | Path, jobs: int | None = None,
     With ``keep_timeseries`` each point's results folder is written too, its time series as
     ``timeseries_format`` (pipeline.outputs.TIMESERIES_FORMATS). A point that failed for its
     environment (cause ``environment``: full disk, killed worker, timeout) has no row yet.
-    ``point_timeout`` [s]: a point without a result by then fails (default: workers.py)."""
+    ``point_timeout`` [s]: a point without a result by then fails (default: workers.py).
+    The study holds the folder's lock throughout (:func:`folder.study_lock`)."""
+    with study_lock(Path(folder)):
+        return _run_study(study, folder, jobs, scheduler, keep_timeseries, force, progress,
+                          timeseries_format, point_timeout)
+
+
+def _run_study(study: Study, folder: str | Path, jobs, scheduler, keep_timeseries: bool,
+               force: bool, progress: Progress | None, timeseries_format: str,
+               point_timeout: float | None) -> SweepOutcome:
     t_start = time.perf_counter()
     if str(folder).strip() == "":
         raise OutputError("-o '': empty path; expected the name of an output folder")
