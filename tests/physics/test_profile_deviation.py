@@ -192,7 +192,7 @@ set:
   accuracy.seed: 1
 design: speed_curve
 parameters:
-  mesh_frequency: [1500 Hz]
+  mesh_frequency: [1000 Hz, 2000 Hz]
 """
 
 
