@@ -54,7 +54,7 @@ class PitchDeviation(Section):
         return self.exactly_one("values", "iso1328_grade")
 
 
-class ProfileSlopeDeviation(Section):
+class ProfileSlopeDeviation(PitchDeviation):
     """Profile slope deviations f_Hα per tooth (ISO 1328-1; docs/theory.md §3.5): a list, or
     an ISO 1328-1 grade with a random seed (gearcli/model/accuracy.py); a bare list is the
     list of values."""
@@ -64,20 +64,11 @@ class ProfileSlopeDeviation(Section):
     values: list[Length] | None = Field(
         None, description="f_Hα per tooth [mm], one per tooth; positive: more material at the "
         "tip (ISO 1328-1 profile diagram)")
-    iso1328_grade: Annotated[int, Strict()] | None = Field(
-        None, ge=1, le=11, description="ISO 1328-1 grade 1..11"
-    )
-    seed: Annotated[int, Strict()] = Field(0, ge=0, le=2**32 - 1,
-                                           description="random seed for the grade (0)")
 
     @model_validator(mode="before")
     @classmethod
     def _bare_list(cls, data):
         return {"values": data} if isinstance(data, list) else data
-
-    @model_validator(mode="after")
-    def _one_source(self):
-        return self.exactly_one("values", "iso1328_grade")
 
 
 class Errors(Section):

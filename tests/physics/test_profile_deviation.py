@@ -32,6 +32,7 @@ from gearcli.model.errors import profile_slope_gaps
 from gearcli.pipeline.geometry import run_geometry
 from gearcli.pipeline.kernel_input import build_kernel_input
 from tests.conftest import ROOT
+from tests.unit.test_accuracy_grade import STUDY as GRADED_STUDY
 
 SEED = ROOT / "cases" / "seed.yaml"
 ISO_PAIR = ROOT / "cases" / "iso_pair.yaml"
@@ -185,15 +186,8 @@ def test_accuracy_grade_fills_the_profile_slope_deviations_the_kernel_uses():
     assert np.any(ki.arrays["tooth_offsets"] != 0.0)  # and the pitch deviations
 
 
-STUDY = f"""name: graded_profile
-base: {ISO_PAIR}
-set:
-  accuracy.grade: 6
-  accuracy.seed: 1
-design: speed_curve
-parameters:
-  mesh_frequency: [1000 Hz, 2000 Hz]
-"""
+#: the graded speed curve of test_accuracy_grade with seed 1, two speeds
+STUDY = GRADED_STUDY.replace("accuracy.seed: 3", "accuracy.seed: 1")
 
 
 def test_speed_curve_of_a_grade_runs_with_pitch_and_profile_deviations(tmp_path):
@@ -202,4 +196,4 @@ def test_speed_curve_of_a_grade_runs_with_pitch_and_profile_deviations(tmp_path)
     curve = speed_curve_of(tmp_path, STUDY)
     assert not curve.errors
     assert curve.rows and all(np.isfinite(r.dynamic_factor) for r in curve.rows)
-    assert curve.accuracy["grade"] == 6
+    assert curve.accuracy["grade"] == 6 and curve.accuracy["seed"] == 1
