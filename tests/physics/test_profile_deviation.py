@@ -138,6 +138,26 @@ def test_positive_profile_slope_deviation_means_more_material_at_the_tip():
                                      / g.g_alpha_mm, abs=F_HA_MM * 0.01)
 
 
+def _simulate(ki, **extra):
+    return simulate(ki.params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
+                    load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp, **ki.arrays, **extra)
+
+
+def test_zero_profile_deviations_reproduce_a_tooth_law_run_bit_for_bit():
+    """The tooth law (cases/iso_pair.yaml, extended engagement) through the profile path with
+    a table of zeros: the same run, bit for bit; a deviation changes it."""
+    loaded = load_case(ISO_PAIR, ["run.end_time=0.05"])
+    ki = build_kernel_input(loaded.case, run_geometry(loaded))
+    z_max = loaded.case.gears.gear.teeth
+    plain = _simulate(ki)
+    explicit = _simulate(ki, tooth_profile_gap=np.zeros((2, z_max, 2)))
+    assert np.array_equal(plain.series, explicit.series, equal_nan=True)
+    table = np.zeros((2, z_max, 2))
+    table[0, 0] = (F_HA_MM / 2, -F_HA_MM / 2)  # pinion tooth 0, both flank families
+    assert not np.array_equal(plain.series, _simulate(ki, tooth_profile_gap=table).series,
+                              equal_nan=True)
+
+
 def test_zero_profile_deviations_reproduce_the_run_bit_for_bit():
     _, ki = _rigid_input(["run.end_time=0.05"])
     _, zero = _rigid_input(["run.end_time=0.05",
@@ -145,9 +165,7 @@ def test_zero_profile_deviations_reproduce_the_run_bit_for_bit():
     assert "tooth_profile_gap" not in zero.arrays  # zeros: the kernel's path without them
 
     def run(**extra):
-        return simulate(ki.params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
-                        load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp,
-                        **ki.arrays, **extra)
+        return _simulate(ki, **extra)
 
     plain = run()
     z_max = 25
