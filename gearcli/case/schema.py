@@ -17,7 +17,14 @@ from gearcli.case.schema_drive import Bearing, Bearings, Drive, Load, MotorCurve
 from gearcli.case.schema_faults import Fault
 from gearcli.case.schema_gears import Accuracy, Gear, Gears, InertiaSpec, Material, Rack, Teeth
 from gearcli.case.schema_mesh import IMPACT_KEYS, TOOTH_KEYS, Contact, Friction
-from gearcli.case.schema_mods import Errors, Modifications, PitchDeviation, Relief, Runout
+from gearcli.case.schema_mods import (
+    Errors,
+    Modifications,
+    PitchDeviation,
+    ProfileSlopeDeviation,
+    Relief,
+    Runout,
+)
 from gearcli.case.schema_rating import Rating
 from gearcli.case.schema_sensors import Sensors
 from gearcli.case.section import Coefficient, FieldError, Section, pair, raise_all
@@ -26,7 +33,8 @@ from gearcli.case.types import Frequency, Length, Time, qfield, unit_system
 __all__ = [
     "IMPACT_KEYS", "TOOTH_KEYS", "Bearing", "Bearings", "Case", "Checks", "Coefficient",
     "Contact", "Drive", "Errors", "FieldError", "Friction", "Gear", "Gears", "InertiaSpec",
-    "Load", "Material", "Modifications", "MotorCurve", "PitchDeviation", "Rack",
+    "Load", "Material", "Modifications", "MotorCurve", "PitchDeviation", "ProfileSlopeDeviation",
+    "Rack",
     "Relief", "Run", "Runout", "Section", "pair", "Shaft", "Teeth",
 ]
 
@@ -137,22 +145,26 @@ class Case(Section):
 
     @model_validator(mode="after")
     def _deviations_of_the_grade(self):
-        """``accuracy.grade``: the grade's seeded pitch deviations (errors.pitch_deviation) of
-        every gear that has none of its own (gearcli/model/accuracy.py)."""
+        """``accuracy.grade``: the grade's seeded pitch and profile slope deviations
+        (errors.pitch_deviation, errors.profile_slope_deviation) of every gear that has none of
+        its own (gearcli/model/accuracy.py; the same seed draws both, pitch first)."""
         acc = self.accuracy
         if acc.grade is None:
             return self
         from gearcli.model.accuracy import gear_seeds
 
-        given = self.errors.pitch_deviation
-        fill = {role: PitchDeviation(iso1328_grade=acc.grade, seed=seed)
-                for role, seed in zip(("pinion", "gear"), gear_seeds(acc.seed), strict=True)
-                if getattr(given, role) is None}
-        if not fill:
+        update = {}
+        for key, kind in (("pitch_deviation", PitchDeviation),
+                          ("profile_slope_deviation", ProfileSlopeDeviation)):
+            given = getattr(self.errors, key)
+            fill = {role: kind(iso1328_grade=acc.grade, seed=seed)
+                    for role, seed in zip(("pinion", "gear"), gear_seeds(acc.seed), strict=True)
+                    if getattr(given, role) is None}
+            if fill:
+                update[key] = given.model_copy(update=fill)
+        if not update:
             return self
-        errors = self.errors.model_copy(update={
-            "pitch_deviation": given.model_copy(update=fill)})
-        return self.model_copy(update={"errors": errors})
+        return self.model_copy(update={"errors": self.errors.model_copy(update=update)})
 
     @model_validator(mode="after")
     def _cross_checks(self):
@@ -185,13 +197,14 @@ class Case(Section):
 
     def _pitch_lists(self) -> list[FieldError]:
         found = []
-        for name in ("pinion", "gear"):
-            dev = getattr(self.errors.pitch_deviation, name)
-            teeth = getattr(self.gears, name).teeth
-            if dev is not None and dev.values is not None and len(dev.values) != teeth:
-                found.append(FieldError(("errors", "pitch_deviation", name, "values"),
-                                        f"{len(dev.values)} entries", f"one per tooth of the "
-                                        f"{name} (gears.{name}.teeth: {teeth})"))
+        for key in ("pitch_deviation", "profile_slope_deviation"):
+            for name in ("pinion", "gear"):
+                dev = getattr(getattr(self.errors, key), name)
+                teeth = getattr(self.gears, name).teeth
+                if dev is not None and dev.values is not None and len(dev.values) != teeth:
+                    found.append(FieldError(("errors", key, name, "values"),
+                                            f"{len(dev.values)} entries", f"one per tooth of "
+                                            f"the {name} (gears.{name}.teeth: {teeth})"))
         return found
 
     def _fault_teeth(self) -> list[FieldError]:

@@ -1,5 +1,6 @@
 """Case schema, tooth modifications and manufacturing errors (docs/theory.md §3): profile
-relief, runout and single pitch deviations, each per gear (:func:`~gearcli.case.section.pair`).
+relief, runout, single pitch and profile slope deviations, each per gear
+(:func:`~gearcli.case.section.pair`).
 Values in internal units (see :mod:`gearcli.case.types`)."""
 
 from __future__ import annotations
@@ -53,8 +54,27 @@ class PitchDeviation(Section):
         return self.exactly_one("values", "iso1328_grade")
 
 
+class ProfileSlopeDeviation(PitchDeviation):
+    """Profile slope deviations f_Hα per tooth (ISO 1328-1; docs/theory.md §3.5): a list, or
+    an ISO 1328-1 grade with a random seed (gearcli/model/accuracy.py); a bare list is the
+    list of values."""
+
+    pair_name: ClassVar[str] = "ProfileSlope"  #: its pair is "ProfileSlopePair"
+
+    values: list[Length] | None = Field(
+        None, description="f_Hα per tooth [mm], one per tooth; positive: more material at the "
+        "tip (ISO 1328-1 profile diagram)")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _bare_list(cls, data):
+        return {"values": data} if isinstance(data, list) else data
+
+
 class Errors(Section):
     runout: pair(Runout) = Field(default_factory=pair(Runout))
     pitch_deviation: pair(PitchDeviation) = Field(default_factory=pair(PitchDeviation))
+    profile_slope_deviation: pair(ProfileSlopeDeviation) = Field(
+        default_factory=pair(ProfileSlopeDeviation))
 
 

@@ -47,6 +47,12 @@ class Model(NamedTuple):
     #: f_G(i2, x1) for its teeth i1, i2 (either law; faults: cracks, spalls, missing teeth;
     #: docs/theory.md §4b.2)
     tooth_stiffness_factor: np.ndarray = EMPTY_3D
+    #: Profile deviation gap of every tooth along the path, (N_TABLES, >= max(z1, z2), n >= 2)
+    #: [mm] (rows as tooth_offsets; positive = material missing) at n roll positions evenly
+    #: spaced over [x_lo, x_hi], linearly interpolated: pinion tooth i1 adds row g1's value at
+    #: x1, gear tooth i2 row g2's at x2 to the pair's gap (profile slope deviations f_Hα:
+    #: docs/theory.md §3.5)
+    tooth_profile_gap: np.ndarray = EMPTY_3D
 
 
 class Work(NamedTuple):

@@ -54,6 +54,15 @@ def overlap_bound(prm, floors, tooth_offsets, t1, t2) -> float:
     return float(-floors[t1] - floors[t2] + error_bound(prm, tooth_offsets, t1, t2))
 
 
+def profile_bound(profile_gaps, z, t) -> float:
+    """Largest material [mm] the profile deviations (Model.tooth_profile_gap, linear between
+    its columns, so extreme on them) add to one tooth of row ``t`` (``z`` teeth): ``max(-P)``;
+    0 without profile deviations."""
+    if profile_gaps.size == 0 or z <= 0:
+        return 0.0
+    return float(np.max(-profile_gaps[t, :z]))
+
+
 def end_gap_bound(tables, g1, g2, floors) -> float:
     """Lower bound [mm] of ``G1(x1) + G2(x2)`` when either position sits on a table end.
 
@@ -91,13 +100,18 @@ def _zero_interval(prm, tables, k, h) -> tuple[float, float]:
     return math.inf, -math.inf
 
 
-def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family) -> None:
+def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family,
+                  profile_gaps=None) -> None:
     """The table- and offset-dependent constants: ``derived`` entries error_bound,
     tooth_offsets_used, tooth_factors_used, teeth_tracked, grid_step and reciprocals;
-    ``family`` columns overlap, end_gap and the zero runs.
+    ``family`` columns overlap, end_gap and the zero runs. Profile deviations
+    (``profile_gaps``: Model.tooth_profile_gap) raise the overlap and error bounds and lower
+    the end gaps by the material they can add (:func:`profile_bound`).
 
     Plain numpy, run once per run: compiled, these seven small functions cost the first run
     ~1.1 s of compilation and every later run a cache load (bench/RESULTS.md, session 9)."""
+    if profile_gaps is None:
+        profile_gaps = np.zeros((0, 0, 0))
     h = (prm[P.x_hi] - prm[P.x_lo]) / (tables.shape[2] - 1)
     floors = table_floors(tables, h)
     bound = -math.inf
@@ -108,12 +122,20 @@ def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family) ->
         family[f, F.end_gap] = end_gap_bound(tables, t1, t2, floors)
         family[f, F.zero_lo1], family[f, F.zero_hi1] = _zero_interval(prm, tables, t1, h)
         family[f, F.zero_lo2], family[f, F.zero_hi2] = _zero_interval(prm, tables, t2, h)
-        bound = max(bound, error_bound(prm, tooth_offsets, t1, t2))
+        err = error_bound(prm, tooth_offsets, t1, t2)
+        if profile_gaps.size:
+            extra = (profile_bound(profile_gaps, int(prm[P.z1]), t1)
+                     + profile_bound(profile_gaps, int(prm[P.z2]), t2))
+            family[f, F.overlap] += extra
+            family[f, F.end_gap] -= extra
+            err += extra
+        bound = max(bound, err)
     derived[D.error_bound] = bound
     used = 1.0 if np.any(tooth_offsets != 0.0) else 0.0
     derived[D.tooth_offsets_used] = used
     derived[D.tooth_factors_used] = 1.0 if tooth_factors.size > 0 else 0.0
-    derived[D.teeth_tracked] = max(used, derived[D.tooth_factors_used])
+    derived[D.teeth_tracked] = max(used, derived[D.tooth_factors_used],
+                                   1.0 if profile_gaps.size else 0.0)
     derived[D.inv_exponent_plus_1] = 1.0 / (prm[P.exponent] + 1.0)
     derived[D.grid_step] = h
     derived[D.inv_grid_step] = 1.0 / h
@@ -124,14 +146,16 @@ def derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family) ->
     derived[D.inv_J2] = 1.0 / prm[P.J2]
 
 
-def derive(prm, tables, tooth_offsets, derived, family, tooth_factors=None) -> None:
+def derive(prm, tables, tooth_offsets, derived, family, tooth_factors=None,
+           profile_gaps=None) -> None:
     """Fill ``derived`` (layout.D) and ``family`` (layout.F) for a run: the parameters each
-    flank family reads (layout.FAMILY_PARAMS) and :func:`derive_tables` (``tooth_factors``:
-    the Model's tooth_stiffness_factor, absent by default)."""
+    flank family reads (layout.FAMILY_PARAMS) and :func:`derive_tables` (``tooth_factors``,
+    ``profile_gaps``: the Model's tooth_stiffness_factor and tooth_profile_gap, absent by
+    default)."""
     if tooth_factors is None:
         tooth_factors = np.zeros((0, 0))
     for f, name in enumerate(FLANK_FAMILIES):
         for column, source in FAMILY_PARAMS[name]:
             family[f, F._fields.index(column)] = 0.0 if source is None \
                 else prm[P._fields.index(source)]
-    derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family)
+    derive_tables(prm, tables, tooth_offsets, tooth_factors, derived, family, profile_gaps)

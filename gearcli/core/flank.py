@@ -136,6 +136,19 @@ def _factors(table, g1, g2, i1, i2, x_lo, inv_hf, x1):
     return fp * fg, dfp * fg + fp * dfg
 
 
+@jit_noalloc
+def _profile_gaps(table, rows, x_lo, inv_h, xs, gaps):
+    """The pair's gaps and slopes ``gaps = (G1, G1', G2, G2')`` plus the per-tooth profile
+    deviation gaps (docs/theory.md §3.5) of pinion tooth i1 at x1 and gear tooth i2 at x2
+    (``rows = (g1, g2, i1, i2)``, ``xs = (x1, x2)`` [mm]; ``table``: Model.tooth_profile_gap
+    [mm], linear on its grid over [x_lo, x_hi]): a call, not inlined (read only in runs with
+    profile deviations)."""
+    g1, g2, i1, i2 = rows
+    p1, dp1 = linear(table, g1, i1, x_lo, inv_h, xs[0])
+    p2, dp2 = linear(table, g2, i2, x_lo, inv_h, xs[1])
+    return gaps[0] + p1, gaps[1] + dp1, gaps[2] + p2, gaps[3] + dp2
+
+
 @jit_noalloc_inline
 def _gather(f, sigma, kin, app, model, scratch):
     """First pass over the slots of flank family ``f``: every pair in contact (p > 0) into
@@ -147,7 +160,8 @@ def _gather(f, sigma, kin, app, model, scratch):
     ``model.pair_stiffness`` table (the tooth law) k(x1) and its slope (cubic Hermite on the
     gap tables' grid), else the constant ``prm[P.k_contact]``; with stiffness factors times
     f_P(i1, x1) f_G(i2, x1) (:func:`_factors`), k_j' = k' f_P f_G + k (f_P f_G)'. Without
-    factors nothing is multiplied."""
+    factors nothing is multiplied. With ``model.tooth_profile_gap`` the gaps of the pair's
+    teeth gain their profile deviations (:func:`_profile_gaps`)."""
     prm = model.prm
     derived = model.derived
     fam = model.family
@@ -173,6 +187,10 @@ def _gather(f, sigma, kin, app, model, scratch):
     if factors:
         inv_hf = (model.tooth_stiffness_factor.shape[2] - 1) / (x_hi - x_lo)
     table = model.pair_stiffness.size != 0
+    profiles = model.tooth_profile_gap.size != 0
+    inv_hp = 0.0
+    if profiles:
+        inv_hp = (model.tooth_profile_gap.shape[2] - 1) / (x_hi - x_lo)
     u, n = _slot_phase(sigma * kin.s1 - fam[f, F.phase0], p_b, derived[D.inv_p_b])
     # tooth indices of slot 0; slot j holds teeth (k + sigma (n - j)) mod z (rhs.py docstring)
     use_offsets = derived[D.tooth_offsets_used] != 0.0
@@ -206,6 +224,10 @@ def _gather(f, sigma, kin, app, model, scratch):
             continue
         gap1, dgap1 = _gap(tables, g1, x1, zlo1, zhi1, grid)
         gap2, dgap2 = _gap(tables, g2, x2, zlo2, zhi2, grid)
+        if profiles:  # per-tooth profile deviations (docs/theory.md §3.5)
+            gap1, dgap1, gap2, dgap2 = _profile_gaps(model.tooth_profile_gap, (g1, g2, i1, i2),
+                                                     x_lo, inv_hp, (x1, x2),
+                                                     (gap1, dgap1, gap2, dgap2))
         pen = sigma * delta + lat - offset - gap1 - gap2 - e1 - e2
         if use_offsets:
             pen -= tooth_offsets[g1, i1] + tooth_offsets[g2, i2]

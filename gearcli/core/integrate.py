@@ -206,7 +206,15 @@ def kernel_model(params, gap_tables, *, drive_pp, load_pp, drive_angle_pp=None,
                          or factors.shape[2] < 2):
         raise ValueError(f"tooth_stiffness_factor needs shape ({N_TABLES} or {N_GEARS}, "
                          f">= {z_max}[, >= 2]), got {factors.shape}")
-    derive(prm, tables, offsets, derived, family, factors)
+    profile_gaps = optional.get("tooth_profile_gap", EMPTY_3D)
+    if profile_gaps.shape[0] == N_GEARS:  # one flank family given: the other has the same
+        profile_gaps = optional["tooth_profile_gap"] = np.ascontiguousarray(
+            np.concatenate([profile_gaps] * N_FAMILIES))
+    if profile_gaps.size and (profile_gaps.shape[0] != N_TABLES
+                              or profile_gaps.shape[1] < z_max or profile_gaps.shape[2] < 2):
+        raise ValueError(f"tooth_profile_gap needs shape ({N_TABLES} or {N_GEARS}, >= {z_max}, "
+                         f">= 2), got {profile_gaps.shape}")
+    derive(prm, tables, offsets, derived, family, factors, profile_gaps)
     return Model(prm=prm.copy(), derived=derived, family=family, tables=tables,
                  tooth_offsets=offsets, drive_pp=_pp(drive_pp, "drive_pp"),
                  angle_pp=_pp(drive_angle_pp, "drive_angle_pp"),
@@ -258,6 +266,11 @@ def simulate(params, gap_tables, *, t_out, drive_pp, load_pp, drive_angle_pp=Non
         two rows both flank families have the same), at n pinion roll positions evenly spaced
         over [x_lo, x_hi], linearly interpolated; shape (4 or 2, >= max(z1, z2)): one factor
         per tooth along the whole path (docs/theory.md §4b.2). Absent: no factors.
+    tooth_profile_gap : ndarray, shape (4 or 2, >= max(z1, z2), n >= 2), optional
+        (in ``arrays``) Profile deviation gap [mm] of every tooth (positive = material
+        missing), rows as ``tooth_offsets``, at n roll positions evenly spaced over
+        [x_lo, x_hi], linearly interpolated; the pinion's at x1, the gear's at x2
+        (docs/theory.md §3.5). Absent: none.
     progress : callable(t_reached, t_start, t_end), optional
         Called after every chunk (:func:`chunk_ends`) with times [s].
     **arrays : ndarray

@@ -1,4 +1,5 @@
-"""Manufacturing errors projected on the lines of action: pitch deviations and runout.
+"""Manufacturing errors projected on the lines of action: pitch and profile slope deviations
+and runout.
 
 docs/theory.md §3: each pair's penetration loses e_j(t), the errors of the teeth in mesh
 projected on the line of action; the kernel (core/flank.py) reads them as per-tooth flank
@@ -61,6 +62,30 @@ def tooth_offsets(pos1_mm: np.ndarray, pos2_mm: np.ndarray) -> np.ndarray:
     offsets[TABLE_G1_COAST, :z1] = pos1_mm
     offsets[TABLE_G2_COAST, :z2] = -pos2_mm
     return offsets
+
+
+def profile_slope_gaps(f_ha1_mm, f_ha2_mm, x_lo_mm: float, x_hi_mm: float,
+                       g_alpha_mm: float) -> np.ndarray:
+    """Per-tooth profile deviation gaps [mm] of the kernel (Model.tooth_profile_gap, rows
+    layout.TABLE_*, positive = material missing) at the table ends x_lo, x_hi from each
+    tooth's profile slope deviation f_Hα [mm] (docs/theory.md §3.5).
+
+    The tooth gains the material e(ρ) = f_Hα (ρ − L_α/2)/L_α of its mean profile line (ISO
+    1328-1: positive f_Hα, more material at the tip), ρ the roll length from the start of its
+    active profile, over the evaluation range L_α = g_α (the active profile, the path of
+    contact A…E): the pinion's ρ = x (from A toward its tip at E), the gear's ρ = g_α − x
+    (its tip at A); the gap is −e, linear in x, so two columns hold it exactly. Both flanks
+    of a tooth have the same deviation (coast rows as drive rows).
+    """
+    f1 = np.asarray(f_ha1_mm, float)
+    f2 = np.asarray(f_ha2_mm, float)
+    ramp = (np.array([x_lo_mm, x_hi_mm]) - 0.5 * g_alpha_mm) / g_alpha_mm  # (ρ_pinion − L/2)/L
+    table = np.zeros((N_TABLES, max(f1.size, f2.size), 2))
+    for row in (TABLE_G1, TABLE_G1_COAST):
+        table[row, :f1.size] = -np.outer(f1, ramp)
+    for row in (TABLE_G2, TABLE_G2_COAST):
+        table[row, :f2.size] = np.outer(f2, ramp)  # the gear's (ρ − L/2)/L = −ramp
+    return table
 
 
 def runout_phases(phi1_rad: float, phi2_rad: float, alpha_w_rad: float

@@ -43,8 +43,9 @@ FEATURES = (
     Feature("friction", "friction", lambda c: bool(c.friction.enabled),
             "it shifts the normal force by the friction moments, ~mu of it; simulate includes "
             "it"),
-    Feature("runout_pitch", "runout and pitch deviations",
-            lambda c: _has_pair(c.errors.runout) or _has_pair(c.errors.pitch_deviation),
+    Feature("runout_pitch", "runout, pitch and profile slope deviations",
+            lambda c: _has_pair(c.errors.runout) or _has_pair(c.errors.pitch_deviation)
+            or _has_pair(c.errors.profile_slope_deviation),
             "they vary over whole revolutions; simulate includes them"),
     Feature("relief", "tip and root relief",
             lambda c: _has_pair(c.modifications.tip_relief)

@@ -13,11 +13,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearcli.case.schema import Case, PitchDeviation
+from gearcli.case.schema import Case, PitchDeviation, ProfileSlopeDeviation
 from gearcli.case.schema import Relief as CaseRelief
 from gearcli.case.schema_faults import fault_records
 from gearcli.core import layout
-from gearcli.model.errors import cumulative_pitch_positions, runout_phases, tooth_offsets
+from gearcli.model.accuracy import draw_deviations
+from gearcli.model.errors import (
+    cumulative_pitch_positions,
+    profile_slope_gaps,
+    runout_phases,
+    tooth_offsets,
+)
 from gearcli.model.faults import tooth_index_offsets
 from gearcli.model.gap import GapTables, Modifications, Relief, gap_tables, slot_layout
 from gearcli.model.geometry import mesh_frequencies
@@ -73,6 +79,29 @@ def _pitch_positions(dev: PitchDeviation | None, gear, m_mm: float) -> np.ndarra
         return np.zeros(gear.teeth)
     return cumulative_pitch_positions(dev.values, dev.iso1328_grade, dev.seed, gear.teeth,
                                       gear.d_mm, m_mm)
+
+
+def _profile_slopes_mm(dev: ProfileSlopeDeviation | None, gear, m_mm: float) -> np.ndarray:
+    """f_Hα per tooth [mm] of a gear from the case (values, or the draws of an ISO 1328-1
+    grade with its seed, model.accuracy); zeros without."""
+    if dev is None:
+        return np.zeros(gear.teeth)
+    if dev.values is not None:
+        return np.asarray(dev.values, float)
+    return 1e-3 * draw_deviations(dev.iso1328_grade, gear.d_mm, m_mm, gear.teeth,
+                                  dev.seed).profile_slope_um
+
+
+def _profile_arrays(case: Case, g, tables: GapTables) -> dict[str, np.ndarray]:
+    """The kernel's tooth_profile_gap (docs/theory.md §3.5) when any profile slope deviation
+    is non-zero, else nothing (the kernel's path without profile deviations)."""
+    pd = case.errors.profile_slope_deviation
+    f1 = _profile_slopes_mm(pd.pinion, g.pinion, g.module_mm)
+    f2 = _profile_slopes_mm(pd.gear, g.gear, g.module_mm)
+    if not (np.any(f1 != 0.0) or np.any(f2 != 0.0)):
+        return {}
+    return {"tooth_profile_gap": profile_slope_gaps(f1, f2, tables.x_lo, tables.x_hi,
+                                                    g.g_alpha_mm)}
 
 
 def output_times(case: Case, f_z: float | None) -> tuple[np.ndarray, float]:
@@ -336,6 +365,7 @@ def build_kernel_input(case: Case, geo: GeometryResult, tooth_stiffness_factor=N
         params=params,
         tables=tables,
         arrays={"tooth_offsets": offsets, **_contact_arrays(case, geo, tables),
+                **_profile_arrays(case, g, tables),
                 **_factors(case, geo, tables, mesh, tooth_stiffness_factor, faults)},
         drive_pp=drive_fn.pp.to_arrays(),
         drive_angle_pp=angle,

@@ -360,10 +360,13 @@ def run_speed_curve(study, jobs: int | None = None, scheduler: str | None = None
 
 
 def _hunting(case) -> bool:
-    """Whether the case's mesh repeats only over the hunting period (pitch deviations or
-    runout): the halves of a level then see other tooth combinations (:func:`settled`)."""
+    """Whether the case's mesh repeats only over the hunting period (pitch or profile slope
+    deviations or runout): the halves of a level then see other tooth combinations
+    (:func:`settled`)."""
     e = case.errors
     return any(x is not None for x in (e.pitch_deviation.pinion, e.pitch_deviation.gear,
+                                        e.profile_slope_deviation.pinion,
+                                        e.profile_slope_deviation.gear,
                                         e.runout.pinion, e.runout.gear))
 
 
@@ -377,8 +380,9 @@ def _notes(case) -> list[str]:
     measured = MEASURE_FRACTION * DWELL_CYCLES
     if measured >= hunting:
         return []
-    return [f"the case has pitch deviations or runout: the pattern repeats every {hunting} mesh "
-            f"cycles (hunting period) but each speed measures {measured:g}, so run-up and "
+    return [f"the case has pitch or profile deviations or runout: the pattern repeats every "
+            f"{hunting} mesh cycles (hunting period) but each speed measures {measured:g}, so "
+            "run-up and "
             "run-down see different tooth combinations and part of their difference is that, "
             "not a nonlinear jump"]
 

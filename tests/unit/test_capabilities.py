@@ -48,7 +48,8 @@ def test_notes_are_the_features_a_command_leaves_out():
     assert not_included("simulate", case) == []
     mesh = not_included("mesh", case)
     assert any(n.startswith("tooth faults are not included") for n in mesh)
-    assert any(n.startswith("runout and pitch deviations are not included") for n in mesh)
+    assert any(n.startswith("runout, pitch and profile slope deviations are not included")
+               for n in mesh)
     assert any(n.startswith("friction is not included") for n in mesh)
     assert len(not_included("modal", case)) == 3
 
