@@ -208,7 +208,10 @@ def test_a_failed_dynamic_factor_names_the_tip_relief_and_the_dynamic_factor_wit
     assert "findings: 2 check(s) failed" in plain.stderr and "error" not in plain.stderr
     boxed = runner.invoke(app, ["analyze", str(seed_dir), "--force", "--no-remedy"])
     # piped: the boxes as wide as they need (issue 29: "speed_ratio_e…" at 80 columns)
-    assert "│ speed_ratio_error_percent " in boxed.stdout and "…" not in boxed.stdout
+    assert "│ speed ratio error " in boxed.stdout and "…" not in boxed.stdout
+    # the label first, the key where the limit is set quieter in the last column (issue 29)
+    assert "│ checks.speed_ratio_error_percent " in boxed.stdout
+    assert "speed_ratio_error_percent │" not in boxed.stdout.split("limit key")[0]
     assert max(len(line) for line in boxed.stdout.splitlines()) > 80
 
 
