@@ -171,7 +171,8 @@ def test_html_checks_table_names_every_check_with_its_result(short_dir, html_rep
     labels = {name: label for name, (_, _, label) in body.items()}
     assert labels["dynamic_factor"] == "dynamic factor F_max / F_static"
     assert labels["contact_loss_fraction"] == "time without drive-flank contact"
-    assert all("_" not in label for label in labels.values())  # never a raw key
+    assert all(" " in label and name not in label
+               for name, label in labels.items())  # never a raw key
     key = next(r[6] for r in rows[1:] if r[0] == labels["dynamic_factor"])
     assert key == "dynamic_factor (checks.dynamic_factor_max)"
     for c in doc["checks"]:

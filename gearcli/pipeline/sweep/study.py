@@ -310,8 +310,15 @@ def _default_unit(key: str, system: str | None = None) -> str:
     if key == MESH_FREQUENCY:
         return units.in_system(units.FREQUENCY, system).default
     field = field_at(Case, tuple(key.split(".")))
-    for meta in getattr(field, "metadata", ()):
-        dim = getattr(getattr(meta, "func", None), "dim", None)
+    metas = list(getattr(field, "metadata", ()))
+    args = list(getattr(getattr(field, "annotation", None), "__args__", ()))
+    while args:  # Length | None, SpeedFunction | None: the validator in the Annotated type
+        arg = args.pop()
+        metas += list(getattr(arg, "__metadata__", ()))
+        args += list(getattr(arg, "__args__", ()))
+    for meta in metas:
+        func = getattr(meta, "func", None)
+        dim = getattr(func, "dim", None) or getattr(func, "time_dim", None)
         if dim is not None:
             return units.in_system(dim, system).default
     return ""
@@ -341,7 +348,9 @@ def _parameter(src: Source, key: str, spec, system: str | None = None) -> Parame
         if not spec:
             raise src.error(loc, "empty list; expected at least one value")
         parts = [_split(v) for v in spec]
-        default = _default_unit(key, system)  # a bare number's unit, as in the case file
+        # a bare number's unit, as in the case file (none when no value is a number: time
+        # functions as expressions or mappings carry their own)
+        default = _default_unit(key, system) if any(parts) else ""
         unit = next((p[1] for p in parts if p and p[1]), default)
         numbers = []
         for i, (v, p) in enumerate(zip(spec, parts, strict=True)):
