@@ -221,6 +221,10 @@ def test_the_api_checks_equal_the_cli_checks(seed_dir):
     import gearcli
 
     cli = json.loads(_analyze(seed_dir).stdout)["checks"]
-    api = gearcli.analyze(seed_dir).document()["checks"]
+    analysis = gearcli.analyze(seed_dir)
+    api = analysis.document()["checks"]
     assert cli == api
+    # its repr names the failed checks by label, never by key (issue 29)
+    assert repr(analysis) == ("<Analysis seed: failed: dynamic factor F_max / F_static; time "
+                              "without drive-flank contact>")
     assert any(c.get("checked") is False for c in api) and any("remedy" in c for c in api)
