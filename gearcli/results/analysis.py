@@ -28,7 +28,7 @@ class ResonanceMargin(Document):
 _TABLES = "analyze report"
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)  # Document's labelled repr
 class AnalysisMetrics(Document):
     """The metrics of an analysis window (analysis.json's ``metrics``)."""
 

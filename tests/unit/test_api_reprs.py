@@ -39,3 +39,19 @@ def test_repr_of_a_monitor_document_leaves_out_the_tsa():
     text = repr(MonitorDocument(case="seed", signal="encoder transmission error",
                                 signal_unit="µm", shafts=(shaft,)))
     _labelled(text, "pinion: RMS 0.5 µm", "kurtosis 3.1", "FM4 3", "NA4 –")
+
+
+def test_documents_repr_labelled_numbers_in_engineering_units():
+    """A typed document (gearcli.simulate(...).summary, analyze(...).metrics, stress, modes,
+    mesh summaries) reads as labelled numbers in engineering units, not as its field names."""
+    from gearcli.results import AnalysisMetrics, Summary
+
+    s = Summary(dynamic_factor=1.5, dte_peak_to_peak_mm=0.0071, mesh_stiffness_N_mm=8.4e5,
+                contact_loss_fraction=0.02, pinion_speed_mean_deg_s=7200.0)
+    text = repr(s)
+    assert not RAW_KEY.search(text) and "dynamic_factor" not in text, text
+    for line in ("dynamic factor F_max / F_static: 1.5", "DTE, peak to peak: 7.1 µm",
+                 "mesh stiffness (linearised): 840 N/µm", "time without drive-flank contact: 2 %",
+                 "pinion speed, mean: 1200 rpm"):
+        assert f"\n  {line}" in text, (line, text)
+    assert "speed ratio error: 0.5 %" in repr(AnalysisMetrics(speed_ratio_error_percent=0.5))

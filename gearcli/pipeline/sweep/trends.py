@@ -375,7 +375,8 @@ def speed_figure(study: Study, df, speed, units: str = "engineering"):
         for ax, metric in panels:
             x, y = _with_gaps(good, bad, speed.column, metric)
             ax.plot(x, metric_axis(metric, units)[1] * y, "o-", ms=3, label=label)
-        f_ns += list(good["mesh_natural_frequency_Hz"].dropna())
+        f_ns += [f for f in (p.mesh_natural_frequency_Hz for p in summaries(good))
+                 if f is not None and math.isfinite(f)]
     for ax, metric in panels:
         _mark_bad_points(ax, df, speed.column)
         ax.set_ylabel(metric_axis(metric, units)[0])
