@@ -23,7 +23,7 @@ steady = sim.series.loc[s.window_s[0]:s.window_s[1]]
 print(steady[["force_total_N", "delta_mm", "pairs_in_contact"]].describe().round(4))
 
 analysis = gearcli.analyze(sim)
-print("checks:", ", ".join(f"{c.name} {c.verdict}" for c in analysis.checks))
+print("checks:", "; ".join(f"{c.label}: {c.verdict}" for c in analysis.checks))
 
 sim.save(out, force=True)  # timeseries.csv, summary.json, manifest.json
 sim.plot("force").savefig(out / "force.png", dpi=100)

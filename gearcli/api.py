@@ -419,7 +419,7 @@ def rate(case_or_run, set=None):  # noqa: A002
 def sweep(study, out: str | Path | None = None, jobs: int | None = None,
           scheduler: str | None = None, force: bool = False, keep_timeseries: bool = False,
           timeseries_format: str = "csv", progress=None, allow_large: bool = False,
-          point_timeout: float | None = None):
+          point_timeout: float | None = None, units: str = "engineering"):
     """Run a study (`gearcli sweep`) and return its summary as a DataFrame (one row per
     point; a ``design: speed_curve`` study: one row per speed and direction).
 
@@ -443,6 +443,9 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
     point_timeout : float, optional
         Seconds a point may run before it is recorded as failed ("timed out", retried by a
         resume); default from the solver's step limit (pipeline/sweep/workers.py).
+    units : str
+        Display units of the trend table and figures: "engineering" (default) or "si"
+        (gearcli/display_units.py; the command line's ``--units``).
 
     Returns
     -------
@@ -454,6 +457,7 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
         signals kept as Parquet — docs/theory.md "Fault datasets"; else None); for a speed
         curve ``errors`` (a direction whose solver failed).
     """
+    from gearcli.display_units import SYSTEMS
     from gearcli.pipeline.sweep.frame import study_frame
     from gearcli.pipeline.sweep.run import check_timeseries_format
     from gearcli.pipeline.sweep.study import Study, load_study
@@ -472,8 +476,10 @@ def sweep(study, out: str | Path | None = None, jobs: int | None = None,
         flag_argument(value, what)
     folder_argument(out, "out")
     check_scheduler(scheduler)
+    if units not in SYSTEMS:
+        raise CaseError(f"units {units!r:.40}: expected one of {', '.join(SYSTEMS)}")
     spec = study if isinstance(study, Study) else load_study(study, allow_large=allow_large)
     check_timeseries_format(timeseries_format, keep_timeseries or spec.dataset is not None)
     return study_frame(spec, out, jobs, scheduler, force, keep_timeseries, timeseries_format,
-                       progress, point_timeout)
+                       progress, point_timeout, units)
 

@@ -34,6 +34,12 @@ class LoadedCase:
     def error(self, loc: Loc, message: str, value: object = None, has_value: bool = False):
         return self.source.error(loc, message, value, has_value)
 
+    def __repr__(self) -> str:  # engineering units (gearcli/display_units.py), labelled
+        g = self.case.gears
+        return (f"<LoadedCase {self.name} ({self.source.file}): {g.pinion.teeth}/"
+                f"{g.gear.teeth} teeth, module {g.module:g} mm, face width {g.face_width:g} mm, "
+                f"{self.case.model} model, {self.case.contact.law} contact law>")
+
     def error_at(self, loc: Loc, message: str):
         """:meth:`error` quoting the value as written at ``loc`` (none for a section or a
         list): for checks of the validated case that point back at the YAML."""

@@ -223,6 +223,7 @@ def _time_function_validator(dim: Dim):
         constant = checked_quantity(value, own)
         return TimeFunction(repr(constant), dim.internal, dim)
 
+    validate.time_dim = dim  # the dimension of its bare numbers (sweep parameters' units)
     return validate
 
 

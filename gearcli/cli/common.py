@@ -405,46 +405,58 @@ def print_quantity_table(title: str, rows) -> None:
 
 
 def print_checks_table(checks, units: str = "engineering") -> None:
-    """The Checks table (check, value, unit, limit, result) of analyze and modal
-    (gearcli.results.Check); the notes and remedies below it, each once (in csv and json they
-    are columns)."""
+    """The Checks table of analyze and modal (gearcli.results.Check): each check by its label,
+    value, unit, limit and result, and quieter in the last column its key (where the case
+    sets its limit); in csv and json also its name in analysis.json, its note and remedy as
+    columns (in the other formats the notes and remedies follow the table, each once)."""
     from rich.markup import escape
     from rich.table import Table
 
     from gearcli.report.tables import check_cells
 
-    columns = ["check", "value", "unit", "limit", "result"]
     inline = table_format() in ("csv", "json")
+    columns = ["check", "value", "unit", "limit", "result", "limit key"]
     c = Table(title="Checks", title_justify="left")
-    for col in columns + (["note", "remedy"] if inline else []):
-        c.add_column(col, justify="right" if col == "value" else "left")
+    for col in columns + (["name", "note", "remedy"] if inline else []):
+        c.add_column(col, justify="right" if col == "value" else "left",
+                     style="dim" if col == "limit key" else None)
     notes, remedies = [], {}
     for ck in checks:
         verdict = ("[yellow]not checked[/yellow]" if ck.checked is False
                    else "[green]pass[/green]" if ck.passed else "[red]FAIL[/red]")
         value, unit, limit = check_cells(ck, units)
         remedy = ck.remedy.text if getattr(ck, "remedy", None) is not None else ""
-        extra = [escape(ck.note), escape(remedy)] if inline else []
-        c.add_row(escape(ck.name), escape(value), escape(unit), escape(limit), verdict, *extra)
+        extra = [escape(ck.name), escape(ck.note), escape(remedy)] if inline else []
+        c.add_row(escape(ck.label), escape(value), escape(unit), escape(limit), verdict,
+                  escape(ck.limit_key or "–"), *extra)
         if ck.note:
-            notes.append(f"  {ck.name}: {ck.note}")
+            notes.append(f"  {ck.label}: {ck.note}")
         if remedy:
-            remedies.setdefault(remedy, []).append(ck.name)
+            remedies.setdefault(remedy, []).append(ck.label)
     print_table(c)
     print_lines(notes)
-    print_lines(f"remedy ({', '.join(names)}): {text}" for text, names in remedies.items())
+    print_lines(f"remedy ({'; '.join(names)}): {text}" for text, names in remedies.items())
+
+
+def _named(checks) -> str:
+    """Checks by label, their analysis.json names after them: "dynamic factor F_max /
+    F_static (dynamic_factor)"."""
+    return "; ".join(f"{c.label} ({c.name})" if getattr(c, "label", c.name) != c.name
+                     else c.name for c in checks)
 
 
 def report_findings(checks, where: str | None = None, also=()) -> None:
     """The end of a command whose checks failed: one "findings" line naming them (the verdicts
     and remedies are above and in ``where``), exit 4 without an error line; all passed: nothing.
     ``also``: further failed verdicts by name (e.g. the ISO 6336 rating of `run`)."""
-    failed = [c.name for c in checks if c.failed] + list(also)
+    made = [c for c in checks if c.failed]
+    failed = ([_named(made)] if made else []) + list(also)
     if not failed:
         return
-    with_remedy = [c.name for c in checks if c.failed and getattr(c, "remedy", None)]
-    extra = f"; a remedy for {', '.join(with_remedy)} above" if with_remedy else ""
+    with_remedy = [c for c in made if getattr(c, "remedy", None)]
+    extra = ("" if not with_remedy else "; remedy above" if len(with_remedy) == len(made)
+             else f"; a remedy for {_named(with_remedy)} above")
     where = f"; verdicts in {where}" if where else ""
-    _echo_err(f"findings: {len(failed)} check(s) failed: {', '.join(failed)}{extra} "
+    _echo_err(f"findings: {len(made) + len(also)} check(s) failed: {'; '.join(failed)}{extra} "
               f"(exit 4{where})")
     raise typer.Exit(int(ExitCode.CHECK_FAILED))

@@ -8,7 +8,7 @@ from pathlib import Path
 import typer
 
 from gearcli.cli.app import app
-from gearcli.cli.common import handle_errors, rich_progress
+from gearcli.cli.common import display_units, handle_errors, rich_progress
 
 
 def _check_scheduler(value: str | None) -> str | None:
@@ -86,7 +86,7 @@ def sweep(
             typer.echo(f"speed curve: {len(spec.points)} speeds, run up and down (2 runs)",
                        err=True)
         df = api.sweep(spec, out, jobs or None, scheduler, force,
-                       point_timeout=point_timeout)
+                       point_timeout=point_timeout, units=display_units())
         if not quiet:
             invalid = int((df["status"] == "invalid").sum())
             failed = int((df["status"] == "failed").sum())
@@ -103,7 +103,7 @@ def sweep(
         return
     with _progress(enabled=not quiet, total=len(spec.points)) as progress:
         df = api.sweep(spec, out, jobs or None, scheduler, force, keep_timeseries, fmt,
-                       progress, point_timeout=point_timeout)
+                       progress, point_timeout=point_timeout, units=display_units())
     checks_failed = int(df["checks"].astype(str).str.startswith("fail").sum()) \
         if "checks" in df.columns else 0
     if not quiet:

@@ -68,9 +68,9 @@ class Analysis:
         return analysis_document(self)
 
     def __repr__(self) -> str:
-        failed = [c.name for c in self.checks if c.failed]
+        failed = [c.label for c in self.checks if c.failed]
         return (f"<Analysis {self.run.summary.case or self.run.folder.name}: "
-                f"{'passed' if self.passed else 'failed: ' + ', '.join(failed)}>")
+                f"{'passed' if self.passed else 'failed: ' + '; '.join(failed)}>")
 
 
 def analyze(folder: str | Path, window: tuple[float, float] | None = None,

@@ -30,6 +30,12 @@ class GeometryResult:
         their units)."""
         return geometry_dict(self)
 
+    def __repr__(self) -> str:  # engineering units (gearcli/display_units.py), labelled
+        g = self.geometry
+        return (f"<Geometry {self.name}: {g.pinion.teeth}/{g.gear.teeth} teeth, module "
+                f"{g.module_mm:g} mm, centre distance {g.a_w_mm:.4g} mm, transverse contact "
+                f"ratio ε_α {g.eps_alpha:.4g}, {len(self.warnings)} warning(s)>")
+
 
 # Which case key an error finding is about, by code (and gear, where it names one).
 _FINDING_KEYS = {

@@ -79,9 +79,12 @@ class MeshAnalysis:
         return mesh_document(self).to_dict()
 
     def __repr__(self) -> str:
+        from gearcli.display_units import convert
+
         s = self.summary
+        k, unit = convert(s.stiffness.mesh_mean_N_mm, "N/mm")  # engineering: N/µm
         return (f"<Mesh {self.name}: STE {s.ste.peak_to_peak_um:.3g} µm peak to peak, mean "
-                f"stiffness {s.stiffness.mesh_mean_N_mm:.4g} N/mm>")
+                f"stiffness {k:.4g} {unit}>")
 
 
 def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None,

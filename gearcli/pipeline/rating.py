@@ -114,6 +114,16 @@ class CaseRating:
             ok = ok and all(x <= 1.0 for g in (d.pinion, d.gear) for x in (g.pitting, g.bending))
         return ok
 
+    def __repr__(self) -> str:  # labelled; safeties and K_v are dimensionless
+        def column(r: RatingResult) -> str:
+            return (f"S_H {r.pinion.S_H:.4g}/{r.gear.S_H:.4g} (min {r.pinion.S_H_min:g}), "
+                    f"S_F {r.pinion.S_F:.4g}/{r.gear.S_F:.4g} (min {r.pinion.S_F_min:g})")
+
+        sim = f"; simulated K_v: {column(self.simulated)}" if self.simulated else ""
+        return (f"<CaseRating {self.name}, ISO 6336:{self.iso.edition} (pinion/gear): "
+                f"{'pass' if self.ok else 'fail'}; {column(self.iso)} with K_v "
+                f"{self.rating_input.dynamic_factor:.4g} ({self.dynamic_factor_source}){sim}>")
+
     def to_dict(self) -> dict:
         from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
 

@@ -79,15 +79,15 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
         return [NumberedTable(next(counter), t) for t in items if t is not None]
 
     checks = data.analysis.checks
-    failed = [c.name for c in checks if c.checked is not False and not c.passed]
-    skipped = [c.name for c in checks if c.checked is False]
+    failed = [c.label for c in checks if c.checked is not False and not c.passed]
+    skipped = [c.label for c in checks if c.checked is False]  # labels: never a raw key
     done = len(checks) - len(skipped)
-    not_checked = (f" Not checked: {', '.join(map(str, skipped))} (see the notes)."
+    not_checked = (f" Not checked: {'; '.join(map(str, skipped))} (see the notes)."
                    if skipped else "")
     verdict = (Paragraph(f"Analysis passed: the {done} applicable checks pass.{not_checked}",
                          "pass") if not failed
                else Paragraph(f"Analysis FAILED: {len(failed)} of {done} checks fail "
-                              f"({', '.join(map(str, failed))}).{not_checked}", "fail"))
+                              f"({'; '.join(map(str, failed))}).{not_checked}", "fail"))
     headline = []
     for key, value in shown_values(data.metrics, "headline").items():
         if isinstance(value, int | float) and math.isfinite(value):
@@ -99,9 +99,9 @@ def build_document(data: ReportData, figures: list[FigureFile]) -> Document:
     remedies: dict[str, list[str]] = {}
     for c in checks:
         if c.remedy is not None and c.failed:
-            remedies.setdefault(c.remedy.text, []).append(str(c.name))
+            remedies.setdefault(c.remedy.text, []).append(c.label)
     if remedies:
-        summary.append(Bullets(tuple(f"Remedy ({', '.join(names)}): {text}"
+        summary.append(Bullets(tuple(f"Remedy ({'; '.join(names)}): {text}"
                                      for text, names in remedies.items())))
     if overrides:
         summary.append(Paragraph("Case file values changed on the command line (the tables "

@@ -367,29 +367,8 @@ def modes_table(data: ReportData) -> Table | None:
 
 def check_cells(ck, units: str = "engineering") -> tuple[str, str, str]:
     """(value, unit, limit) of a check as the tables show it: one unit per column, a fraction
-    in % (its limit too), a length in the display ``units``."""
-    import re
-
-    value, unit, limit = ck.value, "", ck.limit
-    name = ck.name
-    if name.endswith("_fraction") and isinstance(value, float):
-        value, unit = 100.0 * value, "%"
-        m = re.search(r"\(([^()]*%)\)", limit)
-        if m:
-            limit = limit[:limit.index("(")].split()[0] + " " + m.group(1)
-    elif name.endswith("_percent"):
-        unit = "%"
-    elif name.endswith("_mm") and isinstance(value, float):
-        from gearcli.display_units import unit_and_factor
-
-        unit, k = unit_and_factor("mm", units, fine=True)
-        value = k * value
-        limit = re.sub(r"([-+\d.eE]+) mm\b", lambda g: f"{k * float(g.group(1)):.4g} {unit}",
-                       limit)
-    elif name in ("no_aliasing", "gmf_line_present"):
-        unit = "Hz"
-    elif isinstance(value, float):
-        unit = "–"
+    in % (its limit too), a length in the display ``units`` (gearcli.results.Check.display)."""
+    value, unit, limit = ck.display(units)
     return fmt(value) if not isinstance(value, str) else value, unit, limit
 
 
@@ -405,10 +384,16 @@ def checks_table(data: ReportData) -> Table:
         note = str(c.note or "")
         if c.remedy is not None:
             note = (note + "; " if note else "") + "remedy: " + c.remedy.text
-        rows.append((str(c.name), value, unit, limit, result, note))
+        rows.append((c.label, value, unit, limit, result, note, _check_key(c)))
         status.append("" if not checked else "pass" if ok else "fail")
-    return Table("Checks", ("check", "value", "unit", "limit", "result", "note"), rows,
-                 status=status)
+    return Table("Checks", ("check", "value", "unit", "limit", "result", "note", "key"), rows,
+                 note="key: the check's name in analysis.json, and where the case sets its "
+                 "limit", status=status)
+
+
+def _check_key(ck) -> str:
+    """A check's name in analysis.json and, where the case sets it, its limit's key."""
+    return f"{ck.name} ({ck.limit_key})" if ck.limit_key else ck.name
 
 
 def _key_label(key: str) -> str:

@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from collections.abc import Mapping
 
+from gearcli.display_units import DEFAULT, unit_and_factor
 from gearcli.results.fields import Document, metric_field
+from gearcli.results.metrics import check_label, check_limit_key
 
 
 @dataclasses.dataclass(frozen=True)
@@ -25,7 +28,7 @@ class ResonanceMargin(Document):
 _TABLES = "analyze report"
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)  # Document's labelled repr
 class AnalysisMetrics(Document):
     """The metrics of an analysis window (analysis.json's ``metrics``)."""
 
@@ -135,8 +138,45 @@ class Check(Document):
         return ("not checked" if self.checked is False
                 else "passed" if self.passed else "failed")
 
+    @property
+    def label(self) -> str:
+        """What a person reads for this check (gearcli/results/metrics.py CHECKS)."""
+        return check_label(self.name)
+
+    @property
+    def limit_key(self) -> str:
+        """Where the case file sets its limit ("checks.dynamic_factor_max"; "" when fixed)."""
+        return check_limit_key(self.name)
+
+    def display(self, units: str = DEFAULT) -> tuple[float | str | None, str, str]:
+        """(value, unit, limit) in the display ``units``: one unit, a fraction in % (its limit
+        too), a length (stored in mm) as a deflection (µm in engineering units)."""
+        value, unit, limit = self.value, "", self.limit
+        name = self.name
+        if name.endswith("_fraction") and isinstance(value, float):
+            value, unit = 100.0 * value, "%"
+            m = re.search(r"\(([^()]*%)\)", limit)
+            if m:
+                limit = limit[:limit.index("(")].split()[0] + " " + m.group(1)
+        elif name.endswith("_percent"):
+            unit = "%"
+        elif name.endswith("_mm") and isinstance(value, float):
+            unit, k = unit_and_factor("mm", units, fine=True)
+            value = k * value
+            limit = re.sub(r"([-+\d.eE]+) mm\b",
+                           lambda g: f"{k * float(g.group(1)):.4g} {unit}", limit)
+        elif name in ("no_aliasing", "gmf_line_present"):
+            unit = "Hz"
+        elif isinstance(value, float):
+            unit = "–"
+        return value, unit, limit
+
     def __repr__(self) -> str:
-        return f"<Check {self.name}: {self.verdict}>"
+        value, unit, limit = self.display()
+        shown = f"{value:.4g}" if isinstance(value, float) else "–" if value is None else value
+        unit = f" {unit}" if unit not in ("", "–") and value is not None else ""
+        return (f"<Check {self.label} ({self.name}): {self.verdict}, {shown}{unit}, "
+                f"limit {limit}>")
 
 
 @dataclasses.dataclass(frozen=True)

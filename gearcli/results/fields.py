@@ -64,6 +64,28 @@ class Document:
             out[f.name] = _plain(value)
         return out
 
+    def labelled(self, units: str = "engineering") -> list[str]:
+        """"label: value unit" of each number of the document with a label and a unit (its
+        metric, gearcli/results/metrics.py), in the display ``units``; a nested document's
+        numbers follow."""
+        from gearcli.results.metrics import METRICS, display
+
+        out = []
+        for f in dataclasses.fields(self):
+            value, key = getattr(self, f.name), f.metadata.get("metric", f.name)
+            if isinstance(value, Document) and not isinstance(value, tuple):
+                out += value.labelled(units)
+            elif (key in METRICS and isinstance(value, int | float)
+                  and not isinstance(value, bool) and math.isfinite(value)):
+                label, shown, unit = display(key, value, units)
+                out.append(f"{label}: {shown:.4g}" + ("" if unit in ("", "–") else f" {unit}"))
+        return out
+
+    def __repr__(self) -> str:
+        """One labelled line per number in engineering units (:meth:`labelled`): what a
+        person reads; the keys are the attribute names and :meth:`to_dict`'s."""
+        return f"<{type(self).__name__}\n  " + "\n  ".join(self.labelled()) + ">"
+
     @classmethod
     def from_document(cls, doc: Mapping[str, Any]):
         values = {}

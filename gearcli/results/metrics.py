@@ -101,6 +101,48 @@ METRICS: dict[str, Metric] = {
 }
 
 
+class CheckInfo(NamedTuple):
+    label: str
+    #: where the case file sets its limit ("checks.<key>"; "--strict" for a command-line
+    #: switch; "" when the limit is fixed)
+    limit_key: str
+
+
+#: The checks of `gearcli analyze` and `gearcli modal` (analysis.json's ``checks[].name``, which
+#: stays the key of files and scripts): what a person reads, and where its limit is set.
+CHECKS: dict[str, CheckInfo] = {
+    "solver_status": CheckInfo("solver finished", ""),
+    "speed_ratio_error_percent": CheckInfo(METRICS["speed_ratio_error_percent"].label,
+                                           "checks.speed_ratio_error_percent"),
+    "no_aliasing": CheckInfo("mesh harmonics below fs/2 (no aliasing)",
+                             "checks.harmonics, run.output_rate"),
+    "gmf_line_present": CheckInfo("mesh-frequency line in the gear speed spectrum", ""),
+    "resonance_margin_percent": CheckInfo("resonance margin of k·f_z to the nearest mode",
+                                          "checks.resonance_margin_percent"),
+    "dynamic_factor": CheckInfo(METRICS["dynamic_factor"].label, "checks.dynamic_factor_max"),
+    "contact_loss_fraction": CheckInfo(METRICS["contact_loss_fraction"].label,
+                                       "checks.contact_loss_fraction_max"),
+    "dte_peak_to_peak_mm": CheckInfo(METRICS["dte_peak_to_peak_mm"].label,
+                                     "checks.dte_peak_to_peak_max"),
+    "energy_balance": CheckInfo(METRICS["energy_relative_residual"].label,
+                                "checks.energy_balance_tolerance"),
+    "no_warnings": CheckInfo("no warnings", "--strict"),
+}
+
+
+def check_label(name: str) -> str:
+    """The label of check ``name`` (:data:`CHECKS`; an unknown name with spaces for
+    underscores)."""
+    info = CHECKS.get(name)
+    return info.label if info else name.replace("_", " ")
+
+
+def check_limit_key(name: str) -> str:
+    """Where the case sets the limit of check ``name`` ("" when fixed or unknown)."""
+    info = CHECKS.get(name)
+    return info.limit_key if info else ""
+
+
 def display(key: str, value, system: str = DEFAULT):
     """(label, value in the display unit, display unit) of a stored metric (lists
     elementwise)."""

@@ -10,7 +10,7 @@ from typing import Any
 from gearcli.results.fields import Document, metric_field
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)  # Document's labelled repr
 class Mode(Document):
     """One mode of the linearised model (the modal JSON's ``modes``)."""
 
@@ -188,7 +188,7 @@ class FaultedRevolution(Document):
     no_contact_share: float = metric_field("no_contact_share", 0.0)  #: share with k_f = 0 [-]
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)  # Document's labelled repr
 class MeshSummary(Document):
     """A quasi-static loaded contact analysis (`gearcli mesh --json`): the static normal force,
     the STE, the mesh stiffness against ISO 6336-1 and the ISO 6336-1 Method B data."""

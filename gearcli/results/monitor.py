@@ -76,7 +76,7 @@ class ShaftMonitor(Document):
         return out
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)
 class MonitorDocument(Document):
     """monitor.json: the signal, its window and each shaft's metrics."""
 
@@ -88,3 +88,16 @@ class MonitorDocument(Document):
     window_s: tuple[float, float] = metric_field("window_s", (math.nan, math.nan))
     window_reason: str = metric_field("window_reason", "")
     shafts: tuple[ShaftMonitor, ...] = metric_field("shafts", (), nested=ShaftMonitor)
+
+    def __repr__(self) -> str:  # labelled, without the TSA's samples
+        def shaft(m: ShaftMonitor) -> str:
+            def v(name: str) -> str:
+                x = m.value(name)
+                return "–" if x is None else f"{x:.4g}"
+            return (f"{m.shaft}: RMS {v('rms')} {self.signal_unit}, kurtosis "
+                    f"{v('kurtosis')}, FM4 {v('fm4')}, NA4 {v('na4')} ({m.n_revolutions} "
+                    "revolutions)")
+
+        return (f"<Monitor {self.case}: {self.signal}; "
+                + "; ".join(shaft(m) for m in self.shafts) + ">")
+

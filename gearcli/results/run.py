@@ -42,7 +42,7 @@ class StoredMode(Document):
     rigid_body: bool = metric_field("rigid_body", False, required=True)
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)  # Document's labelled repr
 class Summary(Document):
     """The scalars of a run over its steady window (summary.json's ``scalars``)."""
 
@@ -157,7 +157,7 @@ class SummaryDocument(Document):
                                                 nested=RatingSummary)
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)  # Document's labelled repr
 class SpeedLevel(Document):
     """One speed of a speed curve (`design: speed_curve`; gearcli/pipeline/speed_curve.py):
     a row of its summary.csv, whose column is the field's ``column`` (or its name)."""

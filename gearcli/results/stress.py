@@ -124,7 +124,7 @@ class StressDocument(Document):
     warnings: tuple[str, ...] = metric_field("warnings", ())
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, repr=False)  # Document's labelled repr
 class GearStress(Document):
     """Peak dynamic stresses of one gear in the window against its ISO 6336 static values: the
     Python API's flat view of a :class:`StressDocument` (:meth:`of`)."""

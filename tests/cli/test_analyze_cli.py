@@ -208,7 +208,10 @@ def test_a_failed_dynamic_factor_names_the_tip_relief_and_the_dynamic_factor_wit
     assert "findings: 2 check(s) failed" in plain.stderr and "error" not in plain.stderr
     boxed = runner.invoke(app, ["analyze", str(seed_dir), "--force", "--no-remedy"])
     # piped: the boxes as wide as they need (issue 29: "speed_ratio_e…" at 80 columns)
-    assert "│ speed_ratio_error_percent " in boxed.stdout and "…" not in boxed.stdout
+    assert "│ speed ratio error " in boxed.stdout and "…" not in boxed.stdout
+    # the label first, the key where the limit is set quieter in the last column (issue 29)
+    assert "│ checks.speed_ratio_error_percent " in boxed.stdout
+    assert "speed_ratio_error_percent │" not in boxed.stdout.split("limit key")[0]
     assert max(len(line) for line in boxed.stdout.splitlines()) > 80
 
 
@@ -218,6 +221,10 @@ def test_the_api_checks_equal_the_cli_checks(seed_dir):
     import gearcli
 
     cli = json.loads(_analyze(seed_dir).stdout)["checks"]
-    api = gearcli.analyze(seed_dir).document()["checks"]
+    analysis = gearcli.analyze(seed_dir)
+    api = analysis.document()["checks"]
     assert cli == api
+    # its repr names the failed checks by label, never by key (issue 29)
+    assert repr(analysis) == ("<Analysis seed: failed: dynamic factor F_max / F_static; time "
+                              "without drive-flank contact>")
     assert any(c.get("checked") is False for c in api) and any("remedy" in c for c in api)

@@ -107,7 +107,10 @@ def test_the_seed_runs_to_its_findings_with_a_remedy(tmp_path):
                               "run.end_time=2", "--format", "md"])
     assert res.exit_code == 4, res.output
     assert "error" not in res.stderr
-    assert "findings: 2 check(s) failed: dynamic_factor, contact_loss_fraction" in res.stderr
-    assert "remedy (dynamic_factor, contact_loss_fraction): a linear tip relief" in res.stdout
+    assert ("findings: 2 check(s) failed: dynamic factor F_max / F_static (dynamic_factor); "
+            "time without drive-flank contact (contact_loss_fraction)") in res.stderr
+    assert ("remedy (dynamic factor F_max / F_static; time without drive-flank contact): a "
+            "linear tip relief") in res.stdout
     report = (tmp_path / "out" / "report.md").read_text()
-    assert "Remedy (dynamic\\_factor, contact\\_loss\\_fraction)" in report
+    assert ("Remedy (dynamic factor F\\_max / F\\_static; time without drive-flank contact)"
+            in report)

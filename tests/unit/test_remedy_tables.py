@@ -34,9 +34,9 @@ def test_a_fraction_check_is_shown_in_percent_with_its_limit():
 
 def test_table_formats_keep_every_cell_uncut():
     headers = ["check", "value", "note"]
-    rows = [["speed_ratio_error_percent", "2.9e-05", "a long note, with a comma " * 5]]
+    rows = [["speed ratio error", "2.9e-05", "a long note, with a comma " * 5]]
     plain = format_rows("plain", "Checks", headers, rows)
-    assert "speed_ratio_error_percent" in plain and plain.splitlines()[0] == "Checks"
+    assert "speed ratio error  " in plain and plain.splitlines()[0] == "Checks"
     assert json.loads(format_rows("json", "Checks", headers, rows)) == {
         "table": "Checks", "columns": headers, "rows": [dict(zip(headers, rows[0], strict=True))]}
     import csv
@@ -66,7 +66,8 @@ def test_modal_names_the_speed_band_around_the_resonance_it_fails():
     (lo, hi), *_ = remedy["avoid_pinion_speed_rpm"]
     assert (lo, hi) == pytest.approx((446.6, 545.8), abs=0.2)
     assert lo < 500.0 < hi
-    assert res.stderr.startswith("findings: 1 check(s) failed: resonance_margin_percent")
+    assert res.stderr.startswith("findings: 1 check(s) failed: resonance margin of k·f_z to "
+                                 "the nearest mode (resonance_margin_percent); remedy above")
 
 
 def test_piped_tables_are_not_cut_and_every_format_parses():

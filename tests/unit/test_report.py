@@ -162,11 +162,21 @@ def test_html_checks_table_names_every_check_with_its_result(short_dir, html_rep
     _, text = html_report
     rows, classes = _table(_parse(text), "Checks")
     doc = json.loads((short_dir / "analysis.json").read_text())
-    assert rows[0] == ["check", "value", "unit", "limit", "result", "note"]  # one unit a column
-    body = {r[0]: (r[4], cls) for r, cls in zip(rows[1:], classes[1:], strict=True)}
+    # one unit a column; each check by its label, its key (analysis.json's name, where the
+    # case sets its limit) last
+    assert rows[0] == ["check", "value", "unit", "limit", "result", "note", "key"]
+    body = {r[6].split(" (")[0]: (r[4], cls, r[0])
+            for r, cls in zip(rows[1:], classes[1:], strict=True)}
     assert set(body) == {c["name"] for c in doc["checks"]}
+    labels = {name: label for name, (_, _, label) in body.items()}
+    assert labels["dynamic_factor"] == "dynamic factor F_max / F_static"
+    assert labels["contact_loss_fraction"] == "time without drive-flank contact"
+    assert all(" " in label and name not in label
+               for name, label in labels.items())  # never a raw key
+    key = next(r[6] for r in rows[1:] if r[0] == labels["dynamic_factor"])
+    assert key == "dynamic_factor (checks.dynamic_factor_max)"
     for c in doc["checks"]:
-        result, cls = body[c["name"]]
+        result, cls, _ = body[c["name"]]
         expected = (("not checked", "") if c.get("checked") is False and c["passed"] is None
                     else ("pass", "pass") if c["passed"] else ("FAIL", "fail"))
         assert (result, cls) == expected
@@ -219,7 +229,7 @@ def test_markdown_references_existing_figures(short_dir, md_report):
     assert len(links) == len(list((short_dir / "figures").glob("*.png")))
     for link in links:
         assert link.startswith("figures/") and (path.parent / link).is_file()
-    assert "| check | value | unit | limit | result | note |" in text
+    assert "| check | value | unit | limit | result | note | key |" in text
     for c in json.loads((short_dir / "analysis.json").read_text())["checks"]:
         assert c["name"].replace("_", r"\_") in text
 

@@ -18,10 +18,12 @@ def test_grid_with_units_and_ranges(tmp_path):
   contact.max_damping: {logspace: [1, 100], num: 3}
 """))
     assert len(s.points) == 9
-    assert s.parameter_columns == ["gears.face_width [mm]", "contact.max_damping"]
+    # a range's bare ends are in the key's case-file unit, which names the column (as a list's)
+    assert s.parameter_columns == ["gears.face_width [mm]", "contact.max_damping [N*s/mm]"]
     assert [p.values["gears.face_width [mm]"] for p in s.points[::3]] == [80.0, 100.0, 120.0]
-    assert [p.values["contact.max_damping"] for p in s.points[:3]] == [1.0, 10.0, 100.0]
-    assert s.points[4].overrides == ["gears.face_width=100 mm", "contact.max_damping=10.0"]
+    assert [p.values["contact.max_damping [N*s/mm]"] for p in s.points[:3]] == [1.0, 10.0,
+                                                                                100.0]
+    assert s.points[4].overrides == ["gears.face_width=100 mm", "contact.max_damping=10 N*s/mm"]
     assert len({p.case_hash for p in s.points}) == 9
 
 

@@ -10,9 +10,10 @@ from pathlib import Path
 
 
 def study_frame(spec, out, jobs, scheduler, force: bool, keep_timeseries: bool,
-                timeseries_format: str, progress, point_timeout):
+                timeseries_format: str, progress, point_timeout, units: str = "engineering"):
     """Run the loaded study ``spec`` into ``out`` (None: a temporary folder, removed after)
-    and return its summary table; ``attrs`` as documented by :func:`gearcli.sweep`."""
+    and return its summary table; ``attrs`` as documented by :func:`gearcli.sweep`; the
+    trend table and figures in the display ``units`` (gearcli/display_units.py)."""
     import pandas as pd
 
     from gearcli.pipeline.sweep.run import rows_as_table, run_study, summary_columns
@@ -41,7 +42,7 @@ def study_frame(spec, out, jobs, scheduler, force: bool, keep_timeseries: bool,
         outcome = run_study(spec, Path(out), jobs, scheduler, keep_timeseries, force, progress,
                             timeseries_format=timeseries_format,
                             point_timeout=point_timeout)
-        write_trends(Path(out), spec, outcome.rows)
+        write_trends(Path(out), spec, outcome.rows, units)
         df = rows_as_table(outcome.rows, summary_columns(spec))
         df.attrs.update(kind="sweep", total=outcome.total, ran=outcome.ran,
                         skipped=outcome.skipped, failed=outcome.failed,

@@ -198,7 +198,8 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
     except CaseError as exc:
         raise CaseError(f"the base case is invalid: {exc}", file=src.file,
                         line=src.line_of(("base",))) from None
-    params = [_parameter(src, key, spec.parameters[key]) for key in spec.parameters]
+    system = base_src.data.get("units") if isinstance(base_src.data, dict) else None
+    params = [_parameter(src, key, spec.parameters[key], system) for key in spec.parameters]
     for key, spec_p in spec.parameters.items():
         if isinstance(spec_p, Range) and spec_p.with_:
             _check_keys(src, ("parameters", key, "with"), spec_p.with_)
@@ -217,7 +218,7 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
         raise src.error(("dataset",), "a speed_curve runs one simulation per direction; "
                         "expected design grid, zip, lhs or one_at_a_time for a dataset")
     combos = design_points(spec, params)
-    base_values = {p.column: _base_value(base_src.data, p) for p in params}
+    base_values = {p.column: _base_value(base_src.data, p, system) for p in params}
     points = []
     for i, combo in enumerate(combos):
         values = dict(base_values)
@@ -302,15 +303,24 @@ def _split(value) -> tuple[float, str] | None:
     return None
 
 
-def _default_unit(key: str) -> str:
-    """The case-file unit of a bare number at ``key`` ('' for plain numbers and counts)."""
+def _default_unit(key: str, system: str | None = None) -> str:
+    """The case-file unit of a bare number at ``key`` ('' for plain numbers and counts) in the
+    base case's ``units:`` ``system`` (None: the Adams default; gearcli.units.UNIT_SYSTEMS)."""
+    system = system if system in units.UNIT_SYSTEMS else None
     if key == MESH_FREQUENCY:
-        return units.FREQUENCY.default
+        return units.in_system(units.FREQUENCY, system).default
     field = field_at(Case, tuple(key.split(".")))
-    for meta in getattr(field, "metadata", ()):
-        dim = getattr(getattr(meta, "func", None), "dim", None)
+    metas = list(getattr(field, "metadata", ()))
+    args = list(getattr(getattr(field, "annotation", None), "__args__", ()))
+    while args:  # Length | None, SpeedFunction | None: the validator in the Annotated type
+        arg = args.pop()
+        metas += list(getattr(arg, "__metadata__", ()))
+        args += list(getattr(arg, "__args__", ()))
+    for meta in metas:
+        func = getattr(meta, "func", None)
+        dim = getattr(func, "dim", None) or getattr(func, "time_dim", None)
         if dim is not None:
-            return dim.default
+            return units.in_system(dim, system).default
     return ""
 
 
@@ -323,20 +333,24 @@ def _to_unit(number: float, unit: str, target: str) -> float:
     return float(q.to(target or "dimensionless").magnitude)
 
 
-def _parameter(src: Source, key: str, spec) -> Parameter:
+def _parameter(src: Source, key: str, spec, system: str | None = None) -> Parameter:
+    """A parameter of the study; bare numbers in the unit of the base case's ``units:``
+    ``system`` (:func:`_default_unit`)."""
     if isinstance(spec, Range):
         extra = tuple(f"{k}={_yaml(v)}" for k, v in spec.with_.items())
         if spec.values is not None:
-            p = _parameter(src, key, spec.values)
+            p = _parameter(src, key, spec.values, system)
             return Parameter(p.key, p.unit, p.values, p.numbers, extra=extra)
-        p = _range(src, key, spec)
+        p = _range(src, key, spec, system)
         return Parameter(p.key, p.unit, p.values, p.numbers, p.log, p.bounds, extra)
     loc = ("parameters", key)
     if isinstance(spec, list):
         if not spec:
             raise src.error(loc, "empty list; expected at least one value")
         parts = [_split(v) for v in spec]
-        default = _default_unit(key)  # a bare number's unit, as in the case file
+        # a bare number's unit, as in the case file (none when no value is a number: time
+        # functions as expressions or mappings carry their own)
+        default = _default_unit(key, system) if any(parts) else ""
         unit = next((p[1] for p in parts if p and p[1]), default)
         numbers = []
         for i, (v, p) in enumerate(zip(spec, parts, strict=True)):
@@ -349,7 +363,7 @@ def _parameter(src: Source, key: str, spec) -> Parameter:
     raise src.error(loc, "expected a list of values or a range mapping")
 
 
-def _range(src: Source, key: str, spec: Range) -> Parameter:
+def _range(src: Source, key: str, spec: Range, system: str | None = None) -> Parameter:
     loc = ("parameters", key)
     kind = "linspace" if spec.linspace is not None else "logspace"
     ends = spec.linspace or spec.logspace
@@ -357,9 +371,10 @@ def _range(src: Source, key: str, spec: Range) -> Parameter:
     if not all(parts):
         raise src.error((*loc, kind), f"got {ends!r}; expected two numbers, optionally with "
                         "units, e.g. ['8 mm', '12 mm']")
-    unit = parts[0][1]
+    default = _default_unit(key, system)  # a bare end's unit, as in the case file
+    unit = parts[0][1] or default
     try:
-        lo, hi = parts[0][0], _to_unit(parts[1][0], parts[1][1], unit)
+        lo, hi = parts[0][0], _to_unit(parts[1][0], parts[1][1] or default, unit)
         if unit:
             guards.check_unit_text(unit, need_number=False)
             units.registry().Quantity(1.0, unit)
@@ -378,8 +393,9 @@ def _range(src: Source, key: str, spec: Range) -> Parameter:
     return Parameter(key, unit, values, numbers, kind == "logspace", (lo, hi))
 
 
-def _base_value(data: dict, p: Parameter):
-    """The base case's value of a parameter, in the parameter's unit where it is a number."""
+def _base_value(data: dict, p: Parameter, system: str | None = None):
+    """The base case's value of a parameter, in the parameter's unit where it is a number (a
+    bare number in the base case is in its ``units:`` ``system``: :func:`_default_unit`)."""
     if p.key == MESH_FREQUENCY:
         return None
     node: Any = data
@@ -389,7 +405,7 @@ def _base_value(data: dict, p: Parameter):
     if parts is None:
         return node
     try:
-        return _to_unit(parts[0], parts[1] or p.unit, p.unit)
+        return _to_unit(parts[0], parts[1] or _default_unit(p.key, system) or p.unit, p.unit)
     except Exception:
         return node
 
