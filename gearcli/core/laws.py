@@ -30,7 +30,7 @@ Arguments of every law (numba tuples, free once inlined):
 * ``acc = (q1, q2, pot, pdamp)``: the running sums; the law returns ``(F, q1, q2, pot, pdamp)``.
 
 Each law updates each sum in one fixed order, the order of the code before the laws were split
-out (issue 27), so results are bit for bit those of that code.
+out (gearcli 0.1.0), so results are bit for bit those of that code.
 """
 
 from gearcli.core.contact import elastic_force, impact_force
