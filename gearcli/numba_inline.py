@@ -32,12 +32,13 @@ laws), is analysed k times. :func:`apply` keeps the IR of each (function, compil
 ``enable_ssa``, which run_untyped_passes sets itself) for the process and gives every later
 site the kept IR; ``inline_ir`` deep-copies the callee's IR before it changes anything
 (numba's comment there: "Always copy the callee IR, it gets mutated"), so the kept IR is
-never changed and each site gets the IR it would have made, up to block labels and SSA
-versions (process-wide counters), so the LLVM IR holds the same code, blocks in another
-order. Measured (bench/RESULTS.md, session 11): the seed's first compilation 0.2-0.7 s
-(~4 %) less CPU time, the kernel's results bit for bit the same (bench/identity.py) and its
-run time the same within the A/B spread. tests/unit/test_numba_inline.py checks that each
-inlined function is analysed once and computes what the Python source computes.
+never changed and each site gets the IR it would have made, up to the names of its
+variables and blocks (numba's process-wide counters). Measured (bench/RESULTS.md, session 11):
+the seed's first compilation ~4 % less CPU time, the kernel's results bit for bit the same
+(bench/identity.py) and its run time the same within the A/B spread.
+tests/unit/test_numba_inline.py checks that each inlined function is analysed once, computes
+what the Python source computes, and that the LLVM IR with and without both fixes is the same
+up to local names.
 
 :func:`apply_when_compiling`
 defers it to numba's first compilation in the process (its ``numba:compile`` event, which a
