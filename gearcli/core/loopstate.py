@@ -68,9 +68,8 @@ LOOP_DTYPE = np.dtype([(n, np.float64) for n in LOOP_FLOAT_NAMES]
                       + [(n, np.int64) for n in LOOP_INT_NAMES], align=True)
 
 # numba itself only now: gearcli.core.jit (imported above) sets its cache folder first
-from llvmlite import ir as llvmir  # noqa: E402
 from numba import from_dtype  # noqa: E402
-from numba.core import cgutils  # noqa: E402
+from numba.core import cgutils, types  # noqa: E402
 from numba.extending import intrinsic  # noqa: E402
 
 #: Its numba type (a record is passed by reference: a pointer to its bytes).
@@ -94,8 +93,9 @@ ROW_DY = N_STAGES + 1
 #: own data type of a record is a byte array ([256 x i8]); zero-filled as that, LLVM's scalar
 #: replacement split two int64 fields (stage, i_out) into eight one-byte registers each,
 #: rebuilt with shifts and ors wherever they were read (bench/RESULTS.md, session 11).
-_FIELDS_LLVM = llvmir.LiteralStructType([llvmir.DoubleType()] * len(LOOP_FLOAT_NAMES)
-                                        + [llvmir.IntType(64)] * len(LOOP_INT_NAMES))
+#: (A numba tuple of the fields' types: its LLVM data type is that struct.)
+_FIELDS = types.Tuple((types.float64,) * len(LOOP_FLOAT_NAMES)
+                      + (types.int64,) * len(LOOP_INT_NAMES))
 
 
 @intrinsic
@@ -107,12 +107,12 @@ def loop_state(typingctx):
     fields by registers (scalar replacement of aggregates): the named fields cost what the
     local variables they replace cost. numba's extension API (an intrinsic: the record's
     bytes as one stack slot in the entry block, numba.core.cgutils.alloca_once, zero-filled
-    there, typed field by field: _FIELDS_LLVM). Python callers (tests) use
+    there, typed field by field: _FIELDS). Python callers (tests) use
     ``np.zeros(1, LOOP_DTYPE)[0]`` instead.
     """
 
     def codegen(context, builder, signature, args):
-        slot = cgutils.alloca_once(builder, _FIELDS_LLVM, name="loop_state")
+        slot = cgutils.alloca_once(builder, context.get_data_type(_FIELDS), name="loop_state")
         slot.align = 16  # the float64 and int64 fields are loaded as aligned
         return builder.bitcast(slot, context.get_value_type(LOOP_RECORD))
 
