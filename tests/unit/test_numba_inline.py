@@ -87,10 +87,9 @@ def test_plain_deepcopy_outside_the_inliner_is_untouched():
     assert numba_inline._deepcopy([1, [2]]) == copy.deepcopy([1, [2]])
 
 
-@pytest.mark.parametrize("x, n", [(0.5, 0), (1.25, 7), (-2.0, 31)])
-def test_nested_inlined_functions_compute_the_python_result(x, n):
-    _installed()
-    inner = numba.njit(inline="always")(_callee)
+def _nested(inner):
+    """``outer`` calls ``middle`` at two sites, ``middle`` calls ``inner`` at two (all three
+    IR-inlined into ``outer``); returns ``(outer, middle)``."""
 
     @numba.njit(inline="always")
     def middle(x, n):
@@ -98,13 +97,20 @@ def test_nested_inlined_functions_compute_the_python_result(x, n):
 
     @numba.njit
     def outer(x, n):
-        s = 0.0
-        for k in range(2):
-            s += middle(x + k, n)
-        return s
+        return middle(x, n) + middle(-x, n)
 
-    expected = sum(_callee(x + k, n) + _callee(2.0 * (x + k), n + 1) for k in range(2))
-    assert outer(x, n) == expected  # the same operations in the same order: exact
+    return outer, middle
+
+
+def _nested_python(x, n):
+    return (_callee(x, n) + _callee(2.0 * x, n + 1)) + (_callee(-x, n) + _callee(-2.0 * x, n + 1))
+
+
+@pytest.mark.parametrize("x, n", [(0.5, 0), (1.25, 7), (-2.0, 31)])
+def test_nested_inlined_functions_compute_the_python_result(x, n):
+    _installed()
+    outer, _ = _nested(numba.njit(inline="always")(_callee))
+    assert outer(x, n) == _nested_python(x, n)  # the same operations in the same order: exact
 
 
 def test_installed_by_the_first_compilation_not_by_the_import():
@@ -222,15 +228,7 @@ def test_each_inlined_function_is_analysed_once():
         pytest.skip("numba's inline_function changed shape: no untyped-IR cache")
     # a function object of its own: the cache of this process may hold _callee already
     fresh = types.FunctionType(_callee.__code__, _callee.__globals__, "fresh")
-    inner = numba.njit(inline="always")(fresh)
-
-    @numba.njit(inline="always")
-    def middle(x, n):
-        return inner(x, n) + inner(2.0 * x, n + 1)
-
-    @numba.njit
-    def outer(x, n):
-        return middle(x, n) + middle(-x, n)
+    outer, middle = _nested(numba.njit(inline="always")(fresh))
 
     analysed = []
     original = inline_closurecall.InlineWorker.run_untyped_passes
@@ -245,4 +243,4 @@ def test_each_inlined_function_is_analysed_once():
     finally:
         inline_closurecall.InlineWorker.run_untyped_passes = original
     assert analysed.count(fresh) == 1 and analysed.count(middle.py_func) == 1
-    assert got == (_callee(0.75, 5) + _callee(1.5, 6)) + (_callee(-0.75, 5) + _callee(-1.5, 6))
+    assert got == _nested_python(0.75, 5)
