@@ -22,7 +22,25 @@ compiled with and without the fix.
 
 :func:`apply` installs it only when numba's inliner still has that shape (a nested ``copy_ir``
 that calls ``deepcopy`` through the module's ``copy``); otherwise numba is left alone, which
-costs compile time only. numba internals are touched nowhere else. :func:`apply_when_compiling`
+costs compile time only. numba internals are touched nowhere else.
+
+A second fix, of the same kind: ``InlineWorker.inline_function`` runs the callee's untyped
+passes (bytecode to canonical IR, with the inlining of its own callees) at every call site,
+so a function inlined at k sites, or inside a function inlined at k sites (the right-hand side
+evaluates ``flank`` for both flank families; ``flank`` inlines its pieces and the contact
+laws), is analysed k times. :func:`apply` keeps the IR of each (function, compile flags but
+``enable_ssa``, which run_untyped_passes sets itself) for the process and gives every later
+site the kept IR; ``inline_ir`` deep-copies the callee's IR before it changes anything
+(numba's comment there: "Always copy the callee IR, it gets mutated"), so the kept IR is
+never changed and each site gets the IR it would have made, up to the names of its
+variables and blocks (numba's process-wide counters). Measured (bench/RESULTS.md, session 11):
+the seed's first compilation ~4 % less CPU time, the kernel's results bit for bit the same
+(bench/identity.py) and its run time the same within the A/B spread.
+tests/unit/test_numba_inline.py checks that each inlined function is analysed once, computes
+what the Python source computes, and that the LLVM IR with and without both fixes is the same
+up to local names.
+
+:func:`apply_when_compiling`
 defers it to numba's first compilation in the process (its ``numba:compile`` event, which a
 cache hit never raises): importing the inliner costs ~50 ms that a run from the cache would
 otherwise pay before numba needs it.
@@ -33,6 +51,7 @@ from __future__ import annotations
 import contextvars
 import copy
 import functools
+import re
 import types
 
 #: Scope copies of the inline_ir call in progress: id(original scope) -> [scope, its copy,
@@ -80,6 +99,41 @@ def _inliner_has_known_shape(module) -> bool:
     return any(c.co_name == "copy_ir" and "deepcopy" in c.co_names for c in nested)
 
 
+#: Untyped IR of the functions inlined so far: (function, flags without enable_ssa, the
+#: caller's ``locals`` types) -> IR.
+_UNTYPED: dict = {}
+
+
+def _flags_key(flags) -> str:
+    return re.sub(r"enable_ssa=\w+,? ?", "", repr(flags))
+
+
+def _inline_function_has_known_shape(module) -> bool:
+    """numba's inline_function still runs the untyped passes, then inline_ir, nothing else."""
+    code = getattr(getattr(module.InlineWorker, "inline_function", None), "__code__", None)
+    return code is not None and set(code.co_names) == {
+        "run_untyped_passes", "__code__", "co_freevars", "inline_ir"}
+
+
+def _install_untyped_cache(module) -> None:
+    if getattr(module.InlineWorker.inline_function, "_gearcli_untyped_cache", False) \
+            or not _inline_function_has_known_shape(module):
+        return
+    original = module.InlineWorker.inline_function
+
+    @functools.wraps(original)
+    def inline_function(self, caller_ir, block, i, function, arg_typs=None):
+        key = (function, _flags_key(self.flags), repr(sorted(self.locals.items())))
+        callee_ir = _UNTYPED.get(key)
+        if callee_ir is None:
+            callee_ir = _UNTYPED[key] = self.run_untyped_passes(function)
+        return self.inline_ir(caller_ir, block, i, callee_ir, function.__code__.co_freevars,
+                              arg_typs=arg_typs)
+
+    inline_function._gearcli_untyped_cache = True
+    module.InlineWorker.inline_function = inline_function
+
+
 def apply() -> bool:
     """Install the fix into numba's inliner; True when it is (or already was) installed,
     False when numba's inliner has another shape (or anything about it is unexpected)."""
@@ -91,6 +145,7 @@ def apply() -> bool:
         if not _inliner_has_known_shape(module):
             return False
         original = module.InlineWorker.inline_ir
+        _install_untyped_cache(module)
     except Exception:  # noqa: BLE001  (a numba we do not know: leave it alone)
         return False
 
@@ -116,6 +171,10 @@ def remove() -> None:
     if getattr(wrapped, "_gearcli_shared_scope", False):
         module.InlineWorker.inline_ir = wrapped.__wrapped__
         module.copy = copy
+    cached = module.InlineWorker.inline_function
+    if getattr(cached, "_gearcli_untyped_cache", False):
+        module.InlineWorker.inline_function = cached.__wrapped__
+    _UNTYPED.clear()
 
 
 def apply_when_compiling() -> None:

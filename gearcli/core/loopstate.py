@@ -69,7 +69,7 @@ LOOP_DTYPE = np.dtype([(n, np.float64) for n in LOOP_FLOAT_NAMES]
 
 # numba itself only now: gearcli.core.jit (imported above) sets its cache folder first
 from numba import from_dtype  # noqa: E402
-from numba.core import cgutils  # noqa: E402
+from numba.core import cgutils, types  # noqa: E402
 from numba.extending import intrinsic  # noqa: E402
 
 #: Its numba type (a record is passed by reference: a pointer to its bytes).
@@ -89,6 +89,15 @@ PH_PLAN = 6  # none: decide the next step or hop
 ROW_DY = N_STAGES + 1
 
 
+#: The record's bytes as LLVM sees them on the stack: one double or i64 per field. numba's
+#: own data type of a record is a byte array ([256 x i8]); zero-filled as that, LLVM's scalar
+#: replacement split two int64 fields (stage, i_out) into eight one-byte registers each,
+#: rebuilt with shifts and ors wherever they were read (bench/RESULTS.md, session 11).
+#: (A numba tuple of the fields' types: its LLVM data type is that struct.)
+_FIELDS = types.Tuple((types.float64,) * len(LOOP_FLOAT_NAMES)
+                      + (types.int64,) * len(LOOP_INT_NAMES))
+
+
 @intrinsic
 def loop_state(typingctx):
     """A loop-state record (zeros) on the stack of the compiled function that calls this.
@@ -98,13 +107,13 @@ def loop_state(typingctx):
     fields by registers (scalar replacement of aggregates): the named fields cost what the
     local variables they replace cost. numba's extension API (an intrinsic: the record's
     bytes as one stack slot in the entry block, numba.core.cgutils.alloca_once, zero-filled
-    there). Python callers (tests) use ``np.zeros(1, LOOP_DTYPE)[0]`` instead.
+    there, typed field by field: _FIELDS). Python callers (tests) use
+    ``np.zeros(1, LOOP_DTYPE)[0]`` instead.
     """
 
     def codegen(context, builder, signature, args):
-        slot = cgutils.alloca_once(builder, context.get_data_type(LOOP_RECORD),
-                                   name="loop_state")
+        slot = cgutils.alloca_once(builder, context.get_data_type(_FIELDS), name="loop_state")
         slot.align = 16  # the float64 and int64 fields are loaded as aligned
-        return slot
+        return builder.bitcast(slot, context.get_value_type(LOOP_RECORD))
 
     return LOOP_RECORD(), codegen
