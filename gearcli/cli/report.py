@@ -36,7 +36,6 @@ def report(
     from gearcli.errors import OutputError
     from gearcli.io.files import check_new_file, check_no_earlier, record_outputs
     from gearcli.io.owner import folder_lock
-    from gearcli.pipeline.monitor import write_run_monitor
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):
@@ -46,7 +45,7 @@ def report(
         check_new_file(target, force, "-o" if out is not None else "the report")
         if out is None:
             check_no_earlier(folder, ("figures", target.name), force, "report's figures")
-        _note_monitor(write_run_monitor(folder), quiet)  # faults: the monitoring section
+        _note_monitor(_write_monitor(folder), quiet)  # faults: the monitoring section
         figures = folder / "figures"
         new_figures = not (figures.exists() or figures.is_symlink())
         try:
@@ -90,7 +89,6 @@ def run(
     from gearcli.errors import InvalidResultError, OutputError
     from gearcli.io.outdir import atomic_dir, check_target
     from gearcli.pipeline.analysis_io import write_analysis
-    from gearcli.pipeline.monitor import write_run_monitor
     from gearcli.pipeline.outputs import write_simulation_files
     from gearcli.report import build_report
 
@@ -113,7 +111,7 @@ def run(
             analysis = api.analyze(tmp, remedies=True)
             doc = write_analysis(analysis)
             rating, rating_note = _write_rating(tmp, result.loaded)
-            monitor_note = write_run_monitor(tmp)  # faults: the monitoring section
+            monitor_note = _write_monitor(tmp)  # faults: the monitoring section
             name = build_report(tmp, fmt, None, units, svg).name
     path = out / name
     if not quiet:
@@ -148,6 +146,19 @@ def _rating_lines(rating) -> list[str]:
                    f"(minimum {p.S_H_min:g}), S_F {p.S_F:.3f}/{g.S_F:.3f} "
                    f"(minimum {p.S_F_min:g}) pinion/gear: {'pass' if col.ok else 'FAIL'}")
     return out
+
+
+def _write_monitor(folder: Path) -> str:
+    """monitor.json for the report of a run with ``faults:`` (pipeline/monitor.write_run_monitor,
+    imported only then: the monitoring model and scipy.signal take ~1.5 s to import, most of a
+    healthy case's report); "" when written or not needed, else why not."""
+    from gearcli.io.results import case_has_faults
+
+    if not case_has_faults(folder):
+        return ""
+    from gearcli.pipeline.monitor import write_run_monitor
+
+    return write_run_monitor(folder)
 
 
 def _note_monitor(why_not: str, quiet: bool) -> None:

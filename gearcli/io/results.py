@@ -295,6 +295,18 @@ def read_parquet_columns(path: Path, key: str, rows: int) -> dict[str, np.ndarra
     return columns
 
 
+def case_has_faults(folder: str | Path) -> bool:
+    """Whether the run in ``folder`` was simulated with ``faults:`` (its manifest's resolved
+    case), read without the time series; False for a folder without a readable manifest (the
+    commands that read the run say what is wrong with it)."""
+    try:
+        manifest = read_json(Path(folder) / "manifest.json")
+    except ResultsError:
+        return False
+    case = manifest.get("resolved_case") if isinstance(manifest, dict) else None
+    return isinstance(case, dict) and bool(case.get("faults"))
+
+
 def read_json(path: Path, remedy: str = "expected gearcli output"):
     """A JSON file of a results folder; unreadable -> ResultsError saying ``remedy``."""
     try:

@@ -57,3 +57,24 @@ def test_report_monitors_the_accelerometer_when_the_case_has_one(tmp_path):
     assert doc["signal_unit"] == "m/s^2"
     te = _run(tmp_path / "te", CRACK)
     assert "Signal: transmission error" in te and r"\[mm\] (the signal of a case without" in te
+
+
+def test_a_healthy_report_does_not_import_the_monitoring_model(tmp_path):
+    # the monitoring model and scipy.signal take ~1.5 s to import, half a healthy report's time
+    # (issue 29's <= 3 s): `report` imports them only for a case with faults
+    import subprocess
+    import sys
+
+    run = tmp_path / "seed"
+    res = runner.invoke(app, ["simulate", str(ROOT / "cases" / "seed.yaml"), "-o", str(run),
+                              "-q", "--set", "run.end_time=0.3"])
+    assert res.exit_code == 0, res.output
+    runner.invoke(app, ["analyze", str(run), "-q", "--no-remedy"])  # exit 4: the seed's findings
+    code = ("import sys\nfrom gearcli.cli import app\ntry:\n"
+            "    app(['report', sys.argv[1], '-q', '--format', 'md'])\nexcept SystemExit:\n"
+            "    pass\nprint(sorted(m for m in ('gearcli.pipeline.monitor', 'scipy.signal') "
+            "if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code, str(run)], capture_output=True,
+                         text=True, timeout=300)
+    assert (run / "report.md").is_file(), out.stderr
+    assert out.stdout.strip().splitlines()[-1] == "[]", out.stdout + out.stderr
