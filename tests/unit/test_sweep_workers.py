@@ -50,13 +50,12 @@ def test_a_killed_worker_fails_only_its_point_and_the_pool_goes_on():
 
 
 def test_a_point_past_its_timeout_fails_and_the_others_finish():
-    t0 = time.monotonic()
+    # the hung point would return "ok" after its 60 s: "timed out" is the timeout acting
     rows = list(workers.processes(_payloads(4, hang=1), 2, toy, timeout=workers.PointTimeout(2)))
     by_point = {r["point"]: r for r in rows}
     assert sorted(by_point) == [0, 1, 2, 3] and len(rows) == 4
     assert by_point[1]["status"] == "failed" and "timed out" in by_point[1]["error"]
     assert by_point[1]["cause"] == workers.ENVIRONMENT
-    assert time.monotonic() - t0 < 50  # not the 60 s the point would hang
 
 
 def test_the_default_timeout_follows_the_slowest_point():
@@ -214,7 +213,6 @@ def test_a_dead_external_dask_worker_times_out_per_point(tmp_path):
             payloads = [{**p, "hang": 60, "marker": str(marker)} for p in _payloads(3)]
             rows = workers.dask(payloads, 1, cluster.scheduler_address, toy,
                                 timeout=workers.PointTimeout(4))
-            first = time.monotonic()
             killer = _kill_when(worker, marker)
             got = list(rows)
             killer.join()
@@ -222,8 +220,8 @@ def test_a_dead_external_dask_worker_times_out_per_point(tmp_path):
             worker.kill()
             worker.wait()
     assert sorted(r["point"] for r in got) == [0, 1, 2]
+    # every point "timed out" (a hung point would have returned "ok" after its 60 s)
     assert all(r["status"] == "failed" and "timed out" in r["error"] for r in got)
-    assert time.monotonic() - first < 60
 
 
 def _kill_when(proc, marker):
