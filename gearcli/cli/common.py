@@ -28,8 +28,9 @@ _OUTPUT_ERRNOS = frozenset(getattr(errno, n) for n in (
 
 def handle_errors(func):
     """Decorator for every command: GearcliError -> one message line + its exit code;
-    a full disk or a closed output stream -> exit 1; Ctrl-C -> 130; anything else -> exit 3
-    with the traceback written to a log file."""
+    a full disk or a closed output stream -> exit 1 (a reader that closed the pipe:
+    silently); Ctrl-C -> 130; anything else -> exit 3 with the traceback written to a log
+    file."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -54,6 +55,10 @@ def handle_errors(func):
             if exc.errno not in _OUTPUT_ERRNOS:
                 return _internal()
             _detach_stdout()
+            if exc.errno == errno.EPIPE and not exc.filename:
+                # the reader closed the pipe (`gearcli simulate -o - | head`): what it wanted
+                # was read, so no message; exit 1 as Python's own SIGPIPE note prescribes
+                raise typer.Exit(int(ExitCode.INPUT)) from None
             where = f"{exc.filename}" if exc.filename else "writing the output"
             _echo_err(f"error: {where}: {exc.strerror or exc}")
             raise typer.Exit(int(ExitCode.INPUT)) from None
