@@ -182,7 +182,7 @@ OUTSIDE_MM = (0.2, 0.4, 0.62, 0.9, 1.2)  # distance s outside the path [mm]
 #: (ρ1/(ρ1 − s)) near the narrow end gives G'''' ≈ 24 c ρ1²/(ρ1 − s)⁵ ≈ 0.1 /mm³ on the seed
 #: 1.2 mm before A (ρ1 = |T1A| = 5.3 mm), so ≤ 4e-11 mm; the table slopes' central
 #: differences (step 1e-5 mm) add ≤ (4/27) h 2 ε_G / 1e-5 ≈ 1e-12 mm. Bound 1e-9 mm, ten
-#: times the sum. Measured: ≤ 3.1e-11 mm (seed), ≤ 1.4e-12 mm (62/62, 28/28).
+#: times the sum. Measured: ≤ 3.1e-11 mm (seed), ≤ 1.0e-12 mm (62/62, 28/28).
 GAP_TOL_MM = 1e-9
 
 
