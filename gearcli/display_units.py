@@ -32,6 +32,7 @@ _TABLE: dict[str, tuple[tuple[str, float], tuple[str, float]]] = {
     "mm/s": (("mm/s", 1.0), ("m/s", 1e-3)),
     "N*mm": (("N·m", 1e-3), ("N·m", 1e-3)),
     "N/mm": (("N/µm", 1e-3), ("N/m", 1e3)),
+    "N/mm (line load)": (("N/mm", 1.0), ("N/m", 1e3)),  # a force per face width, not a stiffness
     "N*s/mm": (("N·s/mm", 1.0), ("N·s/m", 1e3)),
     "N*mm/rad": (("N·m/rad", 1e-3), ("N·m/rad", 1e-3)),
     "N*mm*s/rad": (("N·m·s/rad", 1e-3), ("N·m·s/rad", 1e-3)),

@@ -116,6 +116,20 @@ def _table(title: str, rows: list[tuple[str, float, str]], units: str):
     return t
 
 
+def _sharing_rows(sh) -> list[tuple[str, float | str, str]]:
+    """Pairs in contact and the single-pair limit (MeshSharing), or why there is none."""
+    rows = [("pairs in contact, fewest / most",
+             f"{sh.pairs_in_contact_min} / {sh.pairs_in_contact_max}", "–"),
+            ("share of the cycle with one pair alone", sh.single_pair_share, "fraction")]
+    label = "one pair alone somewhere in the cycle up to"
+    if sh.single_pair_limit_N is None:
+        return [*rows, (label, "any load (a second pair never touches)", "–")]
+    if sh.single_pair_limit_N <= 0.0:
+        return [*rows, (label, "no load (two pairs everywhere, unloaded too)", "–")]
+    return [*rows, (label, sh.single_pair_limit_N, "N"),
+            ("  the same per face width", sh.single_pair_limit_N_per_mm, "N/mm (line load)")]
+
+
 def _print(doc, units: str) -> None:
     from rich.markup import escape
 
@@ -138,6 +152,7 @@ def _print(doc, units: str) -> None:
         ("ISO 6336-1 c_γα b (mean; no low-load factor)",
          st.iso6336_mean_c_gamma_alpha_b_N_mm, "N/mm"),
     ], units))
+    emit(_table("Load sharing", _sharing_rows(doc.sharing), units))
     kv = doc.iso6336_method_b
     if kv is not None:
         rows = [("low-load factor L_f (rating only)", kv.low_load_factor, "–"),

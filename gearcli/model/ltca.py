@@ -134,6 +134,22 @@ class _Position:
         d0 = float(np.nanmin(self.g1 + g2))
         return d0 - float(self.penetrations(d0)[0].max())
 
+    def touch_deflections(self) -> np.ndarray:
+        """Each pair's first-touch deflection d_j [mm], the root of d = G1(x1_j) + G2(x1_j − d)
+        (sorted; +inf where the gear position stays off its table): fixed-point passes, which
+        contract because |G2'| < 1 wherever a pair can touch (G2' is 0 on the path and small
+        outside it, docs/theory.md §3.3)."""
+        d = self.g1.copy()
+        for _ in range(60):
+            g2 = _gaps(self.tables, TABLE_G2, self.x_lo, self.x_hi, self.xs - d)[0]
+            new = np.where(np.isfinite(self.g1 + g2), self.g1 + g2, np.inf)
+            with np.errstate(invalid="ignore"):  # inf - inf where a pair is off its table
+                done = np.all((new == d) | (np.abs(new - d) <= 1e-15 * (1.0 + np.abs(d))))
+            d = new
+            if done:
+                break
+        return np.sort(d)
+
     def solve(self, force_N: float, d0: float) -> float:
         """δ [mm] with total(δ) = F: bracket by doubling steps from the first touch, then Brent."""
         from scipy.optimize import brentq  # only the `mesh` command needs it
@@ -193,6 +209,51 @@ def loaded_mesh(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float, n_slot
             / (2.0 * DELTA_STEP_MM)
         count[i] = int(on.sum())
     return LoadedMesh(roll, force_N, ste, unloaded, x1, forces, stiff, k_mesh, count, cycles)
+
+
+def single_pair_limit(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float,
+                      n_slots: int, law: ForceLaw, *, points_per_cycle: int = 64,
+                      near_mm: float | None = None) -> tuple[float, float]:
+    """The largest static normal force F* [N] at which one pair alone carries the load
+    somewhere in the mesh cycle, and the roll position u* [mm] (0 <= u* < p_b, slot 0's
+    position in its base pitch) where it does (docs/theory.md §4b, "Corner contact").
+
+    At roll position u the second pair touches when the mesh deflection reaches the
+    second-smallest first-touch deflection d_(2)(u), so one pair alone carries every force
+    below F_1(u) = left side of (1) at δ = d_(2)(u) (only the first pair is compressed there),
+    and F* = max_u F_1(u): 0 when two pairs touch at every position even unloaded (ε_α ≥ 2,
+    no gaps), +inf when a second pair never reaches its table. Independent of the corner's
+    own stiffness: a pair starts to touch at zero force. The maximum over ``points_per_cycle``
+    positions of one cycle (or, with ``near_mm``, a known u*) is refined by a bounded scalar
+    search (scipy.optimize.minimize_scalar, Brent's method: F_1 is unimodal around its
+    maximum, where the entering and the leaving neighbour's gaps cross) on the grid cells
+    beside it."""
+    from scipy.optimize import minimize_scalar  # only the `mesh` command needs it
+
+    slot = p_b * np.arange(n_slots)
+    h = p_b / points_per_cycle
+
+    def carried(u: float) -> float:
+        x1 = x_lo + u % p_b + slot  # the pairs repeat every base pitch (as in loaded_mesh)
+        pos = _Position(tables, x_lo, x_hi, x1[x1 <= x_hi], law)
+        d = pos.touch_deflections()
+        if d.size < 2 or not math.isfinite(d[1]):
+            return math.inf
+        return pos.total(float(d[1]))
+
+    if near_mm is None:
+        grid = np.array([carried(i * h) for i in range(points_per_cycle)])
+        best = int(np.argmax(grid))
+        u_best, f_best = best * h, float(grid[best])
+    else:
+        u_best, f_best = near_mm, carried(near_mm)
+    if not math.isfinite(f_best) or f_best <= 0.0:
+        return (f_best if f_best > 0.0 else 0.0), u_best
+    found = minimize_scalar(lambda u: -carried(u), bounds=(u_best - h, u_best + h),
+                            method="bounded", options={"xatol": 1e-9 * p_b})
+    if -float(found.fun) > f_best:
+        return -float(found.fun), float(found.x) % p_b
+    return f_best, u_best
 
 
 def harris_map(tables, x_lo, x_hi, p_b, n_slots, law: ForceLaw, force_N: float,

@@ -17,7 +17,14 @@ import numpy as np
 from gearcli.case.load import LoadedCase, load_case
 from gearcli.errors import CaseError, GearcliError
 from gearcli.model.gap import slot_layout
-from gearcli.model.ltca import LoadedMesh, harris_map, impact_law, loaded_mesh, tooth_law
+from gearcli.model.ltca import (
+    LoadedMesh,
+    harris_map,
+    impact_law,
+    loaded_mesh,
+    single_pair_limit,
+    tooth_law,
+)
 from gearcli.model.stiffness import IsoStiffness
 from gearcli.pipeline.capabilities import not_included
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
@@ -35,6 +42,7 @@ from gearcli.results.models import (
     FeCheck,
     HarrisMap,
     IsoResonance,
+    MeshSharing,
     MeshSte,
     MeshStiffness,
     MeshSummary,
@@ -60,6 +68,9 @@ class MeshAnalysis:
     fe: FeCheck | None = None  #: the tooth law against the FE model (``method="fe"``)
     #: with faults: stiffness and STE over one pinion revolution (pipeline/mesh_faults.py)
     revolution: RevolutionColumns | None = None
+    #: the largest static force [N] with one pair alone somewhere in the cycle (+inf: a
+    #: second pair never touches within the tables; model/ltca.single_pair_limit)
+    single_pair_limit_N: float = math.nan
 
     @property
     def summary(self) -> MeshSummary:
@@ -124,6 +135,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         harris = (harris_map(*args, force, law_of_load=law_of_load, cycles=1,
                              points_per_cycle=points_per_cycle)
                   if harris else None)  # the same roll grid: its row at the load is the STE
+        limit = _single_pair_limit(args, law_of_load)
     except ValueError as exc:  # model.ltca: no equilibrium within its deflection range
         where = f"--load {load_N:g} N" if load_N is not None else f"{force:.6g} N"
         raise (loaded.error(("load", "torque"), f"{exc} at {where}; expected a load the teeth "
@@ -139,7 +151,27 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         deflection = linearised_mesh(case, geo, mesh, tables).loaded_deflection_mm
         revolution = faulted_revolution(case, geo, result, deflection)
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes),
-                        _fe_check(case, geo, force) if method == "fe" else None, revolution)
+                        _fe_check(case, geo, force) if method == "fe" else None, revolution,
+                        limit)
+
+
+def _single_pair_limit(args, law_of_load) -> float:
+    """model.ltca.single_pair_limit [N]. The tooth law's contact term is Weber's secant at the
+    load (docs/theory.md §4b), so its limit F* is the fixed point of F -> limit(law at F),
+    started from the law at the case's force: the secant changes with the logarithm of the
+    load, so a few passes (each near the last one's roll position) settle it to 1e-4 (the
+    tables show four digits)."""
+    limit, u_star = single_pair_limit(*args)
+    if law_of_load is None:
+        return limit
+    for _ in range(8):
+        if not (math.isfinite(limit) and limit > 0.0):
+            return limit
+        new, u_star = single_pair_limit(*args[:-1], law_of_load(limit), near_mm=u_star)
+        if abs(new - limit) <= 1e-4 * limit:
+            return new
+        limit = new
+    return limit
 
 
 def _fe_check(case, geo, force: float) -> FeCheck:
@@ -170,6 +202,20 @@ def _iso_resonance(res: MeshAnalysis) -> IsoResonance:
     return iso
 
 
+def _sharing(res: MeshAnalysis) -> MeshSharing:
+    """Pairs in contact over the cycle and the single-pair limit (force and per face width)."""
+    g = res.geometry.geometry
+    lm, limit = res.loaded, res.single_pair_limit_N
+    finite = math.isfinite(limit)
+    return MeshSharing(
+        pairs_in_contact_min=int(lm.pairs_in_contact.min()),
+        pairs_in_contact_max=int(lm.pairs_in_contact.max()),
+        single_pair_share=float(np.mean(lm.pairs_in_contact == 1)),
+        single_pair_limit_N=json_number(limit) if finite else None,
+        single_pair_limit_N_per_mm=json_number(
+            limit / min(g.pinion.face_width_mm, g.gear.face_width_mm)) if finite else None)
+
+
 def mesh_document(res: MeshAnalysis) -> MeshSummary:
     """The typed document of a mesh analysis (its JSON: ``.to_dict()``; internal units, names
     carry units)."""
@@ -197,6 +243,7 @@ def mesh_document(res: MeshAnalysis) -> MeshSummary:
             double_pair_zone_N_mm=json_number(lm.zone_stiffness_N_mm(2)),
             iso6336_single_pair_c_prime_b_N_mm=res.iso.pair_stiffness_N_mm,
             iso6336_mean_c_gamma_alpha_b_N_mm=res.iso.mesh_stiffness_N_mm),
+        sharing=_sharing(res),
         iso6336_method_b=_iso_resonance(res),
         notes=tuple(res.notes), harris=harris, fe_check=res.fe,
         faulted_revolution=None if res.revolution is None else revolution_summary(

@@ -102,6 +102,20 @@ class MeshStiffness(Document):
 
 
 @dataclasses.dataclass(frozen=True)
+class MeshSharing(Document):
+    """How many pairs carry the load over the cycle, and up to which static force one pair
+    alone carries it somewhere in the cycle (model/ltca.single_pair_limit; docs/theory.md §4b,
+    "Corner contact"): above that force extended contact at the tip corners closes the
+    single-pair zone. None: a second pair never touches within the gap tables."""
+
+    pairs_in_contact_min: int = metric_field("pairs_in_contact_min", 0)
+    pairs_in_contact_max: int = metric_field("pairs_in_contact_max", 0)
+    single_pair_share: float = metric_field("single_pair_share")
+    single_pair_limit_N: float | None = metric_field("single_pair_limit_N", None)
+    single_pair_limit_N_per_mm: float | None = metric_field("single_pair_limit_N_per_mm", None)
+
+
+@dataclasses.dataclass(frozen=True)
 class IsoResonance(Document):
     """ISO 6336-1 Method B resonance data of the pair (gearcli/pipeline/mesh_input.iso_dynamic)
     and, with a case speed, its resonance ratio and K_v."""
@@ -200,6 +214,7 @@ class MeshSummary(Document):
     mesh_cycles: int = metric_field("mesh_cycles", 0)
     ste: MeshSte = metric_field("ste", MeshSte(), nested=MeshSte)
     stiffness: MeshStiffness = metric_field("stiffness", MeshStiffness(), nested=MeshStiffness)
+    sharing: MeshSharing = metric_field("sharing", MeshSharing(), nested=MeshSharing)
     iso6336_method_b: IsoResonance = metric_field("iso6336_method_b", IsoResonance(),
                                                   nested=IsoResonance)
     notes: tuple[str, ...] = metric_field("notes", ())

@@ -9,6 +9,7 @@ import math
 from gearcli.results.analysis import AnalysisMetrics, Remedy
 from gearcli.results.models import (
     IsoResonance,
+    MeshSharing,
     MeshSte,
     MeshStiffness,
     MeshSummary,
@@ -122,7 +123,7 @@ def json_schema(kind: str = "summary") -> dict:
                 "required": ["schema_version", "case", "static", "pinion", "gear"]}
     if kind == "mesh":
         props = typed(MeshSummary)["properties"]
-        for group in (MeshSte, MeshStiffness, IsoResonance):
+        for group in (MeshSte, MeshStiffness, MeshSharing, IsoResonance):
             name = next(f.name for f in dataclasses.fields(MeshSummary)
                         if f.metadata.get("nested") is group)
             props[name] = typed(group)
