@@ -41,9 +41,6 @@ BOUNDARY = {"io", "results", "core"}
 TABLE_COLUMNS = {"t_s", "frequency_Hz"}
 #: Reads found that are not typed, with the reason: (file, enclosing function) -> why.
 REMAINING = {
-    ("cli/modal.py", "_print"):
-        "ModalDocument.linearisation is a Mapping field (gearcli/results/models.py), not a "
-        "document with fields yet",
     ("cli/rate.py", "print_rating"):
         "the rating document (gearcli rate) printed from its dict (to_dict()), not its fields",
     ("report/rating.py", "rating_table"):
