@@ -25,6 +25,7 @@ from gearcli.results import (
     Summary,
     SummaryDocument,
 )
+from gearcli.results.rating_document import RatingDocument
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -246,6 +247,23 @@ def read_stress(path: Path) -> StressDocument:
         return StressDocument.from_document(doc)
     except (TypeError, AttributeError) as exc:
         raise ResultsError(f"{path}: unreadable stress document ({exc}); run gearcli stress "
+                           "again") from None
+
+
+def read_rating(path: Path) -> RatingDocument:
+    """rating.json of `gearcli run` or `gearcli rate -o` as its typed document (the
+    schema_version checked); a file the report cannot read is a one-line ResultsError."""
+    doc = read_json(path, "run gearcli run again")
+    if not isinstance(doc, dict) or not isinstance(doc.get("iso"), dict):
+        raise ResultsError(f"{path}: not a rating.json of gearcli rate or run; run it again")
+    version = doc.get("schema_version", RESULTS_SCHEMA_VERSION)
+    if version != RESULTS_SCHEMA_VERSION:
+        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
+                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli run)")
+    try:
+        return RatingDocument.from_document(doc)
+    except (TypeError, AttributeError) as exc:
+        raise ResultsError(f"{path}: unreadable rating ({exc}); run gearcli run "
                            "again") from None
 
 
