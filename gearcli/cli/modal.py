@@ -89,11 +89,11 @@ def _print(doc, checks, units: str) -> None:
 
     emit(
         f"[bold]{escape(doc.case)}[/bold]: {doc.model} model, drive '{escape(doc.drive)}', "
-        f"linearised at F = {lin['static_force_N']:.1f} N: k_mesh = "
-        f"{q(lin['mesh_stiffness_N_mm'], 'N/mm')} (single pair "
-        f"{q(lin['single_pair_stiffness_N_mm'], 'N/mm', 'single-pair')}, double pair "
-        f"{q(lin['double_pair_stiffness_N_mm'], 'N/mm', 'double-pair')}), c_mesh = "
-        f"{q(lin['mesh_damping_Ns_mm'], 'N*s/mm')}, friction off")
+        f"linearised at F = {lin.static_force_N:.1f} N: k_mesh = "
+        f"{q(lin.mesh_stiffness_N_mm, 'N/mm')} (single pair "
+        f"{q(lin.single_pair_stiffness_N_mm, 'N/mm', 'single-pair')}, double pair "
+        f"{q(lin.double_pair_stiffness_N_mm, 'N/mm', 'double-pair')}), c_mesh = "
+        f"{q(lin.mesh_damping_Ns_mm, 'N*s/mm')}, friction {lin.friction}")
     t = Table(title="Modes", title_justify="left")
     for col in ("mode", "f [Hz]", "zeta", "description",
                 "shape as lengths, rotations as r_b θ (largest = 1): "

@@ -9,6 +9,12 @@ import typer
 from gearcli.cli.app import app
 from gearcli.cli.common import emit, handle_errors, table_options
 from gearcli.io.files import write_stdout
+from gearcli.results.rating_document import (
+    DutyCycleDocument,
+    EditionRowDocument,
+    RatingDocument,
+    RatingResultDocument,
+)
 
 
 @app.command()
@@ -55,11 +61,11 @@ def rate(
     if out is not None:
         check_target(out, force)  # before the work, not after
     result = rate_case(case, set_)
-    doc = result.to_dict()
+    doc = result.document()
     if out is not None:
-        _write(result, doc, out, force, set_)
+        _write(result, doc.to_dict(), out, force, set_)
     if as_json:
-        write_stdout(json.dumps(doc, indent=2) + "\n")
+        write_stdout(json.dumps(doc.to_dict(), indent=2) + "\n")
     elif not quiet:
         print_rating(doc)
         if out is not None:
@@ -109,30 +115,30 @@ def _table(title: str, columns: list[tuple[str, str]]):
     return t
 
 
-def gear_rows(doc: dict) -> list[tuple[str, str, str, str, str, str]]:
+def gear_rows(column: RatingResultDocument) -> list[tuple[str, str, str, str, str, str]]:
     """(symbol, pinion, gear, unit, clause, name) rows: the two gears' factors side by side
     (same order; M1/M2 and Z_B/Z_D share a row)."""
     rows = []
-    for p, g in zip(doc["pinion"]["factors"], doc["gear"]["factors"], strict=True):
-        sym = p["symbol"] if p["symbol"] == g["symbol"] else f"{p['symbol']} / {g['symbol']}"
-        rows.append((sym, fmt(p["value"]), fmt(g["value"]), p["unit"], p["clause"], p["name"]))
+    for p, g in zip(column.pinion.factors, column.gear.factors, strict=True):
+        sym = p.symbol if p.symbol == g.symbol else f"{p.symbol} / {g.symbol}"
+        rows.append((sym, fmt(p.value), fmt(g.value), p.unit, p.clause, p.name))
     return rows
 
 
-def print_rating(doc: dict) -> None:
+def print_rating(doc: RatingDocument) -> None:
     """The rating as tables: pair factors, the gears' factors side by side, the verdicts."""
     from rich.markup import escape
 
-    iso, load = doc["iso"], doc["load"]
-    emit(f"[bold]{escape(doc['case'])}[/bold]: ISO 6336:{iso['edition']} Method B, pinion "
-                  f"torque {fmt(load['pinion_torque_Nm'])} N·m per mesh path at "
-                  f"{fmt(load['pinion_speed_rpm'])} rpm, life {fmt(load['life_h'])} h; K_v "
-                  f"{load['dynamic_factor_source']}")
+    iso, load = doc.iso, doc.load
+    emit(f"[bold]{escape(doc.case)}[/bold]: ISO 6336:{iso.edition} Method B, pinion "
+         f"torque {fmt(load.pinion_torque_Nm)} N·m per mesh path at "
+         f"{fmt(load.pinion_speed_rpm)} rpm, life {fmt(load.life_h)} h; K_v "
+         f"{load.dynamic_factor_source}")
     pair = _table("Pair (ISO 6336-1, -2)", [("symbol", "left"), ("value", "right"),
                                             ("unit", "left"), ("clause", "left"),
                                             ("name", "left")])
-    for f in iso["pair"]:
-        pair.add_row(f["symbol"], fmt(f["value"]), f["unit"], f["clause"], f["name"])
+    for f in iso.pair:
+        pair.add_row(f.symbol, fmt(f.value), f.unit, f.clause, f.name)
     emit(pair)
     gears = _table("Pinion and gear (ISO 6336-2, -3, -5)", [
         ("symbol", "left"), ("pinion", "right"), ("gear", "right"), ("unit", "left"),
@@ -140,39 +146,45 @@ def print_rating(doc: dict) -> None:
     for row in gear_rows(iso):
         gears.add_row(*row)
     emit(gears)
-    emit(verdict_table(iso, doc.get("duty_cycle")))
-    if doc.get("editions"):
-        emit(edition_table(doc["editions"], iso["edition"]))
-    for note in doc["notes"]:
+    emit(verdict_table(iso, doc.duty_cycle))
+    if doc.editions:
+        emit(edition_table(doc.editions, iso.edition))
+    for note in doc.notes:
         emit(f"note: {escape(note)}")
-    emit(f"verdict: {doc['verdict'].upper()}")
+    emit(f"verdict: {doc.verdict.upper()}")
 
 
-def verdict_table(iso: dict, duty: dict | None):
+#: The rows of the safeties table: (safety, minimum, verdict) fields of a gear's rating.
+_SAFETIES = (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending"))
+
+
+def verdict_table(column: RatingResultDocument, duty: DutyCycleDocument | None):
     """S_H, S_F of each gear against their minimums, with lives and damages."""
     t = _table("Safeties", [("", "left"), ("pinion", "right"), ("gear", "right"),
                             ("minimum", "right"), ("verdict", "left")])
-    p, g = iso["pinion"], iso["gear"]
-    for key, mini, check in (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending")):
-        verdict = ", ".join(f"{x['name']} {x[check]}" for x in (p, g))
-        t.add_row(f"{key} ({check})", fmt(p[key]), fmt(g[key]), fmt(p[mini]), verdict)
-    t.add_row("life at S_H,min (h)", fmt(p["life_pitting_h"]), fmt(g["life_pitting_h"]), "", "")
-    t.add_row("life at S_F,min (h)", fmt(p["life_bending_h"]), fmt(g["life_bending_h"]), "", "")
+    p, g = column.pinion, column.gear
+    for safety, minimum, check in _SAFETIES:
+        verdict = ", ".join(f"{x.name} {getattr(x, check)}" for x in (p, g))
+        t.add_row(f"{safety} ({check})", fmt(getattr(p, safety)), fmt(getattr(g, safety)),
+                  fmt(getattr(p, minimum)), verdict)
+    t.add_row("life at S_H,min (h)", fmt(p.life_pitting_h), fmt(g.life_pitting_h), "", "")
+    t.add_row("life at S_F,min (h)", fmt(p.life_bending_h), fmt(g.life_bending_h), "", "")
     if duty is not None:
-        dp, dg = duty["pinion"], duty["gear"]
+        dp, dg = duty.pinion, duty.gear
         for kind in ("pitting", "bending"):
-            ok = all(d is not None and d <= 1.0 for d in (dp[kind], dg[kind]))
-            t.add_row(f"duty-cycle damage, {kind}", fmt(dp[kind]), fmt(dg[kind]), "1",
+            damages = (getattr(dp, kind), getattr(dg, kind))
+            ok = all(d is not None and d <= 1.0 for d in damages)
+            t.add_row(f"duty-cycle damage, {kind}", *map(fmt, damages), "1",
                       "pass" if ok else "fail")
     return t
 
 
-def edition_table(rows: list[dict], followed: str):
+def edition_table(rows: tuple[EditionRowDocument, ...], followed: str):
     """The edition-dependent factors under ISO 6336:2006 and :2019 (model/iso6336/editions)."""
     t = _table(f"ISO 6336:2006 and :2019 (this rating follows {followed})", [
         ("symbol", "left"), ("gear", "left"), ("2006", "right"), ("2019", "right"),
         ("unit", "left"), ("", "left")])
     for r in rows:
-        t.add_row(r["symbol"], r["gear"], f"{r['2006']:.6g}", f"{r['2019']:.6g}", r["unit"],
-                  "differs" if r["differs"] else "same")
+        t.add_row(r.symbol, r.gear, f"{r.value_2006:.6g}", f"{r.value_2019:.6g}", r.unit,
+                  "differs" if r.differs else "same")
     return t

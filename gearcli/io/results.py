@@ -25,6 +25,7 @@ from gearcli.results import (
     Summary,
     SummaryDocument,
 )
+from gearcli.results.rating_document import RatingDocument
 
 FILES = ("manifest.json", "summary.json", "timeseries.csv")
 #: The time series may also be Parquet (`gearcli simulate --format parquet`).
@@ -232,21 +233,37 @@ def read_analysis(path: Path) -> AnalysisDocument:
                            "again") from None
 
 
+def _typed(cls, path: Path, doc: dict, what: str, command: str):
+    """The stored ``doc`` of ``path`` as the document ``cls``, its schema_version checked; a
+    document of another version or one it cannot read is a ResultsError saying to rerun
+    `gearcli COMMAND`."""
+    version = doc.get("schema_version", RESULTS_SCHEMA_VERSION)  # absent: before versions
+    if version != RESULTS_SCHEMA_VERSION:
+        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
+                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli {command})")
+    try:
+        return cls.from_document(doc)
+    except (TypeError, AttributeError) as exc:
+        raise ResultsError(f"{path}: unreadable {what} ({exc}); run gearcli {command} "
+                           "again") from None
+
+
 def read_stress(path: Path) -> StressDocument:
     """stress.json of `gearcli stress` as its typed document (the schema_version checked)."""
     doc = read_json(path, "run gearcli stress again")
     if not isinstance(doc, dict) or not all(isinstance(doc.get(k), dict)
                                             for k in ("static", "pinion", "gear")):
         raise ResultsError(f"{path}: not a stress.json of gearcli stress; run it again")
-    version = doc.get("schema_version", RESULTS_SCHEMA_VERSION)
-    if version != RESULTS_SCHEMA_VERSION:
-        raise ResultsError(f"{path}: schema_version {version!r}; this gearcli reads "
-                           f"{RESULTS_SCHEMA_VERSION} (rerun gearcli stress)")
-    try:
-        return StressDocument.from_document(doc)
-    except (TypeError, AttributeError) as exc:
-        raise ResultsError(f"{path}: unreadable stress document ({exc}); run gearcli stress "
-                           "again") from None
+    return _typed(StressDocument, path, doc, "stress document", "stress")
+
+
+def read_rating(path: Path) -> RatingDocument:
+    """rating.json of `gearcli run` or `gearcli rate -o` as its typed document (the
+    schema_version checked); a file the report cannot read is a one-line ResultsError."""
+    doc = read_json(path, "run gearcli run again")
+    if not isinstance(doc, dict) or not isinstance(doc.get("iso"), dict):
+        raise ResultsError(f"{path}: not a rating.json of gearcli rate or run; run it again")
+    return _typed(RatingDocument, path, doc, "rating", "run")
 
 
 #: Most values (rows x columns) of a Parquet time series that are decoded: 2e8 float64 are

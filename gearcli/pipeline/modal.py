@@ -36,7 +36,7 @@ from gearcli.pipeline.structure import build_structure, refuse_unsupported
 from gearcli.results import Check, ModalDocument, Mode, StoredMode
 from gearcli.results.metrics import json_number
 from gearcli.results.models import Crossing as CrossingDoc
-from gearcli.results.models import OrderMargin
+from gearcli.results.models import Linearisation, OrderMargin
 
 DEG = 180.0 / math.pi
 #: Default upper end of the speed range: this multiple of the case speed.
@@ -236,18 +236,18 @@ def modal_document(res: ModalAnalysis) -> ModalDocument:
             "pinion_mass_t": st.m1_t if st.lateral else None,
             "gear_mass_t": st.m2_t if st.lateral else None,
         },
-        linearisation={
-            "static_force_N": m.static_force_N,
-            "static_deflection_mm": m.static_deflection_mm,
-            "pair_stiffness_N_mm": m.pair_stiffness_N_mm,
-            "mesh_stiffness_N_mm": m.mesh_stiffness_N_mm,
-            "single_pair_stiffness_N_mm": json_number(m.single_pair_stiffness_N_mm),
-            "double_pair_stiffness_N_mm": json_number(m.double_pair_stiffness_N_mm),
-            "mesh_damping_Ns_mm": m.mesh_damping_Ns_mm,
-            "motor_curve_damping_Nmms_rad": res.system.motor_curve_damping_Nmms_rad,
-            "load_quadratic_damping_Nmms_rad": res.system.load_quadratic_damping_Nmms_rad,
-            "friction": "off",
-        },
+        linearisation=Linearisation(
+            static_force_N=m.static_force_N,
+            static_deflection_mm=m.static_deflection_mm,
+            pair_stiffness_N_mm=m.pair_stiffness_N_mm,
+            mesh_stiffness_N_mm=m.mesh_stiffness_N_mm,
+            single_pair_stiffness_N_mm=json_number(m.single_pair_stiffness_N_mm),
+            double_pair_stiffness_N_mm=json_number(m.double_pair_stiffness_N_mm),
+            mesh_damping_Ns_mm=m.mesh_damping_Ns_mm,
+            motor_curve_damping_Nmms_rad=res.system.motor_curve_damping_Nmms_rad,
+            load_quadratic_damping_Nmms_rad=res.system.load_quadratic_damping_Nmms_rad,
+            friction="off",
+        ),
         modes=tuple(Mode(
             mode=md.number, rigid_body=md.rigid, natural_frequency_Hz=md.natural_frequency_Hz,
             damping_ratio=md.damping_ratio, damped_frequency_Hz=md.damped_frequency_Hz,

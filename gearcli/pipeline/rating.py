@@ -39,6 +39,7 @@ from gearcli.pipeline.capabilities import not_included
 from gearcli.pipeline.geometry import GeometryResult, run_geometry
 from gearcli.pipeline.mesh_input import load_torque_Nmm
 from gearcli.results.models import IsoResonance
+from gearcli.results.rating_document import IsoDynamic, PeakSafety, RatingDocument
 
 __all__ = ["SimulatedLoad", "CaseRating", "PairInspection", "rating_input", "rate_case",
            "case_inspection", "simulated_load", "simulated_load_of", "RPM_PER_RAD_S"]
@@ -67,25 +68,6 @@ class SimulatedLoad:
 
 
 @dataclass(frozen=True)
-class PeakSafety:
-    """One gear's safeties from the run's peak stresses (:func:`_peaks`); a field is None
-    when the run has no loaded sample of that stress."""
-
-    sigma_H_peak_MPa: float | None = None  #: σ_H peak of `gearcli stress` [MPa]
-    sigma_H_MPa: float | None = None  #: σ_H,sim = σ_H,peak √(K_A K_γ K_Hβ) [MPa]
-    S_H: float | None = None
-    S_H_min: float | None = None
-    sigma_F_peak_MPa: float | None = None  #: σ_F peak of `gearcli stress` [MPa]
-    sigma_F_MPa: float | None = None  #: σ_F,sim = σ_F,peak K_A K_γ K_Fβ Y_β Y_B Y_DT [MPa]
-    S_F: float | None = None
-    S_F_min: float | None = None
-
-    def to_dict(self) -> dict:
-        """rating.json's ``simulated.peaks.<gear>``: the fields that have a value."""
-        return {k: v for k, v in dataclasses.asdict(self).items() if v is not None}
-
-
-@dataclass(frozen=True)
 class CaseRating:
     """The rating of a case: the ISO column, the duty cycle's damage, the simulated column."""
 
@@ -93,7 +75,7 @@ class CaseRating:
     rating_input: RatingInput  #: what was rated (engineering units)
     iso: RatingResult  #: K_v: a number or ISO 6336-1 Method B
     dynamic_factor_source: str  #: "given", "ISO 6336-1 Method B (...)"
-    iso_dynamic: dict | None  #: Method B data when K_v is 'iso' (resonance ratio, range)
+    iso_dynamic: IsoDynamic | None  #: Method B data when K_v is 'iso' (resonance ratio, range)
     duty_cycle: DutyCycleDamage | None
     simulated: RatingResult | None  #: K_v (and K_γ) of the run
     simulated_peaks: dict[str, PeakSafety] | None  #: per gear name: the peak stresses' safeties
@@ -124,26 +106,15 @@ class CaseRating:
                 f"{'pass' if self.ok else 'fail'}; {column(self.iso)} with K_v "
                 f"{self.rating_input.dynamic_factor:.4g} ({self.dynamic_factor_source}){sim}>")
 
-    def to_dict(self) -> dict:
-        from gearcli.io.manifest import RESULTS_SCHEMA_VERSION
+    def document(self) -> RatingDocument:
+        """rating.json, typed (gearcli/results/rating_document.py)."""
+        from gearcli.pipeline.rating_document import rating_document
 
-        inp = self.rating_input
-        return {
-            "schema_version": RESULTS_SCHEMA_VERSION, "case": self.name,
-            "method": "ISO 6336 Method B", "edition": self.iso.edition,
-            "verdict": "pass" if self.ok else "fail",
-            "load": {"pinion_torque_Nm": inp.pinion_torque_Nm,
-                     "pinion_speed_rpm": inp.pinion_speed_rpm, "life_h": inp.life_h,
-                     "dynamic_factor_source": self.dynamic_factor_source,
-                     "iso_dynamic": self.iso_dynamic},
-            "iso": self.iso.to_dict(),
-            "duty_cycle": None if self.duty_cycle is None else self.duty_cycle.to_dict(),
-            "simulated": None if self.simulated is None else {
-                **self.simulated.to_dict(), "peaks": None if self.simulated_peaks is None
-                else {k: v.to_dict() for k, v in self.simulated_peaks.items()}},
-            "editions": [r.to_dict() for r in self.editions],
-            "notes": list(self.notes),
-        }
+        return rating_document(self)
+
+    def to_dict(self) -> dict:
+        """rating.json (what `gearcli rate --json` prints)."""
+        return self.document().to_dict()
 
 
 def _pinion_torque_Nm(case: Case, geo: GeometryResult, load_torque_Nmm: float) -> float:
@@ -210,24 +181,23 @@ def _gear_input(case: Case, geo: GeometryResult, role: str, limits, f_pb_um: flo
         ball_diameter_mm=rg.ball_diameter)
 
 
-def _iso_kv(iso: IsoResonance, speed_rpm: float, k_a: float) -> tuple[float, dict]:
+def _iso_kv(iso: IsoResonance, speed_rpm: float, k_a: float) -> tuple[float, IsoDynamic]:
     """K_v by ISO 6336-1 Method B at the pinion speed with the line load F_t K_A/b."""
     from gearcli.model.iso_kv import dynamic_factor
     from gearcli.pipeline.mesh_input import kv_arguments
 
-    args = kv_arguments(iso)
-    args["line_load_N_mm"] = iso.line_load_N_mm * k_a
+    line_load_N_mm = iso.line_load_N_mm * k_a
     ratio = speed_rpm / iso.resonance_speed_rpm
-    kv = dynamic_factor(ratio, **args)
-    info = {"resonance_speed_rpm": iso.resonance_speed_rpm, "resonance_ratio": ratio,
-            "speed_range": str(kv.range_name), "line_load_N_mm": args["line_load_N_mm"],
-            "c_prime_N_mm_um": iso.c_prime_N_mm_um, "f_pb_eff_um": iso.f_pb_eff_um,
-            "tip_relief_um": iso.tip_relief_um, "k_v": float(kv.k_v)}
+    kv = dynamic_factor(ratio, **{**kv_arguments(iso), "line_load_N_mm": line_load_N_mm})
+    info = IsoDynamic(resonance_speed_rpm=iso.resonance_speed_rpm, resonance_ratio=ratio,
+                      speed_range=str(kv.range_name), line_load_N_mm=line_load_N_mm,
+                      c_prime_N_mm_um=iso.c_prime_N_mm_um, f_pb_eff_um=iso.f_pb_eff_um,
+                      tip_relief_um=iso.tip_relief_um, k_v=float(kv.k_v))
     return float(kv.k_v), info
 
 
 def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
-                 ) -> tuple[RatingInput, str, dict | None]:
+                 ) -> tuple[RatingInput, str, IsoDynamic | None]:
     """(the RatingInput of the case, the source of its K_v, the Method B data or None)."""
     from gearcli.pipeline.mesh_input import iso_dynamic
 
@@ -248,7 +218,7 @@ def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
         k_v, source, info = r.dynamic_factor, "given", None
     else:
         k_v, info = _iso_kv(iso, speed_rpm, r.application_factor)
-        source = f"ISO 6336-1 Method B ({info['speed_range']}, N = {info['resonance_ratio']:.3g})"
+        source = f"ISO 6336-1 Method B ({info.speed_range}, N = {info.resonance_ratio:.3g})"
     gears = [_gear_input(case, geo, role, lim, iso.f_pb_eff_um)
              for role, lim in zip(_ROLES, limits, strict=True)]
     g, rack = geo.geometry, case.gears.rack

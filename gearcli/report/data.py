@@ -17,12 +17,13 @@ from gearcli.io.results import (
     StoredRun,
     read_analysis,
     read_columns,
-    read_json,
+    read_rating,
     read_run,
     read_stress,
 )
 from gearcli.model.geometry import PairGeometry, compute_pair_geometry
 from gearcli.results import AnalysisDocument, AnalysisMetrics, StressDocument, Summary
+from gearcli.results.rating_document import RatingDocument
 
 
 @dataclass(frozen=True)
@@ -47,7 +48,7 @@ class ReportData:
     #: the stored case, typed and in internal units (gearcli.case.schema.Case)
     case: Case | None = None
     #: rating.json of `gearcli run` (ISO 6336: the ISO and the simulated column), when written
-    rating: dict | None = None
+    rating: RatingDocument | None = None
 
     @property
     def folder(self) -> Path:
@@ -129,6 +130,6 @@ def load_report_data(folder: str | Path, units: str = "engineering") -> ReportDa
         zoom = read_columns(run.folder / "zoom.csv", "t_s")
     rating = None
     if (run.folder / "rating.json").is_file():
-        rating = read_json(run.folder / "rating.json")
+        rating = read_rating(run.folder / "rating.json")
     return ReportData(run, analysis, spectrum, geometry, error, stress, stress_series, zoom,
                       units, gear_side_damping(loaded.case), loaded.case, rating)

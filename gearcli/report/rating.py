@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from gearcli.case.schema import Case
 from gearcli.report.tables import Table, fmt
+from gearcli.results.rating_document import RatingDocument
 
 _ROLES = ("pinion", "gear")
 _LIMITS = ("contact_fatigue_limit", "bending_fatigue_limit")
@@ -27,27 +28,27 @@ def missing_limits(case: Case | None) -> list[str]:
     return out
 
 
-def rating_table(rating: dict) -> Table:
+def rating_table(rating: RatingDocument) -> Table:
     """One row per gear and safety: ISO, simulated, minimum, verdict of each column."""
-    iso, sim = rating["iso"], rating.get("simulated")
-    peaks = (sim or {}).get("peaks") or {}
+    iso, sim = rating.iso, rating.simulated
+    peaks = sim.peaks if sim is not None else None
     rows, status = [], []
     for role in _ROLES:
         for s, lim, verdict in (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending")):
-            a = iso[role]
-            b = sim[role] if sim else None
-            peak = peaks.get(role, {}).get(s)
-            rows.append((role, s, fmt(a[s]), fmt(b[s]) if b else "–",
-                         "–" if peak is None else fmt(peak), fmt(a[lim]),
-                         a[verdict], b[verdict] if b else "–"))
-            ok = a[verdict] == "pass" and (b is None or b[verdict] == "pass")
+            a = getattr(iso, role)
+            b = getattr(sim, role) if sim is not None else None
+            peak = getattr(getattr(peaks, role), s) if peaks is not None else None
+            a_verdict, b_verdict = getattr(a, verdict), getattr(b, verdict, "–")
+            rows.append((role, s, fmt(getattr(a, s)), fmt(getattr(b, s)) if b else "–",
+                         "–" if peak is None else fmt(peak), fmt(getattr(a, lim)),
+                         a_verdict, b_verdict))
+            ok = a_verdict == "pass" and (b is None or b_verdict == "pass")
             status.append("pass" if ok else "fail")
-    load = rating.get("load", {})
-    note = (f"ISO 6336 Method B ({rating.get('edition', '')}); ISO column K_v: "
-            f"{load.get('dynamic_factor_source', '')}; simulated column K_v = the run's "
+    note = (f"ISO 6336 Method B ({rating.edition}); ISO column K_v: "
+            f"{rating.load.dynamic_factor_source}; simulated column K_v = the run's "
             "F_max/F_static; stress peaks: σ_G over the run's peak stresses (gearcli stress, "
             "their positions starred on the stress figure) times √(K_A K_γ K_Hβ) resp. "
-            "K_A K_γ K_Fβ Y_β Y_B Y_DT. Verdict: " + str(rating.get("verdict", "")) + ".")
+            "K_A K_γ K_Fβ Y_β Y_B Y_DT. Verdict: " + rating.verdict + ".")
     return Table("Rating (ISO 6336): safety factors, ISO beside simulated",
                  ("gear", "safety", "ISO", "simulated", "simulated, stress peaks", "minimum",
                   "verdict ISO", "verdict simulated"), rows, note=note, status=status)

@@ -1,5 +1,6 @@
 """Typed result documents: the summary of a run, the metrics of its analysis, the
-stress peaks of a gear and the modes of the linearised model, as frozen dataclasses.
+stress peaks of a gear, the modes of the linearised model and the ISO 6336 rating
+(rating.json), as frozen dataclasses.
 
 Each field's name is its key in the JSON document (summary.json ``scalars``, analysis.json
 ``metrics``, stress.json per gear, the modal JSON's ``modes``) and carries its unit in the name
@@ -19,9 +20,10 @@ from gearcli.results.analysis import (
     SpectrumLine,
 )
 from gearcli.results.fields import PLACES, Document, shown, shown_values
-from gearcli.results.models import MeshSummary, ModalDocument, Mode
+from gearcli.results.models import Linearisation, MeshSummary, ModalDocument, Mode
 from gearcli.results.monitor import MonitorDocument, ShaftMonitor, SidebandRow
 from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
+from gearcli.results.rating_document import RatingDocument
 from gearcli.results.run import (
     EnergyBalance,
     PointLines,
@@ -42,4 +44,5 @@ __all__ = ["SCHEMA_VERSION", "Summary", "SummaryDocument", "EnergyBalance", "Sto
            "GearStress", "StressDocument", "Mode", "ModalDocument", "MeshSummary", "PointLines",
            "SpeedLevel", "MonitorDocument", "ShaftMonitor", "Document", "PLACES", "shown",
            "shown_values", "sweep_metrics", "json_schema", "KINDS", "GearSafeties",
-           "RatingColumn", "RatingSummary", "SensorChannel", "SensorsDocument", "SidebandRow"]
+           "RatingColumn", "RatingSummary", "SensorChannel", "SensorsDocument", "SidebandRow",
+           "Linearisation", "RatingDocument"]

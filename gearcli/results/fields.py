@@ -28,7 +28,8 @@ def metric_field(key: str, default: Any = math.nan, show: str = "", *, required:
     (:data:`PLACES`, space-separated); ``required``: a stored document without it is refused
     (gearcli/io/results.py); ``omit_none``: left out of the JSON when None; ``nested``: the
     document class of its value (a tuple of them when the default is a tuple); ``extra``
-    further metadata."""
+    further metadata (``json_key``: the JSON key where it is not a Python name, e.g.
+    "2006")."""
     m = METRICS.get(metric or key)
     places = frozenset(show.split())
     assert places <= set(PLACES), places
@@ -52,7 +53,8 @@ def _plain(value):
 
 
 class Document:
-    """A result document: ``to_dict()`` is its JSON (fields in order, the keys of the files),
+    """A result document: ``to_dict()`` is its JSON (fields in order, the keys of the files:
+    the field names, or their ``json_key``),
     ``from_document()`` reads it back (absent keys take the field's default)."""
 
     def to_dict(self) -> dict[str, Any]:
@@ -61,7 +63,7 @@ class Document:
             value = getattr(self, f.name)
             if value is None and f.metadata.get("omit_none"):
                 continue
-            out[f.name] = _plain(value)
+            out[f.metadata.get("json_key", f.name)] = _plain(value)
         return out
 
     def labelled(self, units: str = "engineering") -> list[str]:
@@ -90,9 +92,10 @@ class Document:
     def from_document(cls, doc: Mapping[str, Any]):
         values = {}
         for f in dataclasses.fields(cls):
-            if f.name not in doc:
+            key = f.metadata.get("json_key", f.name)
+            if key not in doc:
                 continue
-            value, nested = doc[f.name], f.metadata.get("nested")
+            value, nested = doc[key], f.metadata.get("nested")
             if nested is not None and value is not None:
                 value = _read_nested(nested, value, f.metadata.get("mapping_depth", 0))
             elif isinstance(value, list):

@@ -51,6 +51,36 @@ class OrderMargin(Document):
     resonant_peak: bool = metric_field("resonant_peak", False)
 
 
+def _damping(key: str, label: str, unit: str):
+    return metric_field(key, label=label, unit=unit)
+
+
+@dataclasses.dataclass(frozen=True)
+class Linearisation(Document):
+    """The linearised model's mesh and dampers (the modal JSON's ``linearisation``): the mesh
+    linearised at the static load (gearcli/pipeline/kernel_input.linearised_mesh), the motor
+    curve and the quadratic load term at the case speed, friction off."""
+
+    static_force_N: float = metric_field("static_force_N", metric="force_static_N")
+    static_deflection_mm: float = metric_field("static_deflection_mm")
+    pair_stiffness_N_mm: float = metric_field(
+        "pair_stiffness_N_mm", label="pair stiffness k_pair (linearised), one pair",
+        unit="N/mm")
+    mesh_stiffness_N_mm: float = metric_field("mesh_stiffness_N_mm")
+    #: None: the loaded mesh has no such zone (JSON null)
+    single_pair_stiffness_N_mm: float | None = metric_field("single_pair_stiffness_N_mm")
+    double_pair_stiffness_N_mm: float | None = metric_field("double_pair_stiffness_N_mm")
+    mesh_damping_Ns_mm: float = _damping("mesh_damping_Ns_mm", "mesh damping c_mesh",
+                                         "N*s/mm")
+    motor_curve_damping_Nmms_rad: float = _damping(
+        "motor_curve_damping_Nmms_rad", "motor curve, linearised c_m = |T|/ω0",
+        "N*mm*s/rad")
+    load_quadratic_damping_Nmms_rad: float = _damping(
+        "load_quadratic_damping_Nmms_rad", "quadratic load term, linearised 2 c_q |ω_L|",
+        "N*mm*s/rad")
+    friction: str = metric_field("friction", "off", label="mesh friction in the linear model")
+
+
 @dataclasses.dataclass(frozen=True)
 class ModalDocument(Document):
     """`gearcli modal --json`: the linearised model, its :class:`Mode` s, the crossings of the
@@ -63,7 +93,8 @@ class ModalDocument(Document):
     dofs: tuple[str, ...] = metric_field("dofs", ())
     shape_convention: str = metric_field("shape_convention", "")
     bodies: Mapping[str, float | None] = metric_field("bodies", {})
-    linearisation: Mapping[str, Any] = metric_field("linearisation", {})
+    linearisation: Linearisation = metric_field("linearisation", Linearisation(),
+                                                nested=Linearisation)
     modes: tuple[Mode, ...] = metric_field("modes", (), nested=Mode)
     case_speed_deg_s: float | None = metric_field("case_speed_deg_s", None)
     speed_range_deg_s: tuple[float, float] = metric_field("speed_range_deg_s",

@@ -9,6 +9,7 @@ import math
 from gearcli.results.analysis import AnalysisMetrics, Remedy
 from gearcli.results.models import (
     IsoResonance,
+    Linearisation,
     MeshSharing,
     MeshSte,
     MeshStiffness,
@@ -132,7 +133,7 @@ def json_schema(kind: str = "summary") -> dict:
                 "required": ["schema_version", "case", "force_N", "ste", "stiffness"]}
     props = {"schema_version": version, "case": {"type": "string"},
              "model": {"type": "string"}, "modes": {"type": "array", "items": typed(Mode)},
-             "linearisation": obj, "crossings": {"type": "array"}, "checks": checks,
-             "passed": {"type": "boolean"}}
+             "linearisation": typed(Linearisation), "crossings": {"type": "array"},
+             "checks": checks, "passed": {"type": "boolean"}}
     return {**base, "title": "gearcli modal --json", "properties": props,
             "required": ["schema_version", "case", "modes", "checks", "passed"]}

@@ -223,8 +223,8 @@ def test_iso_dynamic_factor_is_the_one_gearcli_mesh_prints():
     assert r.dynamic_factor_source.startswith("ISO 6336-1 Method B")
     assert r.iso.factor("K_v").clause == r.dynamic_factor_source  # the table says where from
     with_ka = rate_case(ISO_PAIR, [*LIMITS, "rating.application_factor=1.5"])
-    assert with_ka.iso_dynamic["line_load_N_mm"] == pytest.approx(
-        1.5 * r.iso_dynamic["line_load_N_mm"], rel=1e-12)
+    assert with_ka.iso_dynamic.line_load_N_mm == pytest.approx(
+        1.5 * r.iso_dynamic.line_load_N_mm, rel=1e-12)
 
 
 def test_missing_fatigue_limits_say_what_is_missing():

@@ -41,18 +41,6 @@ BOUNDARY = {"io", "results", "core"}
 TABLE_COLUMNS = {"t_s", "frequency_Hz"}
 #: Reads found that are not typed, with the reason: (file, enclosing function) -> why.
 REMAINING = {
-    ("cli/modal.py", "_print"):
-        "ModalDocument.linearisation is a Mapping field (gearcli/results/models.py), not a "
-        "document with fields yet",
-    ("cli/rate.py", "print_rating"):
-        "the rating document (gearcli rate) printed from its dict (to_dict()), not its fields",
-    ("report/rating.py", "rating_table"):
-        "the rating document (rating.json, every factor) read from its dict, as print_rating; "
-        "its safeties are typed in summary.json (results/rating.py), its factor rows not yet",
-    ("pipeline/rating.py", "rating_input"):
-        "not a result document: _iso_kv's own dict of the ISO K_v reading",
-    ("pipeline/rating.py", "_iso_kv"):
-        "not a result document: the keyword arguments of the ISO K_v function",
     ("pipeline/simulate.py", "energy_balance"):
         "not a result document: the energy terms before they become an EnergyBalance",
     ("model/fe/cache.py", "from_record"):
