@@ -16,7 +16,9 @@ from gearcli.results.models import (
     MeshSummary,
     Mode,
 )
+from gearcli.results.monitor import MonitorDocument
 from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
+from gearcli.results.rating_document import RatingDocument
 from gearcli.results.run import InputDigest, Summary
 from gearcli.results.stress import GearStress
 from gearcli.results.version import RESULTS_SCHEMA_VERSION as SCHEMA_VERSION
@@ -30,7 +32,7 @@ def _finite(value) -> bool:
 
 
 #: The documents ``gearcli schema --results KIND`` describes.
-KINDS = ("summary", "analysis", "stress", "modal", "mesh")
+KINDS = ("summary", "analysis", "stress", "modal", "mesh", "rating", "monitor")
 
 
 def _rating_schema(typed) -> dict:
@@ -51,10 +53,37 @@ def _rating_schema(typed) -> dict:
     return rating
 
 
+def _deep(typed, cls) -> dict:
+    """The schema of document ``cls`` with its nested documents described field by field too
+    (recursively; a tuple of them as an array, an optional one as that or null) and each
+    property under its JSON key (``json_key`` metadata, gearcli/results/fields.py)."""
+    schema = typed(cls)
+    props = schema["properties"]
+    for f in dataclasses.fields(cls):
+        key = f.metadata.get("json_key", f.name)
+        if f.name not in props:
+            continue
+        prop = props.pop(f.name)
+        nested = f.metadata.get("nested")
+        if nested is not None:
+            inner = _deep(typed, nested)
+            inner["description"] = prop.get("description", "")
+            if isinstance(f.default, tuple):
+                inner = {"type": "array", "items": inner, "description": inner["description"]}
+            prop = {"anyOf": [inner, {"type": "null"}]} if f.default is None else inner
+        props[key] = prop
+    if "required" in schema:
+        keys = {f.name: f.metadata.get("json_key", f.name) for f in dataclasses.fields(cls)}
+        schema["required"] = [keys.get(n, n) for n in schema["required"]]
+    return schema
+
+
 def json_schema(kind: str = "summary") -> dict:
     """JSON Schema (draft 2020-12) of a result document: ``summary`` (summary.json),
-    ``analysis`` (analysis.json), ``stress`` (stress.json), ``modal`` (gearcli modal --json)
-    or ``mesh`` (gearcli mesh --json): the typed fields as above, the rest as open objects."""
+    ``analysis`` (analysis.json), ``stress`` (stress.json), ``modal`` (gearcli modal --json),
+    ``mesh`` (gearcli mesh --json), ``rating`` (rating.json of `gearcli rate -o` and `gearcli
+    run`) or ``monitor`` (monitor.json): the typed fields as above, the rest as open
+    objects."""
     from pydantic import TypeAdapter
 
     if kind not in KINDS:
@@ -122,6 +151,14 @@ def json_schema(kind: str = "summary") -> dict:
                  "warnings": {"type": "array"}}
         return {**base, "title": "gearcli stress.json", "properties": props,
                 "required": ["schema_version", "case", "static", "pinion", "gear"]}
+    if kind in ("rating", "monitor"):
+        cls = RatingDocument if kind == "rating" else MonitorDocument
+        doc = _deep(typed, cls)
+        if "schema_version" in doc["properties"]:
+            doc["properties"]["schema_version"] = version
+        name = "rating.json" if kind == "rating" else "monitor.json"
+        return {**base, **doc, "title": f"gearcli {name}",
+                "description": cls.__doc__.split("\n")[0]}
     if kind == "mesh":
         props = typed(MeshSummary)["properties"]
         for group in (MeshSte, MeshStiffness, MeshSharing, IsoResonance):

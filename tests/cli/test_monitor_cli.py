@@ -5,10 +5,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import jsonschema
 import pytest
 from typer.testing import CliRunner
 
 from gearcli.cli import app
+from gearcli.results import json_schema
 
 ROOT = Path(__file__).resolve().parents[2]
 CASE = str(ROOT / "cases" / "iso_pair.yaml")
@@ -75,6 +77,7 @@ def test_table_and_output_folder(runs, tmp_path):
     assert res.exit_code == 0, res.output
     doc = json.loads((out / "monitor.json").read_text())
     assert doc["shafts"][0]["metrics"]["fm4"] == _json(crack)["shafts"][0]["metrics"]["fm4"]
+    jsonschema.validate(doc, json_schema("monitor"))  # `gearcli schema --results --kind monitor`
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["gearcli_manifest"] == 1 and manifest["resolved_case"]["faults"]
     again = runner.invoke(app, ["monitor", str(crack), "-o", str(out), "-q"])

@@ -39,6 +39,7 @@ def test_run_writes_rating_json_with_both_columns_and_the_report_section(tmp_pat
     res = runner.invoke(app, ["run", ISO_PAIR, "-o", str(out), *SHORT, *LIMITS])
     assert res.exit_code == 0, res.output
     rating = json.loads((out / "rating.json").read_text())
+    jsonschema.validate(rating, json_schema("rating"))  # `gearcli schema --results --kind rating`
     iso, sim = rating["iso"], rating["simulated"]
     assert sim is not None
     summary = json.loads((out / "summary.json").read_text())["scalars"]

@@ -128,3 +128,20 @@ def test_modal_schema_describes_the_linearisation_fields():
     assert fields == LINEARISATION_KEYS and list(lin["properties"]) == fields
     assert "[N/mm]" in lin["properties"]["mesh_stiffness_N_mm"]["description"]
     assert all(p["description"] for p in lin["properties"].values())
+
+
+def test_rating_schema_describes_every_field_and_refuses_a_wrong_type(tmp_path):
+    """`gearcli schema --results --kind rating`: every field of the typed document (nested
+    ones included, the editions under their JSON keys "2006"/"2019") with its description; a
+    rating.json whose safety is text is refused."""
+    import jsonschema
+
+    schema = json_schema("rating")
+    assert set(schema["properties"]) == {f.name for f in dataclasses.fields(RatingDocument)}
+    row = schema["properties"]["editions"]["items"]["properties"]
+    assert {"2006", "2019"} <= set(row) and "value_2006" not in row
+    assert len(row) == len(dataclasses.fields(EditionRowDocument))
+    assert all(p.get("description") for p in row.values())
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate({"schema_version": schema["properties"]["schema_version"]["const"],
+                             "case": "x", "iso": {"pinion": {"S_H": "high"}}}, schema)
