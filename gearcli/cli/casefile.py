@@ -17,9 +17,10 @@ def schema(
     results: bool = typer.Option(False, "--results",
                                  help="The JSON Schema of a result document instead of the "
                                       "case's (--kind)."),
-    kind: str | None = typer.Option(None, "--kind", metavar="summary|analysis|stress|modal|mesh|rating|monitor",
-                             help="With --results: summary.json, analysis.json, stress.json, "
-                                  "gearcli modal --json or gearcli mesh --json."),
+    kind: str | None = typer.Option(
+        None, "--kind", metavar="summary|analysis|stress|modal|mesh|rating|monitor",
+        help="With --results: summary.json, analysis.json, stress.json, gearcli modal --json, "
+             "gearcli mesh --json, rating.json or monitor.json."),
     study: bool = typer.Option(False, "--study",
                                help="The JSON Schema of a study file (gearcli sweep)."),
 ) -> None:
