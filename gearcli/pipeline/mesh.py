@@ -283,7 +283,7 @@ def save_mesh_plot(res: MeshAnalysis, path: str | Path, units: str = "engineerin
                     title=f"{res.name}: loaded contact at {lm.force_N:.0f} N ({res.law}); "
                           f"STE {lm.ste_peak_to_peak_mm * k_te:.3g} {te_unit} "
                           "peak-to-peak",
-                    harris=harris)
+                    harris=harris, single_pair_limit_N=res.single_pair_limit_N)
     save_figure(fig, path, 150)
 
 

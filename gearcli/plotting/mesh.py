@@ -19,11 +19,13 @@ __all__ = ["plot_mesh"]
 def plot_mesh(roll_mm, ste, unloaded, pair_force_N, mesh_stiffness, *,
               force_N: float, iso_single: float, iso_mean: float, title: str,
               harris: tuple[np.ndarray, np.ndarray] | None = None, te_unit: str = "µm",
-              stiffness_unit: str = "N/mm") -> Figure:
+              stiffness_unit: str = "N/mm", single_pair_limit_N: float | None = None
+              ) -> Figure:
     """Panels against the pinion roll [mm]: loaded STE and unloaded TE [``te_unit``]; force
     per pair slot [N] with the static force; mesh stiffness [``stiffness_unit``] with ISO
     6336-1 c′b and c_γα b; and the Harris map (STE peak-to-peak [``te_unit``] against load
-    [N]) if given."""
+    [N]) if given, with the single-pair limit F* [N] (model/ltca.single_pair_limit: above it
+    no position has one pair alone) when it is inside the map's range."""
     from matplotlib.figure import Figure
 
     rows = 4 if harris is not None else 3
@@ -56,7 +58,11 @@ def plot_mesh(roll_mm, ste, unloaded, pair_force_N, mesh_stiffness, *,
         ax = axes[3]
         loads, ptp = harris
         ax.plot(loads, ptp, "o-", color="#1f5fa8", ms=3)
-        ax.axvline(force_N, color="#c62828", lw=0.8, ls=":")
+        ax.axvline(force_N, color="#c62828", lw=0.8, ls=":", label="static force")
+        if single_pair_limit_N is not None and loads[0] < single_pair_limit_N < loads[-1]:
+            ax.axvline(single_pair_limit_N, color="#555555", lw=0.8, ls="--",
+                       label="single-pair limit F*")
+        ax.legend(loc="upper left", fontsize=8)
         ax.set_xlabel("static normal force [N]")
         ax.set_ylabel(f"STE peak-to-peak [{te_unit}]")
         ax.set_title("Harris map", fontsize=9, loc="left")

@@ -17,7 +17,7 @@ runner = CliRunner()
 PINT = {"N·m": "N*m", "N/µm": "N/um", "N·s/mm": "N*s/mm", "N·s/m": "N*s/m",
         "N·m/rad": "N*m/rad", "N·m·s/rad": "N*m*s/rad", "N·m·s²/rad²": "N*m*s**2/rad**2",
         "kg·m²": "kg*m**2", "kg/m³": "kg/m**3", "µm": "um", "N/(mm·µm)": "N/(mm*um)",
-        "N/m²": "N/m**2"}
+        "N/m²": "N/m**2", "N/mm (line load)": "N/mm"}
 
 
 @pytest.mark.parametrize("stored", sorted(u for u in _TABLE if u != "fraction"))
