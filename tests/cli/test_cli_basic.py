@@ -28,13 +28,15 @@ def test_version():
 
 def test_python_m_gearcli_and_help_is_fast():
     # `gearcli --help` must not import numba/pandas/matplotlib/pydantic/pint, nor rich (typer's
-    # rich help): check the imports it triggers (the wall-time target is measured by
-    # `make bench`, never here).
+    # rich help), nor the result documents (gearcli.results: ~50 ms, every document and the
+    # metric registry; a command imports what it uses): check the imports it triggers (the
+    # wall-time target is measured by `make bench`, never here).
     code = (
         "import sys, runpy; sys.argv=['gearcli','--help'];\n"
         "try:\n runpy.run_module('gearcli', run_name='__main__')\n"
         "except SystemExit: pass\n"
-        "heavy=[m for m in ('numba','pandas','matplotlib','pydantic','pint','scipy','rich') "
+        "heavy=[m for m in ('numba','pandas','matplotlib','pydantic','pint','scipy','rich',"
+        "'gearcli.results') "
         "if m in sys.modules]\nprint('HEAVY', heavy)"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
