@@ -56,13 +56,19 @@ def _rating_schema(typed) -> dict:
 def _deep(typed, cls) -> dict:
     """The schema of document ``cls`` with its nested documents described field by field too
     (recursively; a tuple of them as an array, an optional one as that or null) and each
-    property under its JSON key (``json_key`` metadata, gearcli/results/fields.py)."""
+    property under its JSON key (``json_key`` metadata, gearcli/results/fields.py). Every
+    key ``to_dict`` always writes is required (all but the ``omit_none`` fields, left out when
+    None), so a document missing one is refused; a None it writes is allowed where the field
+    is optional."""
     schema = typed(cls)
     props = schema["properties"]
+    required = []
     for f in dataclasses.fields(cls):
         key = f.metadata.get("json_key", f.name)
         if f.name not in props:
             continue
+        if not f.metadata.get("omit_none"):
+            required.append(key)
         prop = props.pop(f.name)
         nested = f.metadata.get("nested")
         if nested is not None:
@@ -72,9 +78,7 @@ def _deep(typed, cls) -> dict:
                 inner = {"type": "array", "items": inner, "description": inner["description"]}
             prop = {"anyOf": [inner, {"type": "null"}]} if f.default is None else inner
         props[key] = prop
-    if "required" in schema:
-        keys = {f.name: f.metadata.get("json_key", f.name) for f in dataclasses.fields(cls)}
-        schema["required"] = [keys.get(n, n) for n in schema["required"]]
+    schema["required"] = required
     return schema
 
 
