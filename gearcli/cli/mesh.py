@@ -122,10 +122,8 @@ def _sharing_rows(sh) -> list[tuple[str, float | str, str]]:
              f"{sh.pairs_in_contact_min} / {sh.pairs_in_contact_max}", "–"),
             ("share of the cycle with one pair alone", sh.single_pair_share, "fraction")]
     label = "one pair alone somewhere in the cycle up to"
-    if sh.single_pair_limit_N is None:
-        return [*rows, (label, "any load (a second pair never touches)", "–")]
-    if sh.single_pair_limit_N <= 0.0:
-        return [*rows, (label, "no load (two pairs everywhere, unloaded too)", "–")]
+    if sh.single_pair_limit_N is None or sh.single_pair_limit_N <= 0.0:
+        return [*rows, (label, sh.single_pair_limit_note, "–")]
     return [*rows, (label, sh.single_pair_limit_N, "N"),
             ("  the same per face width", sh.single_pair_limit_N_per_mm, "N/mm (line load)")]
 

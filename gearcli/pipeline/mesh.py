@@ -71,6 +71,8 @@ class MeshAnalysis:
     #: the largest static force [N] with one pair alone somewhere in the cycle (+inf: a
     #: second pair never touches within the tables; model/ltca.single_pair_limit)
     single_pair_limit_N: float = math.nan
+    #: the gap tables' cap [mm] (pipeline/kernel_input.case_gap_tables): no contact beyond it
+    tables_cap_mm: float = math.nan
 
     @property
     def summary(self) -> MeshSummary:
@@ -117,7 +119,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         raise loaded.error(("load", "torque"), "the static load is zero: give a load torque "
                            "or --load with a force > 0 N") if load_N is None else \
             CaseError(f"load_N (--load) {load_N!r}: expected a force > 0 N")
-    tables, _ = case_gap_tables(case, geo, mesh)
+    tables, cap_mm = case_gap_tables(case, geo, mesh)
     slots = int(slot_layout(g, tables)["n_slots"])
     law_of_load = None
     if case.contact.law == "tooth":
@@ -152,7 +154,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         revolution = faulted_revolution(case, geo, result, deflection)
     return MeshAnalysis(loaded, loaded.name, geo, law_name, result, iso, harris, tuple(notes),
                         _fe_check(case, geo, force) if method == "fe" else None, revolution,
-                        limit)
+                        limit, cap_mm)
 
 
 def _single_pair_limit(args, law_of_load) -> float:
@@ -202,6 +204,21 @@ def _iso_resonance(res: MeshAnalysis) -> IsoResonance:
     return iso
 
 
+def _limit_note(res: MeshAnalysis) -> str:
+    """Why the single-pair limit is not a force: 0, or +inf (rigid engagement: no contact
+    outside the path; extended: a second pair's first touch is past the gap tables' cap, the
+    contact model's range, so F* lies above the force of that deflection, not at "any load")."""
+    limit = res.single_pair_limit_N
+    if limit == 0.0:
+        return "no load (two pairs everywhere, unloaded too)"
+    if math.isfinite(limit):
+        return ""
+    if res.source.case.contact.engagement == "rigid":
+        return "any load (rigid engagement: no contact outside the path)"
+    return (f"above the model's range (a second pair touches past {res.tables_cap_mm:.3g} mm, "
+            "the gap tables' end)")
+
+
 def _sharing(res: MeshAnalysis) -> MeshSharing:
     """Pairs in contact over the cycle and the single-pair limit (force and per face width)."""
     g = res.geometry.geometry
@@ -213,7 +230,8 @@ def _sharing(res: MeshAnalysis) -> MeshSharing:
         single_pair_share=float(np.mean(lm.pairs_in_contact == 1)),
         single_pair_limit_N=json_number(limit) if finite else None,
         single_pair_limit_N_per_mm=json_number(
-            limit / min(g.pinion.face_width_mm, g.gear.face_width_mm)) if finite else None)
+            limit / min(g.pinion.face_width_mm, g.gear.face_width_mm)) if finite else None,
+        single_pair_limit_note=_limit_note(res))
 
 
 def mesh_document(res: MeshAnalysis) -> MeshSummary:

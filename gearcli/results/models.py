@@ -137,13 +137,18 @@ class MeshSharing(Document):
     """How many pairs carry the load over the cycle, and up to which static force one pair
     alone carries it somewhere in the cycle (model/ltca.single_pair_limit; docs/theory.md §4b,
     "Corner contact"): above that force extended contact at the tip corners closes the
-    single-pair zone. None: a second pair never touches within the gap tables."""
+    single-pair zone. None: a second pair never touches within the gap tables (with extended
+    contact: F* is above the contact model's range, not "any load"; ``single_pair_limit_note``
+    says which)."""
 
     pairs_in_contact_min: int = metric_field("pairs_in_contact_min", 0)
     pairs_in_contact_max: int = metric_field("pairs_in_contact_max", 0)
     single_pair_share: float = metric_field("single_pair_share")
     single_pair_limit_N: float | None = metric_field("single_pair_limit_N", None)
     single_pair_limit_N_per_mm: float | None = metric_field("single_pair_limit_N_per_mm", None)
+    #: why the limit is 0 or None ("" when it is a force)
+    single_pair_limit_note: str = metric_field(
+        "single_pair_limit_note", "", label="why the single-pair limit is not a force")
 
 
 @dataclasses.dataclass(frozen=True)

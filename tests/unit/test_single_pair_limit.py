@@ -64,3 +64,23 @@ def test_a_pair_with_two_pairs_everywhere_has_no_single_pair_limit():
     assert sharing.single_pair_limit_N == 0.0
     assert sharing.single_pair_share == 0.0
     assert sharing.pairs_in_contact_min >= 2
+    assert sharing.single_pair_limit_note.startswith("no load")
+
+
+def test_a_limit_beyond_the_gap_tables_is_not_called_any_load():
+    """A stub-toothed iso_pair (rack addendum 0.7, ε_α 1.13): at some roll positions the
+    entering and the leaving neighbour both sit where the tip gap exceeds the gap tables' cap,
+    so within the tables a second pair never touches (F* None). That is the contact model's
+    range (cap max(0.05 m, 20 static deflections)), not "any load": the note says so and
+    names the cap. With rigid engagement (no contact outside the path) "any load" is right."""
+    stub = ["gears.rack={addendum: 0.7, dedendum: 1.0, root_radius: 0.25}"]
+    res = run_mesh(load_case(ISO_PAIR, stub), cycles=1)
+    sharing = res.summary.sharing
+    assert sharing.single_pair_limit_N is None and sharing.single_pair_limit_N_per_mm is None
+    assert "above the model's range" in sharing.single_pair_limit_note
+    assert f"{res.tables_cap_mm:.3g} mm" in sharing.single_pair_limit_note
+    assert res.tables_cap_mm >= 0.05 * 5.0  # module 5 mm
+    rigid = run_mesh(load_case(ISO_PAIR, [*stub, "contact.engagement=rigid"]), cycles=1)
+    assert rigid.summary.sharing.single_pair_limit_note.startswith("any load (rigid")
+    finite = run_mesh(load_case(SEED), cycles=1).summary.sharing
+    assert finite.single_pair_limit_N > 0.0 and finite.single_pair_limit_note == ""
