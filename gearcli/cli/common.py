@@ -54,8 +54,9 @@ def handle_errors(func):
         except OSError as exc:
             if exc.errno not in _OUTPUT_ERRNOS:
                 return _internal()
+            reader_gone = exc.errno == errno.EPIPE and not exc.filename and _stdout_widowed()
             _detach_stdout()
-            if exc.errno == errno.EPIPE and not exc.filename:
+            if reader_gone:
                 # the reader closed the pipe (`gearcli simulate -o - | head`): what it wanted
                 # was read, so no message; exit 1 as Python's own SIGPIPE note prescribes
                 raise typer.Exit(int(ExitCode.INPUT)) from None
@@ -119,6 +120,25 @@ def _echo_err(text: str) -> None:
         typer.echo(text, err=True)
     except OSError:
         pass
+
+
+def _stdout_widowed() -> bool:
+    """Whether stdout is a pipe or socket whose reader has gone (poll reports an error or a
+    hang-up on its write end): only then is a broken pipe the reader's choice, not a failure
+    elsewhere (a pipe to another process, a FIFO the command opened) that must be reported."""
+    import select
+    import stat
+
+    try:
+        fd = sys.stdout.fileno()
+        mode = os.fstat(fd).st_mode
+        if not (stat.S_ISFIFO(mode) or stat.S_ISSOCK(mode)) or not hasattr(select, "poll"):
+            return False
+        poller = select.poll()
+        poller.register(fd, select.POLLOUT)
+        return any(ev & (select.POLLERR | select.POLLHUP) for _, ev in poller.poll(0))
+    except (OSError, ValueError, AttributeError):
+        return False
 
 
 def _detach_stdout() -> None:

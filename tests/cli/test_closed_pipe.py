@@ -7,10 +7,15 @@ from the interpreter's final flush; the reader got what it asked for, so no mess
 
 from __future__ import annotations
 
+import errno
 import os
 import subprocess
 import sys
 
+import pytest
+import typer
+
+from gearcli.cli.common import handle_errors
 from tests.conftest import SEED
 
 
@@ -29,3 +34,31 @@ def test_closing_the_pipe_after_the_first_line_is_quiet(tmp_path):
     assert rc == 1, (rc, stderr)
     assert "Traceback" not in stderr and "error" not in stderr.lower(), stderr
     assert not list(tmp_path.glob("gearcli-error-*.log")), "no internal-error log"
+
+
+def _broken_pipe():
+    raise BrokenPipeError(errno.EPIPE, "Broken pipe")  # a pipe that is not stdout's
+
+
+@pytest.mark.parametrize("reader_gone", [True, False])
+def test_only_a_closed_stdout_is_quiet(monkeypatch, capsys, reader_gone):
+    """An EPIPE the command meets elsewhere while stdout's reader is still there (a pipe to
+    another process, a FIFO it writes) is a failure: it is reported, exit 1. Quiet only when
+    stdout itself is a pipe whose reader has gone."""
+    r, w = os.pipe()
+    stdout = os.fdopen(w, "w")
+    reader = None if reader_gone else os.fdopen(r, "rb")
+    if reader_gone:
+        os.close(r)
+    monkeypatch.setattr(sys, "stdout", stdout)
+    try:
+        with pytest.raises(typer.Exit) as exit_:
+            handle_errors(_broken_pipe)()
+    finally:
+        monkeypatch.undo()
+        stdout.close()
+        if reader is not None:
+            reader.close()
+    assert exit_.value.exit_code == 1
+    err = capsys.readouterr().err
+    assert (err == "") if reader_gone else ("error: writing the output: Broken pipe" in err)
