@@ -171,21 +171,25 @@ def _check_inside_tables(result: LoadedMesh, cap_mm: float) -> None:
 
 def _single_pair_limit(args, law_of_load) -> float:
     """model.ltca.single_pair_limit [N]. The tooth law's contact term is Weber's secant at the
-    load (docs/theory.md §4b), so its limit F* is the fixed point of F -> limit(law at F),
-    started from the law at the case's force: the secant changes with the logarithm of the
-    load, so a few passes (each near the last one's roll position) settle it to 1e-4 (the
-    tables show four digits)."""
-    limit, u_star = single_pair_limit(*args)
+    load (docs/theory.md §4b), so its limit F* is the root of h(F) = limit(law at F) − F,
+    started from the law at the analysed force: one plain pass, then secant steps on h (each
+    search near the last one's roll position; h' ≈ −1, so they converge fast) to 1e-8, so F*
+    does not depend on the force it started from in the digits shown (plain passes stopped at
+    1e-4 left the sixth digit to --load)."""
+    f, u_star = single_pair_limit(*args)
     if law_of_load is None:
-        return limit
-    for _ in range(8):
-        if not (math.isfinite(limit) and limit > 0.0):
-            return limit
-        new, u_star = single_pair_limit(*args[:-1], law_of_load(limit), near_mm=u_star)
-        if abs(new - limit) <= 1e-4 * limit:
-            return new
-        limit = new
-    return limit
+        return f
+    prev: tuple[float, float] | None = None  # (F, h(F)) of the previous pass
+    for _ in range(12):
+        if not (math.isfinite(f) and f > 0.0):
+            return f
+        g, u_star = single_pair_limit(*args[:-1], law_of_load(f), near_mm=u_star)
+        h = g - f
+        if not (math.isfinite(g) and g > 0.0) or abs(h) <= 1e-8 * g:
+            return g
+        f_next = g if prev is None or h == prev[1] else f - h * (f - prev[0]) / (h - prev[1])
+        prev, f = (f, h), f_next
+    return g
 
 
 def _fe_check(case, geo, force: float) -> FeCheck:
