@@ -226,7 +226,7 @@ def _limit_note(res: MeshAnalysis) -> str:
     contact model's range, so F* lies above the force of that deflection, not at "any load")."""
     limit = res.single_pair_limit_N
     if limit == 0.0:
-        return "no load (two pairs everywhere, unloaded too)"
+        return "no load (two or more pairs everywhere, unloaded too)"
     if math.isfinite(limit):
         return ""
     if res.source.case.contact.engagement == "rigid":
