@@ -175,6 +175,9 @@ def _print(doc, units: str) -> None:
         for f, p in zip(doc.harris.force_N, ptp, strict=True):
             h.add_row(format_value(f), format_value(p))
         emit(h)
+        if None in doc.harris.ste_peak_to_peak_um:
+            emit("note: — in the Harris map: no static equilibrium inside the contact tables "
+                 "at that force (outside the contact model's range)")
     if doc.fe_check is not None:
         emit(_fe_table(doc.fe_check, units))
     if doc.faulted_revolution is not None:

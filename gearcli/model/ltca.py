@@ -257,13 +257,22 @@ def single_pair_limit(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float,
 
 
 def harris_map(tables, x_lo, x_hi, p_b, n_slots, law: ForceLaw, force_N: float,
-               fractions=None, law_of_load=None, **kw) -> tuple[np.ndarray, np.ndarray]:
+               fractions=None, law_of_load=None, cap_mm: float = math.inf,
+               **kw) -> tuple[np.ndarray, np.ndarray]:
     """STE peak-to-peak [mm] against load [N] at ``fractions`` of ``force_N`` (default 0.1 to
     2 in steps of 0.1; Harris 1958); ``law_of_load(F)``, when given, the law at each load F [N]
-    (the tooth law's contact term is a secant at the load, docs/theory.md §4b)."""
+    (the tooth law's contact term is a secant at the load, docs/theory.md §4b). NaN at a load
+    without a static equilibrium or whose penetration (STE above the unloaded TE) passes
+    ``cap_mm``, the gap tables' reach [mm]: outside the contact model's range."""
     frac = np.linspace(0.1, 2.0, 20) if fractions is None else np.asarray(fractions, float)
     loads = frac * force_N
-    ptp = np.array([loaded_mesh(tables, x_lo, x_hi, p_b, n_slots,
-                                law if law_of_load is None else law_of_load(f), f, **kw)
-                    .ste_peak_to_peak_mm for f in loads])
+    ptp = np.full(loads.size, math.nan)
+    for i, f in enumerate(loads):
+        try:
+            lm = loaded_mesh(tables, x_lo, x_hi, p_b, n_slots,
+                             law if law_of_load is None else law_of_load(f), f, **kw)
+        except ValueError:  # no equilibrium within the deflection range
+            continue
+        if float(np.max(lm.ste_mm - lm.unloaded_te_mm)) <= cap_mm:
+            ptp[i] = lm.ste_peak_to_peak_mm
     return loads, ptp

@@ -136,7 +136,7 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         result = loaded_mesh(*args, force, cycles=cycles, points_per_cycle=points_per_cycle)
         _check_inside_tables(result, cap_mm)
         harris = (harris_map(*args, force, law_of_load=law_of_load, cycles=1,
-                             points_per_cycle=points_per_cycle)
+                             points_per_cycle=points_per_cycle, cap_mm=cap_mm)
                   if harris else None)  # the same roll grid: its row at the load is the STE
         limit = _single_pair_limit(args, law_of_load)
     except ValueError as exc:  # model.ltca: no equilibrium within its deflection range
@@ -260,8 +260,9 @@ def mesh_document(res: MeshAnalysis) -> MeshSummary:
 
     harris = None
     if res.harris is not None:
-        loads, ptp = res.harris
-        harris = HarrisMap(tuple(loads.tolist()), tuple((1e3 * ptp).tolist()))
+        loads, ptp = res.harris  # NaN: outside the contact model's range (null in JSON)
+        harris = HarrisMap(tuple(loads.tolist()),
+                           tuple(json_number(1e3 * float(p)) for p in ptp))
     return MeshSummary(
         schema_version=RESULTS_SCHEMA_VERSION, case=res.name, contact_law=res.law,
         force_N=lm.force_N, mesh_cycles=lm.cycles,

@@ -178,10 +178,11 @@ class IsoResonance(Document):
 
 @dataclasses.dataclass(frozen=True)
 class HarrisMap(Document):
-    """STE peak to peak against the static force (`gearcli mesh --harris`)."""
+    """STE peak to peak against the static force (`gearcli mesh --harris`); None where the
+    load has no static equilibrium inside the contact tables (outside the model's range)."""
 
     force_N: tuple[float, ...] = metric_field("force_N", ())
-    ste_peak_to_peak_um: tuple[float, ...] = metric_field("ste_peak_to_peak_um", ())
+    ste_peak_to_peak_um: tuple[float | None, ...] = metric_field("ste_peak_to_peak_um", ())
 
 
 @dataclasses.dataclass(frozen=True)

@@ -110,3 +110,17 @@ def test_the_tooth_law_limit_does_not_depend_on_the_load_it_started_from():
               for f in (None, 0.01, 1e5)]
     assert limits[1] == pytest.approx(limits[0], rel=1e-7)
     assert limits[2] == pytest.approx(limits[0], rel=1e-7)
+
+
+def test_harris_rows_outside_the_contact_tables_are_null_not_numbers():
+    """The seed at 3e5 N is inside its gap tables (1.687 mm reach) but the Harris map's rows
+    run to 2 x that load, where the mesh deflection (~2.5 mm) leaves them: those rows are
+    None (null in mesh.json, a dash and a note in the table), the rows below stay numbers."""
+    res = run_mesh(load_case(SEED), load_N=3e5, harris=True, cycles=1, points_per_cycle=100)
+    ptp = res.summary.harris.ste_peak_to_peak_um
+    assert ptp[0] is not None and ptp[-1] is None
+    first_null = ptp.index(None)
+    assert all(p is not None for p in ptp[:first_null])
+    assert all(p is None for p in ptp[first_null:])  # deflection grows with the load
+    doc = res.summary.to_dict()
+    assert doc["harris"]["ste_peak_to_peak_um"][-1] is None
