@@ -40,6 +40,15 @@ from gearcli.core.layout import TABLE_G1, TABLE_G2
 #: Step of the central difference for the mesh stiffness [mm] (deflections are ~1e-2 mm).
 DELTA_STEP_MM = 1e-7
 
+#: Brent's absolute tolerance on the mesh deflection δ [mm] (:meth:`_Position.solve`).
+DELTA_XTOL_MM = 1e-13
+
+
+class LoadTooSmallError(ValueError):
+    """The static force deflects the mesh by less than the solver resolves (no pair is found
+    compressed at some roll position): a result would be round-off, not contact."""
+
+
 #: A force law per pair: (penetration p [mm] > 0, pinion roll position x1 [mm]) ->
 #: (force [N], dF/dp [N/mm]), vectorised.
 ForceLaw = Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
@@ -161,7 +170,8 @@ class _Position:
             hi = d0 + step
             if step > 1e3:
                 raise ValueError("no static equilibrium: the pairs cannot carry the load")
-        return brentq(lambda d: self.total(d) - force_N, lo, hi, xtol=1e-13, rtol=1e-12)
+        return brentq(lambda d: self.total(d) - force_N, lo, hi, xtol=DELTA_XTOL_MM,
+                      rtol=1e-12)
 
 
 def loaded_mesh(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float, n_slots: int,
@@ -208,6 +218,10 @@ def loaded_mesh(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float, n_slot
         k_mesh[i] = (pos.total(ste[i] + DELTA_STEP_MM) - pos.total(ste[i] - DELTA_STEP_MM)) \
             / (2.0 * DELTA_STEP_MM)
         count[i] = int(on.sum())
+        if count[i] == 0:  # F > 0 needs a compressed pair: δ is below the solver's tolerance
+            raise LoadTooSmallError(
+                f"the static force {force_N:.3g} N deflects the mesh by less than the "
+                f"solver resolves ({DELTA_XTOL_MM:g} mm)")
     return LoadedMesh(roll, force_N, ste, unloaded, x1, forces, stiff, k_mesh, count, cycles)
 
 

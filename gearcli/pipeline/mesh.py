@@ -19,6 +19,7 @@ from gearcli.errors import CaseError, GearcliError
 from gearcli.model.gap import slot_layout
 from gearcli.model.ltca import (
     LoadedMesh,
+    LoadTooSmallError,
     harris_map,
     impact_law,
     loaded_mesh,
@@ -141,9 +142,11 @@ def run_mesh(source: str | Path | LoadedCase, overrides: list[str] | None = None
         limit = _single_pair_limit(args, law_of_load)
     except ValueError as exc:  # model.ltca: no equilibrium within its deflection range
         where = f"--load {load_N:g} N" if load_N is not None else f"{force:.6g} N"
+        small = isinstance(exc, LoadTooSmallError)
         raise (loaded.error(("load", "torque"), f"{exc} at {where}; expected a load the teeth "
-                            "can carry") if load_N is None else
-               CaseError(f"{where}: {exc}; expected a smaller load")) from None
+                            "can carry and the solver resolves") if load_N is None else
+               CaseError(f"{where}: {exc}; expected a "
+                         f"{'larger' if small else 'smaller'} load")) from None
     notes = not_included("mesh", case)
     notes += bore_notes(case, geo)
     iso = iso_stiffness(case, geo, force)

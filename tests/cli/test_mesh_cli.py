@@ -68,3 +68,17 @@ def test_harris_map_at_the_case_load_is_the_static_transmission_error():
     assert loads[i] == pytest.approx(doc["force_N"], rel=1e-12)  # 1.0 x the load, to round-off
     assert doc["harris"]["ste_peak_to_peak_um"][i] == pytest.approx(
         doc["ste"]["peak_to_peak_um"], rel=1e-9)  # the same equilibria at a load 1e-16 apart
+
+
+def test_a_load_below_the_solvers_resolution_is_refused_not_answered():
+    """iso_pair (tooth law, F = k p): 1e-9 N deflects the mesh by ~4e-15 mm, below Brent's
+    1e-13 mm tolerance; before, the answer had roll positions with no pair in contact and a
+    4.2 µm STE; now one line naming the load, exit 1. The seed's IMPACT law (F = k p^e,
+    e > 1) compresses by (F/k)^(1/e), resolvable at the same force: answered."""
+    res = runner.invoke(app, ["mesh", "cases/iso_pair.yaml", "--load", "1e-9", "-q"])
+    assert res.exit_code == 1, res.output
+    assert "--load 1e-09 N" in res.output and "expected a larger load" in res.output
+    for case, load in (("cases/iso_pair.yaml", "1e-3"), (str(SEED), "1e-9")):
+        ok = runner.invoke(app, ["mesh", case, "--load", load, "--json"])
+        assert ok.exit_code == 0, ok.output
+        assert json.loads(ok.output)["sharing"]["pairs_in_contact_min"] >= 1
