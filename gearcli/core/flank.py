@@ -150,22 +150,31 @@ def _profile_gaps(table, rows, x_lo, inv_h, xs, gaps):
 
 
 @jit_noalloc_inline
-def _push(f, j, x1, force, kin, app, model, slot_force, full, sums):
+def _friction_setting(prm):
+    """``(used, mu_s, mu_d)``: the run's friction coefficients [-] and whether either is
+    nonzero (read once per flank call, before the slot loop: a read per pair is not hoisted
+    by the compiler past the loop's stores)."""
+    mu_s = prm[P.mu_s]
+    mu_d = prm[P.mu_d]
+    return mu_s != 0.0 or mu_d != 0.0, mu_s, mu_d
+
+
+@jit_noalloc_inline
+def _push(f, j, x1, force, motion, prm, friction, slot_force, full, sums):
     """Add a pair that pushes (``force`` > 0 [N], slot ``j`` at pinion roll position ``x1``
     [mm]) to the family's sums ``(f_sum, n_contact, m1f, m2f, ff_sum, fpow)``: its slot force
     (row ``f`` of ``slot_force`` when ``full``), its force and its friction (:func:`_friction`
-    when the run has friction)."""
+    when the run has friction: ``friction`` from :func:`_friction_setting`; ``motion = (omega1,
+    omega2, slide)`` [rad/s, rad/s, mm/s])."""
     f_sum, n_contact, m1f, m2f, ff_sum, fpow = sums
     if full:
         slot_force[f, j] = force
     f_sum += force
     n_contact += 1
-    prm = model.prm
-    mu_s = prm[P.mu_s]
-    mu_d = prm[P.mu_d]
-    if mu_s != 0.0 or mu_d != 0.0:
-        fr, fm1, fm2, fp = _friction(prm, x1, kin.omega1, kin.omega2, app.slide, force, mu_s,
-                                     mu_d)
+    used, mu_s, mu_d = friction
+    if used:
+        omega1, omega2, slide = motion
+        fr, fm1, fm2, fp = _friction(prm, x1, omega1, omega2, slide, force, mu_s, mu_d)
         m1f += fm1
         m2f -= fm2
         ff_sum += fr
@@ -215,6 +224,8 @@ def _gather(f, sigma, kin, app, model, scratch, slot_force, full):
     keep = reads_sum(law)
     # the mesh deflection rate [mm/s]; a law applied here does not read the sum of k p
     shared = (sigma, sigma * kin.deltadot + lat_rate, 0.0)
+    motion = (kin.omega1, kin.omega2, app.slide)
+    friction = _friction_setting(prm)
     factors = derived[D.tooth_factors_used] != 0.0
     inv_hf = 0.0
     if factors:
@@ -299,7 +310,7 @@ def _gather(f, sigma, kin, app, model, scratch, slot_force, full):
         force, q1, q2, pot, pdamp = local_law_force(law, prm, derived, pair, shared, acc)
         acc = (q1, q2, pot, pdamp)
         if not force <= 0.0:
-            sums = _push(f, j, x1, force, kin, app, model, slot_force, full, sums)
+            sums = _push(f, j, x1, force, motion, prm, friction, slot_force, full, sums)
     return n_touch, fel_sum, pen_max, acc, sums
 
 
@@ -312,6 +323,8 @@ def _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force, full,
     prm = model.prm
     derived = model.derived
     law = int(prm[P.contact_law])
+    motion = (kin.omega1, kin.omega2, app.slide)
+    friction = _friction_setting(prm)
     acc = (0.0, 0.0, 0.0, 0.0)
     for m in range(n_touch):
         pair = (scratch[SC.pen, m], scratch[SC.pdot, m], scratch[SC.dp1, m],
@@ -320,8 +333,8 @@ def _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force, full,
         acc = (q1, q2, pot, pdamp)
         if force <= 0.0:
             continue
-        sums = _push(f, int(scratch[SC.slot, m]), scratch[SC.x1, m], force, kin, app, model,
-                     slot_force, full, sums)
+        sums = _push(f, int(scratch[SC.slot, m]), scratch[SC.x1, m], force, motion, prm,
+                     friction, slot_force, full, sums)
     return acc, sums
 
 
