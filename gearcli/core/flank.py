@@ -23,7 +23,7 @@ from gearcli.core.derive import table_of
 from gearcli.core.friction import adams_mu
 from gearcli.core.gaptable import hermite, linear
 from gearcli.core.jit import jit
-from gearcli.core.laws import local_law_force, reads_sum, shared_law_force
+from gearcli.core.laws import pair_force
 from gearcli.core.layout import DRIVE_FLANKS, GEAR, PINION, SC, D, F, P
 from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
@@ -150,48 +150,10 @@ def _profile_gaps(table, rows, x_lo, inv_h, xs, gaps):
 
 
 @jit_noalloc_inline
-def _friction_setting(prm):
-    """``(used, mu_s, mu_d)``: the run's friction coefficients [-] and whether either is
-    nonzero (read once per flank call, before the slot loop: a read per pair is not hoisted
-    by the compiler past the loop's stores)."""
-    mu_s = prm[P.mu_s]
-    mu_d = prm[P.mu_d]
-    return mu_s != 0.0 or mu_d != 0.0, mu_s, mu_d
-
-
-@jit_noalloc_inline
-def _push(f, j, x1, force, motion, prm, friction, slot_force, full, sums):
-    """Add a pair that pushes (``force`` > 0 [N], slot ``j`` at pinion roll position ``x1``
-    [mm]) to the family's sums ``(f_sum, n_contact, m1f, m2f, ff_sum, fpow)``: its slot force
-    (row ``f`` of ``slot_force`` when ``full``), its force and its friction (:func:`_friction`
-    when the run has friction: ``friction`` from :func:`_friction_setting`; ``motion = (omega1,
-    omega2, slide)`` [rad/s, rad/s, mm/s])."""
-    f_sum, n_contact, m1f, m2f, ff_sum, fpow = sums
-    if full:
-        slot_force[f, j] = force
-    f_sum += force
-    n_contact += 1
-    used, mu_s, mu_d = friction
-    if used:
-        omega1, omega2, slide = motion
-        fr, fm1, fm2, fp = _friction(prm, x1, omega1, omega2, slide, force, mu_s, mu_d)
-        m1f += fm1
-        m2f -= fm2
-        ff_sum += fr
-        fpow += fp
-    return f_sum, n_contact, m1f, m2f, ff_sum, fpow
-
-
-@jit_noalloc_inline
-def _gather(f, sigma, kin, app, model, scratch, slot_force, full):
-    """The pass over the slots of flank family ``f``: every pair in contact (p > 0) with its
-    penetration, rate, derivatives and stiffness. Under a law of the pair alone
-    (laws.local_law_force, ``reads_sum`` false: IMPACT) the pair's force is applied here and
-    pushed (:func:`_push`); under a law that reads the family's sum of k p (the tooth law) the
-    pair goes into ``scratch`` (layout.SC: slot, x1, p, p', dp/ds1, dp/ds2, k, dk/dx1) for
-    :func:`_pair_forces`. Returns the count kept, the sum of k p over the pairs in contact
-    [N], the largest penetration [mm] (0 if none), the law's sums ``(q1, q2, pot, pdamp)`` and
-    :func:`_push`'s sums.
+def _gather(f, sigma, kin, app, model, scratch):
+    """First pass over the slots of flank family ``f``: every pair in contact (p > 0) into
+    ``scratch`` (layout.SC: slot, x1, p, p', dp/ds1, dp/ds2, k, dk/dx1). Returns their count,
+    the sum of k p over them [N] and the largest penetration [mm] (0 if none).
 
     The stiffness k_j [N/mm^e] of the pair at pinion roll position x1 [mm] holding pinion
     tooth i1 and gear tooth i2, and dk_j/dx1 [N/mm^(e+1)] (docs/theory.md §4b.2): with a
@@ -220,12 +182,6 @@ def _gather(f, sigma, kin, app, model, scratch, slot_force, full):
     x_hi = prm[P.x_hi]
     grid = (x_lo, x_hi, derived[D.grid_step], derived[D.inv_grid_step])
     k = prm[P.k_contact]
-    law = int(prm[P.contact_law])
-    keep = reads_sum(law)
-    # the mesh deflection rate [mm/s]; a law applied here does not read the sum of k p
-    shared = (sigma, sigma * kin.deltadot + lat_rate, 0.0)
-    motion = (kin.omega1, kin.omega2, app.slide)
-    friction = _friction_setting(prm)
     factors = derived[D.tooth_factors_used] != 0.0
     inv_hf = 0.0
     if factors:
@@ -255,8 +211,6 @@ def _gather(f, sigma, kin, app, model, scratch, slot_force, full):
     n_touch = 0
     fel_sum = 0.0
     pen_max = 0.0
-    acc = (0.0, 0.0, 0.0, 0.0)
-    sums = (0.0, 0, 0.0, 0.0, 0.0, 0.0)
     for j in range(scratch.shape[1]):
         if j > 0 and track:
             i1 = _previous_tooth(i1, isig, z1)
@@ -293,49 +247,64 @@ def _gather(f, sigma, kin, app, model, scratch, slot_force, full):
                                  x1)
             dkj = dkj * fac + kj * dfac
             kj *= fac
-        pdot = dp1 * v1 + dp2 * v2 + lat_rate
-        if keep:
-            scratch[SC.slot, n_touch] = j
-            scratch[SC.x1, n_touch] = x1
-            scratch[SC.pen, n_touch] = pen
-            scratch[SC.pdot, n_touch] = pdot
-            scratch[SC.dp1, n_touch] = dp1
-            scratch[SC.dp2, n_touch] = dp2
-            scratch[SC.k, n_touch] = kj
-            scratch[SC.dk, n_touch] = dkj
-            n_touch += 1
-            fel_sum += kj * pen
-            continue
-        pair = (pen, pdot, dp1, dp2, kj, dkj)
-        force, q1, q2, pot, pdamp = local_law_force(law, prm, derived, pair, shared, acc)
-        acc = (q1, q2, pot, pdamp)
-        if not force <= 0.0:
-            sums = _push(f, j, x1, force, motion, prm, friction, slot_force, full, sums)
-    return n_touch, fel_sum, pen_max, acc, sums
+        scratch[SC.slot, n_touch] = j
+        scratch[SC.x1, n_touch] = x1
+        scratch[SC.pen, n_touch] = pen
+        scratch[SC.pdot, n_touch] = dp1 * v1 + dp2 * v2 + lat_rate
+        scratch[SC.dp1, n_touch] = dp1
+        scratch[SC.dp2, n_touch] = dp2
+        scratch[SC.k, n_touch] = kj
+        scratch[SC.dk, n_touch] = dkj
+        n_touch += 1
+        fel_sum += kj * pen
+    return n_touch, fel_sum, pen_max
 
 
 @jit_noalloc_inline
-def _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force, full, sums):
-    """Second pass, for a law that reads the family's sum of k p: the force of every pair
-    :func:`_gather` kept in ``scratch`` (laws.shared_law_force, ``shared`` as there) and
-    :func:`_push` of those that push, after ``sums`` of the pairs applied in the first pass.
-    Returns the law's sums ``(q1, q2, pot, pdamp)`` and :func:`_push`'s sums."""
+def _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force, full):
+    """Second pass: the force of every pair kept by :func:`_gather` under the run's contact law
+    (:func:`gearcli.core.laws.pair_force`, ``shared`` as there), the slot forces (row ``f`` of
+    ``slot_force`` when ``full``) and the friction of the pairs that push. Returns the sums
+    q1, q2, m1f, m2f, force, n_contact, friction force, friction power, damping power and
+    potential (the fields of FlankForces but pen_max)."""
     prm = model.prm
     derived = model.derived
     law = int(prm[P.contact_law])
-    motion = (kin.omega1, kin.omega2, app.slide)
-    friction = _friction_setting(prm)
-    acc = (0.0, 0.0, 0.0, 0.0)
+    omega1 = kin.omega1
+    omega2 = kin.omega2
+    slide = app.slide
+    mu_s = prm[P.mu_s]
+    mu_d = prm[P.mu_d]
+    use_friction = mu_s != 0.0 or mu_d != 0.0
+    q1 = 0.0
+    q2 = 0.0
+    m1f = 0.0
+    m2f = 0.0
+    f_sum = 0.0
+    n_contact = 0
+    ff_sum = 0.0
+    fpow = 0.0
+    pdamp = 0.0
+    pot = 0.0
     for m in range(n_touch):
         pair = (scratch[SC.pen, m], scratch[SC.pdot, m], scratch[SC.dp1, m],
                 scratch[SC.dp2, m], scratch[SC.k, m], scratch[SC.dk, m])
-        force, q1, q2, pot, pdamp = shared_law_force(law, prm, derived, pair, shared, acc)
-        acc = (q1, q2, pot, pdamp)
+        force, q1, q2, pot, pdamp = pair_force(law, prm, derived, pair, shared,
+                                               (q1, q2, pot, pdamp))
         if force <= 0.0:
             continue
-        sums = _push(f, int(scratch[SC.slot, m]), scratch[SC.x1, m], force, motion, prm,
-                     friction, slot_force, full, sums)
-    return acc, sums
+        if full:
+            slot_force[f, int(scratch[SC.slot, m])] = force
+        f_sum += force
+        n_contact += 1
+        if use_friction:
+            fr, fm1, fm2, fp = _friction(prm, scratch[SC.x1, m], omega1, omega2, slide, force,
+                                         mu_s, mu_d)
+            m1f += fm1
+            m2f -= fm2
+            ff_sum += fr
+            fpow += fp
+    return q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot
 
 
 @jit_noalloc_inline
@@ -357,14 +326,11 @@ def flank(f, kin, app, model, slot_force, scratch, full):
     full : bool
         False at the inner Runge-Kutta stages, where only the derivatives are used.
 
-    :func:`_gather` finds the pairs in contact with their penetration, its rate and
-    derivatives and their stiffness (the tooth law's table k(x1), the per-tooth, per-position
-    stiffness factors) and applies a contact law of the pair alone (``prm[P.contact_law]``,
-    laws.local_law_force: IMPACT) there, with friction; a law that reads the family's sum of
-    k p (laws.reads_sum: the tooth law) is applied by :func:`_pair_forces` in a second pass
-    over the pairs kept in ``scratch`` (laws.shared_law_force; the first pass's law sums are
-    zero then: one law per run). The laws and their closed forms are in
-    :mod:`gearcli.core.laws`.
+    Two passes: :func:`_gather` finds the pairs in contact with their penetration, its rate
+    and derivatives and their stiffness (the tooth law's table k(x1), the per-tooth,
+    per-position stiffness factors); :func:`_pair_forces` applies the contact
+    law (``prm[P.contact_law]``, one call of :func:`gearcli.core.laws.pair_force` per pair;
+    the laws and their closed forms are in :mod:`gearcli.core.laws`) and adds friction.
 
     Fast paths that leave every result unchanged (tests/physics/test_kernel_fastpaths.py,
     bench/RESULTS.md): with ``sigma delta - offset + overlap <= 0`` (``model.family[f,
@@ -385,13 +351,9 @@ def flank(f, kin, app, model, slot_force, scratch, full):
             slot_force[f, j] = 0.0
     if sigma * kin.delta + app.along - fam[f, F.offset] + fam[f, F.overlap] <= 0.0:
         return FlankForces(0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no touch
-    n_touch, fel_sum, pen_max, acc, sums = _gather(f, sigma, kin, app, model, scratch,
-                                                   slot_force, full)
-    if n_touch > 0:
-        # the mesh deflection rate [mm/s] and the sum of k p over the pairs in contact [N]
-        shared = (sigma, sigma * kin.deltadot + app.rate, fel_sum)
-        acc, sums = _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force,
-                                 full, sums)
-    q1, q2, pot, pdamp = acc
-    f_sum, n_contact, m1f, m2f, ff_sum, fpow = sums
+    n_touch, fel_sum, pen_max = _gather(f, sigma, kin, app, model, scratch)
+    # the mesh deflection rate [mm/s]
+    shared = (sigma, sigma * kin.deltadot + app.rate, fel_sum)
+    q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot = _pair_forces(
+        f, kin, app, model, shared, scratch, n_touch, slot_force, full)
     return FlankForces(q1, q2, m1f, m2f, f_sum, n_contact, ff_sum, fpow, pdamp, pot, pen_max)

@@ -5,8 +5,7 @@ p > 0) and keeps, per pair, its penetration p [mm] and rate p' [mm/s], the deriv
 dp/ds1, dp/ds2 [-] of p by the roll distances, and its stiffness k [N/mm^e] with the
 derivative dk/dx1 [N/mm^(e+1)] by the pinion roll position (the tooth law's table k(x1) times
 the per-tooth stiffness factors, docs/theory.md §4b.2; the constant k of the IMPACT law). It
-then applies the run's law once per pair in contact (:func:`pair_force`, through its halves
-:func:`local_law_force` and :func:`shared_law_force`). A law turns one pair into
+then calls :func:`pair_force` once per pair in contact. A law turns one pair into
 
 * its normal force F [N] (0 when it does not push),
 * its share of the generalized forces on s1, s2 [N] (subtracted from the running sums
@@ -17,11 +16,8 @@ then applies the run's law once per pair in contact (:func:`pair_force`, through
   and ``pdamp``.
 
 Adding a law: one function here with the signature of :func:`impact_law`, one named integer
-next to layout.LAW_IMPACT, one branch in :func:`local_law_force` (a law of the pair alone: flank
-applies it in its slot loop) or, for a law that reads the family's sum of k p, in
-:func:`shared_law_force` and :func:`reads_sum` (flank applies it in a second pass over the
-pairs it kept), its entry in :data:`KNOWN_LAWS`, its closed form in docs/theory.md and a test
-(tests/unit/test_contact_laws.py).
+next to layout.LAW_IMPACT, one branch in :func:`pair_force`, its entry in :data:`KNOWN_LAWS`,
+its closed form in docs/theory.md and a test (tests/unit/test_contact_laws.py).
 
 Arguments of every law (numba tuples, free once inlined):
 
@@ -110,36 +106,10 @@ def tooth_law(prm, derived, pair, shared, acc):
 
 
 @jit_noalloc_inline
-def reads_sum(law):
-    """True when law ``law`` reads the sum of k p over the family's pairs in contact
-    (``shared[2]``): flank.flank keeps its pairs and applies it in a second pass
-    (:func:`shared_law_force`); every other law is applied where its pair is found
-    (:func:`local_law_force`)."""
-    return law == LAW_TOOTH
-
-
-@jit_noalloc_inline
-def local_law_force(law, prm, derived, pair, shared, acc):
-    """:func:`pair_force` of a law of the pair alone (``reads_sum(law)`` false; ``shared[2]``
-    is not read): flank.flank applies it in its slot loop, in one pass. Applying the IMPACT law
-    in a second pass over stored pairs instead cost ~80 more instructions per pair in contact
-    (the stores and loads of the scratch; bench/RESULTS.md, session 12)."""
-    return impact_law(prm, derived, pair, shared, acc)
-
-
-@jit_noalloc_inline
-def shared_law_force(law, prm, derived, pair, shared, acc):
-    """:func:`pair_force` of a law that reads the family's sum of k p (``reads_sum(law)``):
-    flank.flank applies it in its second pass, once the sum is known."""
-    return tooth_law(prm, derived, pair, shared, acc)
-
-
-@jit_noalloc_inline
 def pair_force(law, prm, derived, pair, shared, acc):
     """The force of one pair in contact under contact law ``law`` (layout.LAW_*) and the
-    updated sums: ``(F, q1, q2, pot, pdamp)``; arguments as in the module docstring. The
-    dispatch over every law; the kernel (flank.flank) calls its two halves where each applies,
-    :func:`local_law_force` in the slot loop and :func:`shared_law_force` after it."""
-    if reads_sum(law):
-        return shared_law_force(law, prm, derived, pair, shared, acc)
-    return local_law_force(law, prm, derived, pair, shared, acc)
+    updated sums: ``(F, q1, q2, pot, pdamp)``; arguments as in the module docstring. The one
+    place a law is chosen (inlined: a compare and a branch per pair)."""
+    if law == LAW_TOOTH:
+        return tooth_law(prm, derived, pair, shared, acc)
+    return impact_law(prm, derived, pair, shared, acc)
