@@ -219,7 +219,7 @@ def main() -> None:
 
 
 def _print(results: dict, names: list[str], labels: list[str]) -> None:
-    print(f"instructions (callgrind Ir) per {'run'}, min over the counted runs; "
+    print("instructions (callgrind Ir) per kernel run, min over the counted runs; "
           "per RHS evaluation; per accepted step; ratio to the first tree")
     print("| case | tree | Ir per run | spread | RHS evals | Ir / RHS | Ir / step | ratio |")
     print("|---|---|---|---|---|---|---|---|")
