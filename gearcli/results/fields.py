@@ -109,7 +109,9 @@ def _read_nested(cls, value, mapping_depth: int):
     if mapping_depth:
         return {k: _read_nested(cls, v, mapping_depth - 1) for k, v in value.items()}
     if isinstance(value, list | tuple):
-        return tuple(cls.from_document(v) for v in value)
+        return tuple(_read_nested(cls, v, 0) for v in value)
+    if not isinstance(value, Mapping):  # a hand-edited file: not silently a default document
+        raise TypeError(f"{cls.__name__}: expected an object, got {type(value).__name__}")
     return cls.from_document(value)
 
 

@@ -88,6 +88,9 @@ def test_edition_rows_keep_their_year_keys():
     ("[1, 2]", "not a rating.json"),
     ('{"schema_version": 999, "iso": {}}', "schema_version 999"),
     ('{"iso": {"pinion": 3}}', "unreadable rating"),
+    # a text where a nested document belongs was read as that document's defaults (NaN)
+    ('{"iso": {"pinion": "x"}}', "GearRatingDocument: expected an object, got str"),
+    ('{"iso": {}, "editions": [1]}', "EditionRowDocument: expected an object, got int"),
     ("{", "unreadable JSON"),
 ])
 def test_read_rating_refuses_what_is_not_a_rating(tmp_path, text, message):
