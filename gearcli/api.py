@@ -398,8 +398,10 @@ def rate(case_or_run, set=None):  # noqa: A002
         F_max/F_static; its ``simulated_peaks`` the safeties of the peak contact and root
         stresses of :func:`stress` in the steady window, with K_A, K_γ, K_Hβ/K_Fβ, against
         σ_HG, σ_FG),
-        ``.duty_cycle``, ``.ok``, ``.to_dict()`` (what ``gearcli rate --json`` prints);
-        docs/theory.md, "ISO 6336 rating".
+        ``.duty_cycle``, ``.ok``, ``.document()`` (the typed rating.json,
+        :class:`gearcli.results.RatingDocument`, read back by ``gearcli report``) and
+        ``.to_dict()`` (its JSON: what ``gearcli rate --json`` prints); docs/theory.md, "ISO
+        6336 rating".
     """
     import contextlib
 
