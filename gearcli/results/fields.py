@@ -100,8 +100,44 @@ class Document:
                 value = _read_nested(nested, value, f.metadata.get("mapping_depth", 0))
             elif isinstance(value, list):
                 value = tuple(value)
+            else:
+                _check_scalar(cls, f.name, value)
             values[f.name] = value
         return cls(**values)
+
+
+def _scalar_kinds(cls) -> dict[str, tuple[type, ...]]:
+    """{field: accepted Python types} of ``cls``'s scalar fields (annotated float, int, str or
+    bool, alone or with None): what a stored value of that field may be, None always
+    included (NaN and missing values are stored as null)."""
+    import types
+    import typing
+
+    kinds = _KINDS.get(cls)
+    if kinds is None:
+        plain = {float: (int, float), int: (int,), str: (str,), bool: (bool,)}
+        kinds = {}
+        for name, hint in typing.get_type_hints(cls).items():
+            union = typing.get_origin(hint) in (typing.Union, types.UnionType)
+            args = set(typing.get_args(hint)) - {type(None)} if union else {hint}
+            if len(args) == 1 and (only := args.pop()) in plain:
+                kinds[name] = plain[only]
+        _KINDS[cls] = kinds
+    return kinds
+
+
+_KINDS: dict[type, dict[str, tuple[type, ...]]] = {}
+
+
+def _check_scalar(cls, name: str, value) -> None:
+    """TypeError when a stored scalar is not of its field's kind (a hand-edited file: "big"
+    for a safety factor is not silently shown as a number)."""
+    kinds = _scalar_kinds(cls).get(name)
+    if kinds is None or value is None:
+        return
+    if isinstance(value, bool) and bool not in kinds or not isinstance(value, kinds):
+        raise TypeError(f"{cls.__name__}.{name}: expected "
+                        f"{' or '.join(k.__name__ for k in kinds)}, got {type(value).__name__}")
 
 
 def _read_nested(cls, value, mapping_depth: int):

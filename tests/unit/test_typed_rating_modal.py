@@ -91,6 +91,9 @@ def test_edition_rows_keep_their_year_keys():
     # a text where a nested document belongs was read as that document's defaults (NaN)
     ('{"iso": {"pinion": "x"}}', "GearRatingDocument: expected an object, got str"),
     ('{"iso": {}, "editions": [1]}', "EditionRowDocument: expected an object, got int"),
+    # a text for a number was shown as written ("big" as the pinion's S_H in the report)
+    ('{"iso": {"pinion": {"S_H": "big"}}}', r"GearRatingDocument\.S_H: expected int or float"),
+    ('{"iso": {"pinion": {"S_H": true}}}', r"GearRatingDocument\.S_H: expected int or float"),
     ("{", "unreadable JSON"),
 ])
 def test_read_rating_refuses_what_is_not_a_rating(tmp_path, text, message):
