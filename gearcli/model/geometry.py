@@ -133,6 +133,9 @@ class PairGeometry:
     warnings = property(lambda self: tuple(f for f in self.findings if f.severity == "warning"),
                         doc="Findings with severity 'warning'.")
     p_b_mm = property(lambda self: self.pinion.p_b_mm, doc="Base pitch [mm].")
+    narrow_face_width_mm = property(
+        lambda self: min(self.pinion.face_width_mm, self.gear.face_width_mm),
+        doc="The narrower face width b = min(b1, b2) [mm]: the width in contact (ISO 6336-1).")
 
     def line_of_action_points(self) -> dict[str, float]:
         """Points T1, A, B, C, D, E, T2 as distances from T1 [mm]."""
@@ -390,7 +393,7 @@ def _findings(geo: PairGeometry, shift_sum_ok: bool) -> tuple[Finding, ...]:
     # it, so the load concentrates at one end. The threshold is a generous one for a validity
     # warning: the upper end of VDI 2736-2:2014's initial-design range 0.2 ... 2.0 (written for
     # thermoplastic gears; steel-gear guidance is lower, about 1 ... 1.5).
-    b = min(geo.pinion.face_width_mm, geo.gear.face_width_mm)
+    b = geo.narrow_face_width_mm
     b_d1 = b / geo.pinion.d_mm
     if b_d1 > FACE_WIDTH_RATIO_MAX:
         add("warning", "face_width", None, f"face width b = {b:.4g} mm is {b_d1:.2f} x the "

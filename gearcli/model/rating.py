@@ -291,7 +291,7 @@ def root_stress(force_N, face_width_mm: float, gear: GearGeometry, section: Root
 def bending_face_width(geo: PairGeometry, which: str) -> float:
     """Face width for the root stress of one gear [mm]: its own, at most the narrower + 2 m
     (ISO 6336-3:2019, face width b: one module of overhang on each side)."""
-    narrow = min(geo.pinion.face_width_mm, geo.gear.face_width_mm)
+    narrow = geo.narrow_face_width_mm
     own = getattr(geo, which).face_width_mm
     return min(own, narrow + 2.0 * geo.module_mm)
 

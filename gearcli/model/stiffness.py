@@ -103,7 +103,7 @@ def derived_pair_stiffness(geo, rack_dedendum_coef: float, torque_gear_Nmm: floa
     """ISO stiffness of a checked pair geometry at the gear's load torque (F_t = T / r_2) for
     gears of Young's modulus E [N/mm²] (one material: the equivalent modulus is E)."""
     f_t = abs(torque_gear_Nmm) / (0.5 * geo.gear.d_mm)
-    width = min(geo.pinion.face_width_mm, geo.gear.face_width_mm)
+    width = geo.narrow_face_width_mm
     return iso6336_stiffness(geo.pinion.teeth, geo.gear.teeth, geo.pinion.profile_shift,
                              geo.gear.profile_shift, math.degrees(geo.pressure_angle_rad),
                              rack_dedendum_coef, width, geo.eps_alpha, f_t, youngs_modulus_MPa)

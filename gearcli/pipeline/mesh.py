@@ -248,8 +248,8 @@ def _sharing(res: MeshAnalysis) -> MeshSharing:
         pairs_in_contact_max=int(lm.pairs_in_contact.max()),
         single_pair_share=float(np.mean(lm.pairs_in_contact == 1)),
         single_pair_limit_N=json_number(limit) if finite else None,
-        single_pair_limit_N_per_mm=json_number(
-            limit / min(g.pinion.face_width_mm, g.gear.face_width_mm)) if finite else None,
+        single_pair_limit_N_per_mm=json_number(limit / g.narrow_face_width_mm)
+        if finite else None,
         single_pair_limit_note=_limit_note(res))
 
 

@@ -116,7 +116,7 @@ def fe_check(case, geo, force_N: float, store=None) -> FeCheck:
 
     g, gears = geo.geometry, case.gears
     m1, m2 = case.material_of("pinion"), case.material_of("gear")
-    b = min(g.pinion.face_width_mm, g.gear.face_width_mm)
+    b = g.narrow_face_width_mm
     common = {"face_width_mm": b, "E1_MPa": m1.youngs_modulus, "nu1": m1.poisson_ratio,
               "E2_MPa": m2.youngs_modulus, "nu2": m2.poisson_ratio,
               "bore_diameter1_mm": gears.pinion.bore_diameter,

@@ -67,7 +67,7 @@ def contact_line_load_N_mm(case: Case, geo: GeometryResult, force_N: float | Non
     width; without a load, REFERENCE_LINE_LOAD_N_MM."""
     g = geo.geometry
     force = static_force_N(case, geo) if force_N is None else float(force_N)
-    w = force / min(g.pinion.face_width_mm, g.gear.face_width_mm)
+    w = force / g.narrow_face_width_mm
     return w if w > 0.0 else REFERENCE_LINE_LOAD_N_MM
 
 
@@ -85,7 +85,7 @@ def tooth_stiffness(case: Case, geo: GeometryResult, x_mm, force_N: float | None
     m1, m2 = case.material_of("pinion"), case.material_of("gear")
     try:
         return pair_stiffness(g, np.asarray(x_mm, float),
-                              face_width_mm=min(g.pinion.face_width_mm, g.gear.face_width_mm),
+                              face_width_mm=g.narrow_face_width_mm,
                               E1_MPa=m1.youngs_modulus, nu1=m1.poisson_ratio,
                               E2_MPa=m2.youngs_modulus, nu2=m2.poisson_ratio,
                               bore_diameter1_mm=gears.pinion.bore_diameter,
@@ -166,7 +166,7 @@ def iso_dynamic(case: Case, geo: GeometryResult) -> IsoResonance:
     q1 = (gears.pinion.bore_diameter or 0.0) / d_m1
     q2 = (gears.gear.bore_diameter or 0.0) / d_m2
     m_red = reduced_mass_kg_mm(d_m1, g.pinion.d_b_mm, rho, rho, g.ratio, q1, q2)
-    width = min(g.pinion.face_width_mm, g.gear.face_width_mm)
+    width = g.narrow_face_width_mm
     line_load = static_force_N(case, geo) * math.cos(g.pressure_angle_rad) / width
     c_prime = iso.c_prime_rating
     c_gamma_alpha = iso.c_gamma_alpha * iso.load_factor
