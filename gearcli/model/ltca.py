@@ -96,6 +96,12 @@ class LoadedMesh:
     def ste_peak_to_peak_mm(self) -> float:
         return float(np.ptp(self.ste_mm))
 
+    @property
+    def max_penetration_mm(self) -> float:
+        """The largest compression of a pair over the cycle [mm], the STE above the unloaded
+        TE: beyond the gap tables' reach the solution would leave out contacts."""
+        return float(np.max(self.ste_mm - self.unloaded_te_mm))
+
     def ste_harmonics_mm(self, count: int = 3) -> np.ndarray:
         """Amplitudes [mm] of the first ``count`` mesh harmonics of the STE (DFT over the
         whole cycles sampled uniformly: exact bins, no window)."""
@@ -287,6 +293,6 @@ def harris_map(tables, x_lo, x_hi, p_b, n_slots, law: ForceLaw, force_N: float,
                              law if law_of_load is None else law_of_load(f), f, **kw)
         except ValueError:  # no equilibrium within the deflection range
             continue
-        if float(np.max(lm.ste_mm - lm.unloaded_te_mm)) <= cap_mm:
+        if lm.max_penetration_mm <= cap_mm:
             ptp[i] = lm.ste_peak_to_peak_mm
     return loads, ptp

@@ -166,7 +166,7 @@ def _check_inside_tables(result: LoadedMesh, cap_mm: float) -> None:
     the gap tables' cap: a pair whose tip gap lies beyond the cap would touch but has no
     table, so the solution leaves out contacts (the range simulate's validity guard applies,
     pipeline/validity.table_exit)."""
-    deflection = float(np.max(result.ste_mm - result.unloaded_te_mm))
+    deflection = result.max_penetration_mm
     if deflection > cap_mm:
         raise ValueError(f"the mesh deflection {deflection:.4g} mm leaves the contact tables "
                          f"(they reach {cap_mm:.4g} mm): outside the contact model's range")
