@@ -6,6 +6,7 @@ queries of what is shown where (:func:`shown`, :func:`shown_values`)."""
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Mapping
 from typing import Any
@@ -106,6 +107,7 @@ class Document:
         return cls(**values)
 
 
+@functools.cache
 def _scalar_kinds(cls) -> dict[str, tuple[type, ...]]:
     """{field: accepted Python types} of ``cls``'s scalar fields (annotated float, int, str or
     bool, alone or with None): what a stored value of that field may be, None always
@@ -113,20 +115,14 @@ def _scalar_kinds(cls) -> dict[str, tuple[type, ...]]:
     import types
     import typing
 
-    kinds = _KINDS.get(cls)
-    if kinds is None:
-        plain = {float: (int, float), int: (int,), str: (str,), bool: (bool,)}
-        kinds = {}
-        for name, hint in typing.get_type_hints(cls).items():
-            union = typing.get_origin(hint) in (typing.Union, types.UnionType)
-            args = set(typing.get_args(hint)) - {type(None)} if union else {hint}
-            if len(args) == 1 and (only := args.pop()) in plain:
-                kinds[name] = plain[only]
-        _KINDS[cls] = kinds
+    plain = {float: (int, float), int: (int,), str: (str,), bool: (bool,)}
+    kinds = {}
+    for name, hint in typing.get_type_hints(cls).items():
+        union = typing.get_origin(hint) in (typing.Union, types.UnionType)
+        args = set(typing.get_args(hint)) - {type(None)} if union else {hint}
+        if len(args) == 1 and (only := args.pop()) in plain:
+            kinds[name] = plain[only]
     return kinds
-
-
-_KINDS: dict[type, dict[str, tuple[type, ...]]] = {}
 
 
 def _check_scalar(cls, name: str, value) -> None:
