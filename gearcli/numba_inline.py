@@ -178,13 +178,17 @@ def remove() -> None:
 
 
 def apply_when_compiling() -> None:
-    """Install the fix at the start of the process's first numba compilation (not before:
-    a run whose compiled code all comes from the cache never imports the inliner for it)."""
+    """Install the fix, and the SSA fix of gearcli/numba_ssa.py, at the start of the process's
+    first numba compilation (not before: a run whose compiled code all comes from the cache
+    never imports the inliner for it)."""
     from numba.core import event
+
+    from gearcli import numba_ssa
 
     class _OnCompile(event.Listener):
         def on_start(self, ev):
             apply()  # idempotent; cheap once installed
+            numba_ssa.apply()  # numba's SSA rewrite, per variable only where it occurs
 
         def on_end(self, ev):
             pass
