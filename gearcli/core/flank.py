@@ -23,7 +23,7 @@ from gearcli.core.derive import table_of
 from gearcli.core.friction import adams_mu
 from gearcli.core.gaptable import hermite, linear
 from gearcli.core.jit import jit
-from gearcli.core.laws import pair_force
+from gearcli.core.laws import law_constants, pair_force
 from gearcli.core.layout import DRIVE_FLANKS, GEAR, PINION, SC, D, F, P
 from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
 
@@ -270,6 +270,7 @@ def _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force, full)
     prm = model.prm
     derived = model.derived
     law = int(prm[P.contact_law])
+    consts = law_constants(prm, derived)
     omega1 = kin.omega1
     omega2 = kin.omega2
     slide = app.slide
@@ -289,8 +290,7 @@ def _pair_forces(f, kin, app, model, shared, scratch, n_touch, slot_force, full)
     for m in range(n_touch):
         pair = (scratch[SC.pen, m], scratch[SC.pdot, m], scratch[SC.dp1, m],
                 scratch[SC.dp2, m], scratch[SC.k, m], scratch[SC.dk, m])
-        force, q1, q2, pot, pdamp = pair_force(law, prm, derived, pair, shared,
-                                               (q1, q2, pot, pdamp))
+        force, q1, q2, pot, pdamp = pair_force(law, consts, pair, shared, (q1, q2, pot, pdamp))
         if force <= 0.0:
             continue
         if full:

@@ -17,11 +17,15 @@ then calls :func:`pair_force` once per pair in contact. A law turns one pair int
 
 Adding a law: one function here with the signature of :func:`impact_law`, one named integer
 next to layout.LAW_IMPACT, one branch in :func:`pair_force`, its entry in :data:`KNOWN_LAWS`,
-its closed form in docs/theory.md and a test (tests/unit/test_contact_laws.py).
+its closed form in docs/theory.md and a test (tests/unit/test_contact_laws.py); a constant the
+law needs from the run's vectors is a field of :class:`LawConstants`.
 
-Arguments of every law (numba tuples, free once inlined):
+Each law is a compiled function of scalars only (numba tuples of floats), so the call passes
+registers, not arrays, and LLVM inlines it where it is used; numba compiles it once, not once
+per flank family (bench/RESULTS.md, session 13: the first compile). Arguments of every law:
 
-* ``prm``, ``derived``: the run's parameter and derived vectors (layout.P, layout.D);
+* ``consts``: :class:`LawConstants`, read from the run's parameter and derived vectors
+  (layout.P, layout.D) once per flank family and evaluation (:func:`law_constants`);
 * ``pair = (p, p', dp/ds1, dp/ds2, k, dk/dx1)``;
 * ``shared = (sigma, v, sum_k_p)``: the flank family's sign (+1 drive, -1 coast), its mesh
   deflection rate v = sigma delta' + the centres' approach rate [mm/s], and the sum of k p
@@ -33,17 +37,41 @@ Each law updates each sum in one fixed order, the order of the code before the l
 out (gearcli 0.1.0), so results are bit for bit those of that code.
 """
 
+from typing import NamedTuple
+
 from gearcli.core.contact import elastic_force, impact_force
 from gearcli.core.layout import LAW_IMPACT, LAW_TOOTH, D, P
-from gearcli.core.nrt import jit_noalloc_inline
+from gearcli.core.nrt import jit_noalloc, jit_noalloc_inline
+
+
+class LawConstants(NamedTuple):
+    """The run's constants every law may read, taken from ``prm``/``derived`` once per flank
+    family and evaluation (:func:`law_constants`), not re-read per pair."""
+
+    k_contact: float  #: IMPACT stiffness k [N/mm^e] (the plain law's; factors scale it)
+    c_max: float  #: IMPACT maximum damping [N*s/mm]
+    exponent: float  #: IMPACT force exponent e [-]
+    d_max: float  #: IMPACT full-damping penetration [mm]
+    inv_exponent_plus_1: float  #: 1/(e + 1) [-]
+    mesh_damping: float  #: tooth law's mesh damping c_m [N*s/mm]
+    damping_force_ref: float  #: tooth law's reference force F_ref [N]
+
+
+@jit_noalloc_inline
+def law_constants(prm, derived):
+    """:class:`LawConstants` of a run's parameter and derived vectors (layout.P, layout.D)."""
+    return LawConstants(prm[P.k_contact], prm[P.c_max], prm[P.exponent], prm[P.d_max],
+                        derived[D.inv_exponent_plus_1], prm[P.mesh_damping],
+                        prm[P.damping_force_ref])
+
 
 #: Every contact law the kernel knows (layout.P.contact_law); integrate.kernel_model refuses
 #: other values.
 KNOWN_LAWS = (LAW_IMPACT, LAW_TOOTH)
 
 
-@jit_noalloc_inline
-def impact_law(prm, derived, pair, shared, acc):
+@jit_noalloc
+def impact_law(consts, pair, shared, acc):
     """Adams IMPACT (docs/theory.md §4.2, §4.3): F = max(0, k p^e + STEP(p, 0, 0, d_max, c_max)
     p') for p > 0 (with stiffness factors f = k/k_contact, k and c_max are both scaled by f),
     V = k p^(e+1)/(e+1), the whole force along the pair's penetration
@@ -53,16 +81,16 @@ def impact_law(prm, derived, pair, shared, acc):
     operations it always ran."""
     pen, pdot, dp1, dp2, k, dk = pair
     q1, q2, pot, pdamp = acc
-    c_max = prm[P.c_max]
-    k_plain = prm[P.k_contact]  # stiffness factors f = k/k_plain (docs/theory.md §4b.2) scale
+    c_max = consts.c_max
+    k_plain = consts.k_contact  # stiffness factors f = k/k_plain (docs/theory.md §4b.2) scale
     if k != k_plain and k_plain > 0.0:  # c_max too: a missing tooth (f = 0) carries no damping
         c_max *= k / k_plain
-    force, fel = impact_force(pen, pdot, k, prm[P.exponent], c_max, prm[P.d_max])
-    pot += fel * pen * derived[D.inv_exponent_plus_1]  # k p^(e+1)/(e+1), contact.impact_potential
+    force, fel = impact_force(pen, pdot, k, consts.exponent, c_max, consts.d_max)
+    pot += fel * pen * consts.inv_exponent_plus_1  # k p^(e+1)/(e+1), contact.impact_potential
     # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0
     pdamp += (force - fel) * pdot
     if dk != 0.0:  # dV/dk = p^(e+1)/(e+1) (k may be 0: a missing tooth)
-        q1 -= elastic_force(pen, 1.0, prm[P.exponent]) * pen * derived[D.inv_exponent_plus_1] \
+        q1 -= elastic_force(pen, 1.0, consts.exponent) * pen * consts.inv_exponent_plus_1 \
             * dk * shared[0]
     if not force <= 0.0:  # (a NaN force reaches the sums, as every other NaN)
         q1 -= force * dp1
@@ -70,22 +98,21 @@ def impact_law(prm, derived, pair, shared, acc):
     return force, q1, q2, pot, pdamp
 
 
-@jit_noalloc_inline
-def tooth_law(prm, derived, pair, shared, acc):
+@jit_noalloc
+def tooth_law(consts, pair, shared, acc):
     """Tooth compliance with shared mesh damping (docs/theory.md §4b, §4c): the elastic force
     F_el = k p, F = max(0, F_el (1 + c_m v / max(sum_i k_i p_i, F_ref))) (c_m =
-    ``prm[P.mesh_damping]``, F_ref = ``prm[P.damping_force_ref]``), V = k p^2/2.
+    ``consts.mesh_damping``, F_ref = ``consts.damping_force_ref``), V = k p^2/2.
 
     The elastic part acts along the penetration plus the position-dependent stiffness's
     -p^2/2 dk/dx1 sigma on s1; the damping part F_d = F - F_el along the mesh deflection
     (-F_d sigma on s1, +F_d sigma on s2), dissipating F_d v >= 0. A pair clamped at F = 0: its
-    damping cancels F_el along p, dissipating -F_el p'. ``derived`` is unused (one signature
-    for every law)."""
+    damping cancels F_el along p, dissipating -F_el p'."""
     pen, pdot, dp1, dp2, k, dk = pair
     sigma, v_mesh, fel_sum = shared
     q1, q2, pot, pdamp = acc
     # damping force per unit elastic force [-]
-    damp = prm[P.mesh_damping] * v_mesh / max(fel_sum, prm[P.damping_force_ref])
+    damp = consts.mesh_damping * v_mesh / max(fel_sum, consts.damping_force_ref)
     fel = k * pen
     force = max(0.0, fel + fel * damp)
     pot += 0.5 * fel * pen
@@ -106,10 +133,10 @@ def tooth_law(prm, derived, pair, shared, acc):
 
 
 @jit_noalloc_inline
-def pair_force(law, prm, derived, pair, shared, acc):
+def pair_force(law, consts, pair, shared, acc):
     """The force of one pair in contact under contact law ``law`` (layout.LAW_*) and the
     updated sums: ``(F, q1, q2, pot, pdamp)``; arguments as in the module docstring. The one
     place a law is chosen (inlined: a compare and a branch per pair)."""
     if law == LAW_TOOTH:
-        return tooth_law(prm, derived, pair, shared, acc)
-    return impact_law(prm, derived, pair, shared, acc)
+        return tooth_law(consts, pair, shared, acc)
+    return impact_law(consts, pair, shared, acc)
