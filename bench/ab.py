@@ -41,7 +41,10 @@ CASES = (
 )
 
 _CHILD = """
-import json, statistics, sys, time
+import json, os, random, statistics, sys, time
+if os.environ.get("GEARCLI_AB_LAYOUT"):  # a heap layout of its own (--layouts)
+    rng = random.Random(int(os.environ["GEARCLI_AB_LAYOUT"]))
+    _pads = [bytearray(rng.randrange(520, 9000)) for _ in range(rng.randrange(8, 64))]
 import gearcli.core.integrate as integrate
 from gearcli.pipeline.simulate import run_simulation
 runs, cases, clock = int(sys.argv[1]), json.loads(sys.argv[2]), sys.argv[3]
@@ -65,10 +68,13 @@ print(json.dumps(out))
 """
 
 
-def side(tree: Path, runs: int, labels: list[str], clock: str = "wall") -> dict:
+def side(tree: Path, runs: int, labels: list[str], clock: str = "wall",
+         layout: int | None = None) -> dict:
     cases = [(label, str(ROOT / path), overrides) for label, path, overrides in CASES
              if label in labels]
     env = {**os.environ, "PYTHONPATH": str(tree)}
+    if layout is not None:
+        env["GEARCLI_AB_LAYOUT"] = str(layout)
     done = subprocess.run([sys.executable, "-c", _CHILD, str(runs), json.dumps(cases), clock],
                           env=env, cwd=tree, capture_output=True, text=True, check=True)
     return json.loads(done.stdout.strip().splitlines()[-1])
@@ -88,6 +94,12 @@ def main() -> None:
                     help="wall: SimulationResult.wall_time_s; cpu: the thread's CPU time of "
                          "the same kernel call (time.thread_time: time spent waiting for a "
                          "core on a loaded machine is not counted)")
+    ap.add_argument("--layouts", action="store_true",
+                    help="each round in another heap layout: before importing gearcli, both "
+                         "sides' processes of round r allocate the same random padding "
+                         "(seeded by r), so the ratio's spread over the rounds includes where "
+                         "the heap puts the kernel's arrays (5-11 %% on this VM, "
+                         "bench/RESULTS.md), not one layout per revision")
     args = ap.parse_args()
     labels = [label for label, _, _ in CASES]
     if args.cases:
@@ -99,9 +111,10 @@ def main() -> None:
         rows: dict[str, list[str]] = {label: [] for label in labels}
         ratios: dict[str, list[float]] = {label: [] for label in labels}
         ratios_min: dict[str, list[float]] = {label: [] for label in labels}
-        for _ in range(args.rounds):
-            before = side(base, args.runs, labels, args.clock)
-            after = side(head, args.runs, labels, args.clock)
+        for r in range(args.rounds):
+            layout = r + 1 if args.layouts else None
+            before = side(base, args.runs, labels, args.clock, layout)
+            after = side(head, args.runs, labels, args.clock, layout)
             for label in rows:
                 (b, b_min), (a, a_min) = before[label], after[label]
                 ratios[label].append(a / b)
