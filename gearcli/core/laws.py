@@ -55,6 +55,8 @@ class LawConstants(NamedTuple):
     inv_exponent_plus_1: float  #: 1/(e + 1) [-]
     mesh_damping: float  #: tooth law's mesh damping c_m [N*s/mm]
     damping_force_ref: float  #: tooth law's reference force F_ref [N]
+    #: 1 in runs with stiffness factors (a pair's k may differ from k_contact), else 0
+    stiffness_factors: float
 
 
 @jit_noalloc_inline
@@ -62,7 +64,7 @@ def law_constants(prm, derived):
     """:class:`LawConstants` of a run's parameter and derived vectors (layout.P, layout.D)."""
     return LawConstants(prm[P.k_contact], prm[P.c_max], prm[P.exponent], prm[P.d_max],
                         derived[D.inv_exponent_plus_1], prm[P.mesh_damping],
-                        prm[P.damping_force_ref])
+                        prm[P.damping_force_ref], derived[D.tooth_factors_used])
 
 
 #: Every contact law the kernel knows (layout.P.contact_law); integrate.kernel_model refuses
@@ -79,12 +81,20 @@ def impact_law(consts, pair, shared, acc):
     clips F to 0). With a position-dependent k (stiffness factors), Q_s1 -= p^(e+1)/(e+1)
     dk/dx1 sigma; skipped when dk/dx1 = 0, so the constant k of the plain law runs the
     operations it always ran."""
-    pen, pdot, dp1, dp2, k, dk = pair
-    q1, q2, pot, pdamp = acc
+    k = pair[4]
     c_max = consts.c_max
     k_plain = consts.k_contact  # stiffness factors f = k/k_plain (docs/theory.md §4b.2) scale
     if k != k_plain and k_plain > 0.0:  # c_max too: a missing tooth (f = 0) carries no damping
         c_max *= k / k_plain
+    return _impact(consts, c_max, pair, shared, acc)
+
+
+@jit_noalloc
+def _impact(consts, c_max, pair, shared, acc):
+    """:func:`impact_law` with its damping coefficient ``c_max`` [N*s/mm] given (the run's, or
+    scaled with the pair's stiffness factor)."""
+    pen, pdot, dp1, dp2, k, dk = pair
+    q1, q2, pot, pdamp = acc
     force, fel = impact_force(pen, pdot, k, consts.exponent, c_max, consts.d_max)
     pot += fel * pen * consts.inv_exponent_plus_1  # k p^(e+1)/(e+1), contact.impact_potential
     # damping dissipation rate (F - k p^e) pdot >= 0, also when the max() clips F to 0
@@ -139,4 +149,7 @@ def pair_force(law, consts, pair, shared, acc):
     place a law is chosen (inlined: a compare and a branch per pair)."""
     if law == LAW_TOOTH:
         return tooth_law(consts, pair, shared, acc)
-    return impact_law(consts, pair, shared, acc)
+    if consts.stiffness_factors != 0.0:
+        return impact_law(consts, pair, shared, acc)
+    # without stiffness factors every pair has the run's k: no damping scaling to test for
+    return _impact(consts, consts.c_max, pair, shared, acc)
