@@ -146,7 +146,10 @@ def tooth_law(consts, pair, shared, acc):
 def pair_force(law, consts, pair, shared, acc):
     """The force of one pair in contact under contact law ``law`` (layout.LAW_*) and the
     updated sums: ``(F, q1, q2, pot, pdamp)``; arguments as in the module docstring. The one
-    place a law is chosen (inlined: a compare and a branch per pair)."""
+    place a law is chosen (inlined: a compare and a branch per pair). In a run without
+    stiffness factors every pair has the run's k, so IMPACT goes without its damping scaling
+    (:func:`_impact` with the run's c_max: the same numbers, no per-pair test and division,
+    ~2 % of the seed's kernel time, bench/RESULTS.md session 13)."""
     if law == LAW_TOOTH:
         return tooth_law(consts, pair, shared, acc)
     if consts.stiffness_factors != 0.0:

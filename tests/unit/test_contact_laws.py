@@ -38,12 +38,13 @@ def vectors(exponent: float = 1.5):
     return prm, derived
 
 
-def constants(exponent: float = 1.5, **changes):
+def constants(exponent: float = 1.5, factors: bool = False, **changes):
     """The laws' constants (laws.law_constants) of :func:`vectors` with ``prm`` entries
-    changed by name."""
+    changed by name; ``factors``: a run with stiffness factors (derived tooth_factors_used)."""
     prm, derived = vectors(exponent)
     for name, value in changes.items():
         prm[getattr(P, name)] = value
+    derived[D.tooth_factors_used] = 1.0 if factors else 0.0
     return law_constants(prm, derived)
 
 
@@ -158,10 +159,24 @@ def test_impact_damping_scales_with_the_stiffness_factor():
     """With stiffness factors the IMPACT law scales c_max by f = k/k_contact as it scales k
     (docs/theory.md §4b.2): at full damping depth (p >= d_max) the damping force is f c_max p';
     f = 0 (a missing tooth) carries no force at all; f = 1 is the plain law."""
-    consts = constants(1.5, k_contact=K_IMPACT, c_max=30.0, d_max=1e-4)
+    consts = constants(1.5, factors=True, k_contact=K_IMPACT, c_max=30.0, d_max=1e-4)
     pen, rate = 2e-3, 50.0  # p > d_max: STEP at its full value c_max
     elastic = K_IMPACT * pen ** 1.5
     for f in (1.0, 0.5, 0.0):
-        force = impact_law(consts, (pen, rate, 1.0, -1.0, f * K_IMPACT, 0.0),
-                           (1.0, rate, 0.0), ACC)[0]
-        assert force == pytest.approx(f * (elastic + 30.0 * rate), rel=1e-12, abs=0.0), f
+        pair = (pen, rate, 1.0, -1.0, f * K_IMPACT, 0.0)
+        got = impact_law(consts, pair, (1.0, rate, 0.0), ACC)
+        assert got[0] == pytest.approx(f * (elastic + 30.0 * rate), rel=1e-12, abs=0.0), f
+        # the kernel's dispatch in a run with stiffness factors scales the same way
+        assert pair_force(layout.LAW_IMPACT, consts, pair, (1.0, rate, 0.0), ACC) == got
+
+
+def test_without_stiffness_factors_the_dispatch_skips_the_damping_scaling():
+    """A run without stiffness factors has the run's k for every pair, so pair_force takes the
+    IMPACT law without the scaling test (laws._impact): the same numbers as impact_law for
+    that k, and c_max unscaled."""
+    consts = constants(1.5, k_contact=K_IMPACT, c_max=30.0, d_max=1e-4)
+    pair, shared = (2e-3, 50.0, 1.0, -1.0, K_IMPACT, 0.0), (1.0, 50.0, 0.0)
+    assert pair_force(layout.LAW_IMPACT, consts, pair, shared, ACC) == \
+        impact_law(consts, pair, shared, ACC)
+    assert consts.stiffness_factors == 0.0
+    assert constants(1.5, factors=True).stiffness_factors == 1.0
