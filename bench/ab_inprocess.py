@@ -44,20 +44,12 @@ from ab import CASES, _export, _key  # noqa: E402  (the same cases and export as
 _CHILD = """
 import copy, json, statistics, sys, time
 cases, runs, head_first = json.loads(sys.argv[1]), int(sys.argv[2]), sys.argv[3] == "1"
+sys.path.insert(0, sys.argv[4])  # bench/
+from kernel_call import kernel_call
 import gearcli.core.integrate as base_integrate
 import gearclib.core.integrate as head_integrate
 from gearcli.pipeline.simulate import run_simulation as base_run
 from gearclib.pipeline.simulate import run_simulation as head_run
-
-def kernel_call(integrate, run_simulation, path, overrides):
-    got, simulate = [], integrate.simulate
-    def keep(*args, **kwargs):
-        got.append(copy.deepcopy((args, kwargs)))
-        return simulate(*args, **kwargs)
-    integrate.simulate = keep
-    run_simulation(path, overrides, zoom=False, notice=None)
-    integrate.simulate = simulate
-    return simulate, got[0]
 
 out = {}
 for label, path, overrides in cases:
@@ -114,7 +106,7 @@ def main() -> None:
         orders = {}
         for head_first in ("0", "1"):
             done = subprocess.run([sys.executable, "-c", _CHILD, json.dumps(cases),
-                                   str(args.runs), head_first],
+                                   str(args.runs), head_first, str(ROOT / "bench")],
                                   env=env, cwd=tree, capture_output=True, text=True, check=True)
             orders[head_first] = json.loads(done.stdout.strip().splitlines()[-1])
     print(f"kernel A/B in one process ({args.runs} calls per side and order), ms, min / median: "

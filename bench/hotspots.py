@@ -34,23 +34,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def kernel_call(path: str, overrides: list[str]):
-    """The kernel function and the arguments ``run_simulation`` called it with."""
-    import gearcli.core.integrate as integrate
-    from gearcli.pipeline.simulate import run_simulation
-
-    got, simulate = [], integrate.simulate
-
-    def keep(*args, **kwargs):
-        got.append(copy.deepcopy((args, kwargs)))
-        return simulate(*args, **kwargs)
-
-    integrate.simulate = keep
-    run_simulation(path, overrides, zoom=False, notice=None)
-    integrate.simulate = simulate
-    return simulate, got[0]
-
-
 def compiled_functions():
     """(name, address, size, object file) of every compiled function numba made, by symbol."""
     from numba.core.dispatcher import Dispatcher
@@ -115,7 +98,13 @@ def main() -> None:
     args = ap.parse_args()
     # compile into an empty cache: a library loaded from the cache keeps no object code
     os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="gearcli-hot-numba-")
-    simulate, call = kernel_call(args.case, args.overrides)
+    import gearcli.core.integrate as integrate
+    from gearcli.pipeline.simulate import run_simulation
+
+    sys.path.insert(0, str(ROOT / "bench"))
+    from kernel_call import kernel_call
+
+    simulate, call = kernel_call(integrate, run_simulation, args.case, args.overrides)
     a, k = copy.deepcopy(call)
     simulate(*a, **k)  # warm
     with tempfile.TemporaryDirectory(prefix="gearcli-hot-") as tmp:
