@@ -44,21 +44,30 @@ def _phis_far_from_uses(x, n, flag):
     return total + y
 
 
-def _ssa_text(func, fixed):
-    """numba's IR of ``func`` (front end, then SSA reconstruction) as text, with or without
-    the fix; a fresh front end each time (the SSA step renames within the IR's scope)."""
+def _ssa_text_and_warnings(func, fixed, edit=None):
+    """numba's IR of ``func`` (front end, ``edit`` of it if given, then SSA reconstruction) as
+    text, with or without the fix, and the warnings the SSA step gave; a fresh front end each
+    time (the SSA step renames within the IR's scope)."""
     func_ir = compiler.run_frontend(func)
+    if edit is not None:
+        edit(func_ir)
     if fixed:
         numba_ssa.apply()
     else:
         numba_ssa.remove()
     try:
-        ssa.reconstruct_ssa(func_ir)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            ssa.reconstruct_ssa(func_ir)
     finally:
         numba_ssa.apply()
     out = io.StringIO()
     func_ir.dump(file=out)
-    return out.getvalue()
+    return out.getvalue(), [(type(w.message).__name__, str(w.message)) for w in caught]
+
+
+def _ssa_text(func, fixed):
+    return _ssa_text_and_warnings(func, fixed)[0]
 
 
 KERNEL = [timeloop.run, rhs.rhs, flank._gather, flank._pair_forces, flank.flank,
@@ -218,13 +227,6 @@ ADVERSARIAL = [_defined_on_some_paths, _break_continue, _try_except, _generator,
                _unrolled, _objmode, _generated()]
 
 
-def _ssa_text_and_warnings(func, fixed):
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        text = _ssa_text(func, fixed)
-    return text, [(type(w.message).__name__, str(w.message)) for w in caught]
-
-
 @pytest.mark.parametrize("func", ADVERSARIAL, ids=lambda f: f.__name__)
 def test_adversarial_shapes_give_numbas_ssa_and_warnings(func, monkeypatch):
     _installed()
@@ -241,21 +243,11 @@ def test_numbas_warnings_for_undefined_and_unscoped_variables_are_kept(monkeypat
     _installed()
     monkeypatch.setattr(config, "ALWAYS_WARN_UNINIT_VAR", 1)
 
-    def run(fixed):
-        func_ir = compiler.run_frontend(_defined_on_some_paths)
+    def unscope_z(func_ir):
         del func_ir.blocks[min(func_ir.blocks)].scope.localvars._con["z"]
-        (numba_ssa.apply if fixed else numba_ssa.remove)()
-        try:
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                ssa.reconstruct_ssa(func_ir)
-        finally:
-            numba_ssa.apply()
-        out = io.StringIO()
-        func_ir.dump(file=out)
-        return out.getvalue(), [(type(w.message).__name__, str(w.message)) for w in caught]
 
-    before, after = run(False), run(True)
+    before, after = (_ssa_text_and_warnings(_defined_on_some_paths, fixed, unscope_z)
+                     for fixed in (False, True))
     kinds = {kind for kind, _ in before[1]}
     assert {"NumbaIRAssumptionWarning", "NumbaWarning"} <= kinds, before[1]
     assert after == before
@@ -364,23 +356,15 @@ def test_a_name_outside_the_scope_that_renaming_reuses_gives_numbas_ssa():
     function to numba's walk of every block (the output is numba's, however odd)."""
     _installed()
 
-    def run(fixed):
-        func_ir = compiler.run_frontend(_two_loop_variables)
+    def y_as_x1_outside_the_scope(func_ir):
         del func_ir.blocks[min(func_ir.blocks)].scope.localvars._con["y"]
         for block in func_ir.blocks.values():
             for stmt in block.body:
                 for var in stmt.list_vars():
                     if var.name == "y":
                         var.name = "x.1"
-        (numba_ssa.apply if fixed else numba_ssa.remove)()
-        try:
-            ssa.reconstruct_ssa(func_ir)
-        finally:
-            numba_ssa.apply()
-        out = io.StringIO()
-        func_ir.dump(file=out)
-        return out.getvalue()
 
-    before = run(False)
-    assert "x.1.1" in before  # numba did rename the stand-in (the case is not vacuous)
-    assert run(True) == before
+    before, after = (_ssa_text_and_warnings(_two_loop_variables, fixed, y_as_x1_outside_the_scope)
+                     for fixed in (False, True))
+    assert "x.1.1" in before[0]  # numba did rename the stand-in (the case is not vacuous)
+    assert after == before
