@@ -18,9 +18,12 @@ control-flow graph from the blocks that use it, not by visiting the other blocks
 indexes, once per function, the blocks in which each variable name occurs and hands numba's own
 ``_run_block_rewrite`` only those blocks, in numba's order; every other block is carried over as
 a new block with the same statements (as numba's rewrite makes it). The renaming of one variable
-adds names of that variable only, so the index stays right for the others. The IR that comes
-out is numba's, name for name (tests/unit/test_numba_ssa.py compares the two on the kernel's
-own functions).
+adds names of that variable only, so the index stays right for the others, provided every
+name in the blocks is in the scope numba renames in (a new name is new to the scope, and could
+otherwise be one the IR already uses, e.g. ``x.1`` left outside the scope by numba's inliner);
+a function with a name outside its scope is left to numba's walk of every block. The IR that
+comes out is numba's, name for name (tests/unit/test_numba_ssa.py compares the two on the
+kernel's own functions, on adversarial shapes, and on every SSA step of a compilation).
 
 :func:`apply` installs it only when numba's SSA module has that shape (``_run_ssa`` calling
 ``_fresh_vars`` and ``_fix_ssa_vars`` through the module's ``_run_block_rewrite(blocks, states,
@@ -47,6 +50,22 @@ def _index(blocks) -> dict:
             for var in stmt.list_vars():
                 mentions.setdefault(var.name, set()).add(label)
     return mentions
+
+
+def _index_if_scoped(blocks) -> dict | None:
+    """The index of :func:`_index`, or None (numba's own rewrite of every block) when a name
+    in the blocks is not in the scope numba renames in (the first block's). Renaming a variable
+    ``x`` makes names ``x.1``, ``x.2``, ... that are new to the scope, and a name the IR uses
+    but the scope lacks can be one of them (numba's inliner leaves such names, its
+    NumbaIRAssumptionWarning): then later variables' blocks are no longer those indexed,
+    and only numba's walk of every block gives numba's output."""
+    if not blocks:
+        return None
+    mentions = _index(blocks)
+    scope = next(iter(blocks.values())).scope
+    if all(name in scope.localvars for name in mentions):
+        return mentions
+    return None
 
 
 def _has_known_shape(module) -> bool:
@@ -77,7 +96,7 @@ def apply() -> bool:
 
     @functools.wraps(run_ssa)
     def indexed_run_ssa(blocks):
-        token = _MENTIONS.set(_index(blocks) if blocks else None)
+        token = _MENTIONS.set(_index_if_scoped(blocks))
         try:
             return run_ssa(blocks)
         finally:
