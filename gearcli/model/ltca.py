@@ -182,7 +182,7 @@ class _Position:
 
 def loaded_mesh(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float, n_slots: int,
                 law: ForceLaw, force_N: float, *, cycles: int = 2,
-                points_per_cycle: int = 200) -> LoadedMesh:
+                points_per_cycle: int = 200, cap_mm: float = math.inf) -> LoadedMesh:
     """Solve (1) (module docstring) at ``cycles * points_per_cycle`` roll positions.
 
     Parameters
@@ -199,6 +199,12 @@ def loaded_mesh(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float, n_slot
         Force of one pair.
     force_N : float
         Static normal force F [N], > 0.
+    cap_mm : float
+        The gap tables' reach [mm] (their cap on the tip gap outside the path): a ValueError
+        when the largest penetration (:attr:`LoadedMesh.max_penetration_mm`) passes it, since
+        a pair whose tip gap lies beyond the cap would touch but has no table and the solution
+        would leave out contacts (the range simulate's validity guard applies,
+        pipeline/validity.table_exit).
     """
     if not force_N > 0.0:
         raise ValueError(f"the static force must be > 0 N, got {force_N}")
@@ -228,7 +234,12 @@ def loaded_mesh(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float, n_slot
             raise LoadTooSmallError(
                 f"the static force {force_N:.3g} N deflects the mesh by less than the "
                 f"solver resolves ({DELTA_XTOL_MM:g} mm)")
-    return LoadedMesh(roll, force_N, ste, unloaded, x1, forces, stiff, k_mesh, count, cycles)
+    lm = LoadedMesh(roll, force_N, ste, unloaded, x1, forces, stiff, k_mesh, count, cycles)
+    if lm.max_penetration_mm > cap_mm:
+        raise ValueError(f"the mesh deflection {lm.max_penetration_mm:.4g} mm leaves the "
+                         f"contact tables (they reach {cap_mm:.4g} mm): outside the contact "
+                         "model's range")
+    return lm
 
 
 def single_pair_limit(tables: np.ndarray, x_lo: float, x_hi: float, p_b: float,
@@ -289,10 +300,9 @@ def harris_map(tables, x_lo, x_hi, p_b, n_slots, law: ForceLaw, force_N: float,
     ptp = np.full(loads.size, math.nan)
     for i, f in enumerate(loads):
         try:
-            lm = loaded_mesh(tables, x_lo, x_hi, p_b, n_slots,
-                             law if law_of_load is None else law_of_load(f), f, **kw)
-        except ValueError:  # no equilibrium within the deflection range
+            ptp[i] = loaded_mesh(tables, x_lo, x_hi, p_b, n_slots,
+                                 law if law_of_load is None else law_of_load(f), f,
+                                 cap_mm=cap_mm, **kw).ste_peak_to_peak_mm
+        except ValueError:  # no equilibrium within the deflection range, or past the cap
             continue
-        if lm.max_penetration_mm <= cap_mm:
-            ptp[i] = lm.ste_peak_to_peak_mm
     return loads, ptp
