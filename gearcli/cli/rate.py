@@ -157,16 +157,14 @@ def print_rating(doc: RatingDocument) -> None:
     emit(f"verdict: {doc.verdict.upper()}")
 
 
-#: The rows of the safeties table: (safety, minimum, verdict) fields of a gear's rating.
-_SAFETIES = (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending"))
-
-
 def verdict_table(column: RatingResultDocument, duty: DutyCycleDocument | None):
     """S_H, S_F of each gear against their minimums, with lives and damages."""
+    from gearcli.results.rating import SAFETY_CHECKS  # loaded with the document by now
+
     t = _table("Safeties", [("", "left"), ("pinion", "right"), ("gear", "right"),
                             ("minimum", "right"), ("verdict", "left")])
     p, g = column.pinion, column.gear
-    for safety, minimum, check in _SAFETIES:
+    for safety, minimum, check in SAFETY_CHECKS:
         verdict = ", ".join(f"{x.name} {getattr(x, check)}" for x in (p, g))
         t.add_row(f"{safety} ({check})", fmt(getattr(p, safety)), fmt(getattr(g, safety)),
                   fmt(getattr(p, minimum)), verdict)

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from gearcli.case.schema import Case
 from gearcli.report.tables import Table, fmt
+from gearcli.results.rating import SAFETY_CHECKS
 from gearcli.results.rating_document import RatingDocument
 
 _ROLES = ("pinion", "gear")
@@ -34,7 +35,7 @@ def rating_table(rating: RatingDocument) -> Table:
     peaks = sim.peaks if sim is not None else None
     rows, status = [], []
     for role in _ROLES:
-        for s, lim, verdict in (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending")):
+        for s, lim, verdict in SAFETY_CHECKS:
             a = getattr(iso, role)
             b = getattr(sim, role) if sim is not None else None
             peak = getattr(getattr(peaks, role), s) if peaks is not None else None

@@ -11,7 +11,11 @@ import math
 
 from gearcli.results.fields import Document, metric_field
 
-__all__ = ["GearSafeties", "RatingColumn", "RatingSummary"]
+__all__ = ["GearSafeties", "RatingColumn", "RatingSummary", "SAFETY_CHECKS"]
+
+#: A gear's two checks as field names of its rating documents (:class:`GearSafeties`, and
+#: rating.json's results.rating_document.GearRatingDocument): (safety, its minimum, verdict).
+SAFETY_CHECKS = (("S_H", "S_H_min", "pitting"), ("S_F", "S_F_min", "bending"))
 
 
 def _safety(key: str, label: str, default=math.nan, **extra):

@@ -17,7 +17,7 @@ from gearcli.results.models import (
     Mode,
 )
 from gearcli.results.monitor import MonitorDocument
-from gearcli.results.rating import GearSafeties, RatingColumn, RatingSummary
+from gearcli.results.rating import SAFETY_CHECKS, GearSafeties, RatingColumn, RatingSummary
 from gearcli.results.rating_document import RatingDocument
 from gearcli.results.run import InputDigest, Summary
 from gearcli.results.stress import GearStress
@@ -41,7 +41,7 @@ def _rating_schema(typed) -> dict:
     verdict = {"enum": ["pass", "fail"]}
     gear = typed(GearSafeties)
     gear["properties"].update(pitting=verdict, bending=verdict)
-    gear["required"] = ["S_H", "S_H_min", "pitting", "S_F", "S_F_min", "bending"]
+    gear["required"] = [name for check in SAFETY_CHECKS for name in check]
     column = typed(RatingColumn)
     column["properties"].update(pinion=gear, gear=gear, verdict=verdict)
     column["required"] = ["dynamic_factor", "pinion", "gear", "verdict"]
