@@ -5,7 +5,8 @@ operating centre distance). Output: :class:`PairGeometry` with two :class:`GearG
 line-of-action points, contact ratio, backlash and a tuple of :class:`Finding`.
 Invalid numbers raise ``ValueError``; a pair that cannot exist or cannot run is *reported*
 through findings (severity "error" or "warning"), never raised, so callers can show all
-problems at once. Units: mm, rad, Hz; coefficients in units of the module.
+problems at once. Units: mm, rad; coefficients in units of the module (the shaft and mesh
+frequencies: gearcli/model/frequencies.py).
 
 References
 ----------
@@ -28,7 +29,7 @@ from gearcli.model.involute import half_thickness_angle, inv, inv_inverse
 from gearcli.model.toothform import RackSpec, ToothForm
 
 __all__ = ["RackSpec", "GearSpec", "PairSpec", "Finding", "GearGeometry", "PairGeometry",
-           "compute_pair_geometry", "mesh_frequencies"]
+           "compute_pair_geometry"]
 
 
 @dataclass(frozen=True)
@@ -479,24 +480,3 @@ _BEYOND_T_CURE = ("more teeth or a larger profile shift on the {gear}, or a shor
 #: d_Ff and, through the centre distance, d_Nf; which way clears it depends on the pair, so no
 #: direction is given.
 _FILLET_CURE = ("change the {gear}'s profile shift or teeth, or shorten the {mate} tip")
-
-
-def mesh_frequencies(z1: int, pinion_speed_rad_s: float, i: float) -> tuple[float, float, float]:
-    """Gear-mesh and shaft frequencies.
-
-    Parameters
-    ----------
-    z1 : int
-        Pinion teeth.
-    pinion_speed_rad_s : float
-        Pinion angular speed ω1 [rad/s].
-    i : float
-        Ratio z2 / z1.
-
-    Returns
-    -------
-    (f_z, n1, n2) : tuple of float [Hz]
-        n1 = ω1 / (2π), n2 = n1 / i, f_z = z1 n1 (docs/theory.md §7).
-    """
-    n1 = pinion_speed_rad_s / (2.0 * math.pi)
-    return z1 * n1, n1, n1 / i

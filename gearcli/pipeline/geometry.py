@@ -9,7 +9,8 @@ from pathlib import Path
 from gearcli.case.build import mass_inputs, nominal_pinion_speed, pair_spec
 from gearcli.case.inspection import PairInspection, pair_inspection
 from gearcli.case.load import LoadedCase, load_case
-from gearcli.model.geometry import Finding, PairGeometry, compute_pair_geometry, mesh_frequencies
+from gearcli.model.frequencies import mesh_frequencies
+from gearcli.model.geometry import Finding, PairGeometry, compute_pair_geometry
 from gearcli.model.params import MassProperties, gear_mass_properties
 
 

@@ -25,8 +25,8 @@ from gearcli.model.errors import (
     tooth_offsets,
 )
 from gearcli.model.faults import tooth_index_offsets
+from gearcli.model.frequencies import mesh_frequencies
 from gearcli.model.gap import GapTables, Modifications, Relief, gap_tables, slot_layout
-from gearcli.model.geometry import mesh_frequencies
 from gearcli.model.mesh import MeshMode
 from gearcli.model.structure import Structure
 from gearcli.pipeline.geometry import GeometryResult

@@ -239,7 +239,7 @@ def check_run_size(loaded: LoadedCase, geo: GeometryResult) -> None:
     from gearcli import guards
     from gearcli.case.bounds import solver_steps_error
     from gearcli.core.layout import PARAM_DEFAULTS
-    from gearcli.model.geometry import mesh_frequencies
+    from gearcli.model.frequencies import mesh_frequencies
 
     case, g = loaded.case, geo.geometry
     speed = geo.pinion_speed_rad_s

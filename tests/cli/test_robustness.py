@@ -212,7 +212,7 @@ def test_output_rows_agree_with_the_sampling():
                   ["run.end_time=1e-4"]):
         loaded = load_case(SEED, extra)
         geo = run_geometry(loaded)
-        from gearcli.model.geometry import mesh_frequencies
+        from gearcli.model.frequencies import mesh_frequencies
 
         g = geo.geometry
         speed = geo.pinion_speed_rad_s

@@ -12,13 +12,8 @@ import math
 import numpy as np
 import pytest
 
-from gearcli.model.geometry import (
-    GearSpec,
-    PairSpec,
-    RackSpec,
-    compute_pair_geometry,
-    mesh_frequencies,
-)
+from gearcli.model.frequencies import mesh_frequencies
+from gearcli.model.geometry import GearSpec, PairSpec, RackSpec, compute_pair_geometry
 from gearcli.model.involute import inv, inv_inverse
 
 DEG20 = math.radians(20.0)

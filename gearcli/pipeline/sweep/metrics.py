@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from gearcli.model.geometry import mesh_frequencies
+from gearcli.model.frequencies import mesh_frequencies
 from gearcli.pipeline.run_rating import simulated_safeties
 from gearcli.pipeline.spectrum import amplitude_spectrum, measure_line
 from gearcli.results import PointLines, shown_values, sweep_metrics
