@@ -35,7 +35,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def compiled_functions():
-    """(name, address, size, object file) of every compiled function numba made, by symbol."""
+    """(Python name, symbol, address, numba code library) of every compiled function of
+    gearcli's modules that numba has loaded."""
     from numba.core.dispatcher import Dispatcher
 
     dispatchers = {id(obj): obj for module in list(sys.modules.values())
