@@ -33,11 +33,14 @@ __all__ = ["arc_tooth_thickness", "span_teeth", "span", "theoretical_ball_diamet
            "inspection_dimensions"]
 
 #: Ball/pin diameters offered as "next standard size" [mm]: 0.25 mm steps to 10, 0.5 mm to 20,
-#: 1 mm to 25, 5 mm to 100. A project convention (the DIN 3977 series is not at hand); it gives
-#: KISSsoft's choices of the NREL 5 MW anchor (34.70 → 35, 38.73 → 40, 41.07 → 45 mm).
+#: 1 mm to 25, 5 mm to 300. A project convention (the DIN 3977 series is not at hand); it gives
+#: KISSsoft's choices of the NREL 5 MW printouts (stage 2: 34.70 → 35, 38.73 → 40, 41.07 → 45
+#: mm; stage 1, m_n 45: 75.93 → 80, 94.95 → 95, 106.19 → 110 mm). The 5 mm steps went to 100
+#: mm only until stage 1's planet (106.19 mm) made the rating fail (docs/theory.md, "ISO 6336
+#: rating" §6); 300 mm covers modules to ~120 mm (D_M ≈ 1.7…2.4 m).
 BALL_SERIES_MM: tuple[float, ...] = tuple(
     [1.0 + 0.25 * i for i in range(37)] + [10.5 + 0.5 * i for i in range(20)]
-    + [21.0 + i for i in range(5)] + [30.0 + 5.0 * i for i in range(15)])
+    + [21.0 + i for i in range(5)] + [30.0 + 5.0 * i for i in range(55)])
 
 
 def arc_tooth_thickness(z: int, x: float, m_mm: float, alpha_rad: float,
