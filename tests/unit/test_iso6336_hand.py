@@ -22,6 +22,7 @@ from gearcli.model.iso6336.factors import (
     transverse_load_factors,
 )
 from gearcli.model.iso6336.inspection import (
+    BALL_SERIES_MM,
     dimension_over_balls,
     span,
     span_teeth,
@@ -222,6 +223,21 @@ def test_theoretical_ball_touches_on_the_shifted_circle():
     assert math.hypot(r_b, t_contact) == pytest.approx(0.5 * m * z + x * m, rel=1e-12)
     assert standard_ball_diameter(d_m) >= d_m
     assert standard_ball_diameter(8.6) == 8.75 and standard_ball_diameter(26.0) == 30.0
+
+
+def test_ball_beyond_the_series_continues_in_its_last_step():
+    """A module large enough to need a ball beyond the series (here m 200, D_M ≈ 360 mm)
+    still gets a size: the series' last step (5 mm) continued, never an error that would stop
+    the whole rating."""
+    assert standard_ball_diameter(301.0) == 305.0
+    assert standard_ball_diameter(300.0) == 300.0
+    assert standard_ball_diameter(412.3) == 415.0
+    assert standard_ball_diameter(11.2, series=(10.0, 12.0)) == 12.0
+    assert standard_ball_diameter(13.0, series=(10.0, 12.0)) == 14.0
+    d_m = theoretical_ball_diameter(23, 0.2, 200.0, math.radians(20.0))
+    assert d_m > max(BALL_SERIES_MM)
+    ball = standard_ball_diameter(d_m)
+    assert d_m <= ball < d_m + 5.0 and ball % 5.0 == 0.0
 
 
 # --- responses of the rating ------------------------------------------------------------------

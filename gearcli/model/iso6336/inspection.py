@@ -83,11 +83,16 @@ def theoretical_ball_diameter(z: int, x: float, m_mm: float, alpha_rad: float,
 
 def standard_ball_diameter(theoretical_mm: float,
                            series: Sequence[float] = BALL_SERIES_MM) -> float:
-    """The smallest size of ``series`` [mm] at or above the theoretical diameter [mm]."""
-    for size in sorted(series):
+    """The smallest size of ``series`` [mm] at or above the theoretical diameter [mm]; beyond
+    the series' largest size, the series continued in its last step (a rating never fails
+    for want of a ball size)."""
+    sizes = sorted(series)
+    for size in sizes:
         if size >= theoretical_mm - 1e-9:
             return float(size)
-    raise ValueError(f"ball diameter {theoretical_mm:.3f} mm beyond the series' largest size")
+    last = sizes[-1]
+    step = last - sizes[-2] if len(sizes) > 1 else last
+    return float(last + step * math.ceil((theoretical_mm - last - 1e-9) / step))
 
 
 def dimension_over_balls(z: int, x: float, m_mm: float, alpha_rad: float, ball_mm: float,
