@@ -30,12 +30,21 @@ def test_the_default_is_the_engineering_pair(tmp_path):
 
 
 def test_the_pair_runs_clean(tmp_path):
-    """Exit 0 and not one warning: no contact loss, no coast-flank impacts, no overdamping."""
+    """Exit 0 and not one warning: no contact loss, no coast-flank impacts, no overdamping.
+    The line load its description states is the one the run's input digest prints (the
+    description rounds it to whole N/mm; it said 174, the gear's torque over the pinion's
+    diameter, where the digest prints 2 T2/(d2 b) = 85.11 N/mm)."""
+    import re
+
     target = tmp_path / "pair.yaml"
     assert runner.invoke(app, ["new", str(target)]).exit_code == 0
     res = runner.invoke(app, ["simulate", str(target), "-o", str(tmp_path / "out")])
     assert res.exit_code == 0, res.output
     assert "warning" not in res.stderr, res.stderr
+    stated = re.search(r"F_t/b about (\d+) N/mm", target.read_text())
+    printed = re.search(r"F_t/b = ([\d.]+) N/mm", res.stdout)
+    assert stated is not None and printed is not None, res.stdout
+    assert abs(float(stated.group(1)) - float(printed.group(1))) <= 0.5
 
 
 @pytest.mark.parametrize("name", [n for n in TEMPLATES
