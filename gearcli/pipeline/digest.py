@@ -79,7 +79,7 @@ def slip_warnings(line_load_N_mm: float, velocity_m_s: float, module_mm: float,
     if 0.0 < velocity_m_s < SLIP_VELOCITY_M_S:
         hint = (f"implausibly slow (bare speeds are {speed_unit} in this case)"
                 if speed_unit == "rpm" else
-                f"did you mean rpm? the speed reads as {speed_unit}")
+                f"did you mean rpm? bare speeds read as {speed_unit}")
         out.append(f"drive.speed: a pitch-line velocity of {velocity_m_s:.3g} m/s: {hint} "
                    "(write the unit, e.g. '1500 rpm')")
     return out

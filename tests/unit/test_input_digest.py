@@ -72,8 +72,8 @@ def test_slip_warnings_speak_the_case_unit_system():
     assert "the torque reads as N·mm" in slip_warnings(0.5, 5.0, 5.0, "adams")[0]
     (speed,) = slip_warnings(50.0, 0.01, 10.0, "engineering")
     assert "did you mean" not in speed and "bare speeds are rpm" in speed
-    assert "did you mean rpm? the speed reads as rad/s" in slip_warnings(50.0, 0.01, 10.0, "si")[0]
-    assert "the speed reads as deg/s" in slip_warnings(50.0, 0.01, 10.0, None)[0]
+    assert "did you mean rpm? bare speeds read as rad/s" in slip_warnings(50.0, 0.01, 10.0, "si")[0]
+    assert "bare speeds read as deg/s" in slip_warnings(50.0, 0.01, 10.0, None)[0]
 
 
 def test_tiny_torque_in_the_engineering_starter_is_not_called_N_mm(tmp_path):
