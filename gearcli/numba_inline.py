@@ -44,6 +44,14 @@ up to local names.
 defers it to numba's first compilation in the process (its ``numba:compile`` event, which a
 cache hit never raises): importing the inliner costs ~50 ms that a run from the cache would
 otherwise pay before numba needs it.
+
+Opt-out: with the environment variable ``GEARCLI_NUMBA_PATCHES=0`` (also ``false``, ``no``,
+``off``) when :mod:`gearcli.core` is first imported, :func:`apply_when_compiling` installs
+nothing, neither this fix nor the SSA fix of gearcli/numba_ssa.py, and registers no listener:
+numba is left exactly as it is. The compiled code computes the same results (the fixes change
+how numba builds its IR, not what it means); only the first compilation is slower (the
+figures above). tests/unit/test_numba_patches_opt_out.py compiles a kernel function with and
+without the variable. :func:`apply` called explicitly still installs the fix.
 """
 
 from __future__ import annotations
@@ -51,8 +59,13 @@ from __future__ import annotations
 import contextvars
 import copy
 import functools
+import os
 import re
 import types
+
+#: Environment variable that turns both compile-time fixes off (``0``, ``false``, ``no``,
+#: ``off``): :func:`apply_when_compiling` then leaves numba untouched.
+OPT_OUT_VARIABLE = "GEARCLI_NUMBA_PATCHES"
 
 #: Scope copies of the inline_ir call in progress: id(original scope) -> [scope, its copy,
 #: ids of the blocks copied with it]; None outside inline_ir (then deepcopy is copy.deepcopy).
@@ -177,10 +190,20 @@ def remove() -> None:
     _UNTYPED.clear()
 
 
+def patches_enabled() -> bool:
+    """False when the environment opts out of both fixes (``GEARCLI_NUMBA_PATCHES=0``, or
+    ``false``, ``no``, ``off``, any case); True otherwise, also when the variable is unset."""
+    value = os.environ.get(OPT_OUT_VARIABLE, "1").strip().lower()
+    return value not in ("0", "false", "no", "off")
+
+
 def apply_when_compiling() -> None:
     """Install the fix, and the SSA fix of gearcli/numba_ssa.py, at the start of the process's
     first numba compilation (not before: a run whose compiled code all comes from the cache
-    never imports the inliner for it)."""
+    never imports the inliner for it). Nothing at all, not even the listener, when the
+    environment opts out (:func:`patches_enabled`, ``GEARCLI_NUMBA_PATCHES=0``)."""
+    if not patches_enabled():
+        return
     from numba.core import event
 
     from gearcli import numba_ssa

@@ -29,7 +29,9 @@ kernel's own functions, on adversarial shapes, and on every SSA step of a compil
 ``_fresh_vars`` and ``_fix_ssa_vars`` through the module's ``_run_block_rewrite(blocks, states,
 handler)``, with the variable in ``states["varname"]``); otherwise numba is left alone, which
 costs compile time only. It is installed with the inliner's fix (gearcli/numba_inline.py), at
-the process's first compilation.
+the process's first compilation; the environment variable ``GEARCLI_NUMBA_PATCHES=0`` (read
+when :mod:`gearcli.core` is first imported; numba_inline.patches_enabled) installs neither,
+leaving numba untouched, with the same results and a slower first compilation.
 """
 
 from __future__ import annotations

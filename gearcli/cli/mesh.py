@@ -66,7 +66,12 @@ def mesh(
 
     from gearcli import api
     from gearcli.errors import CaseError
-    from gearcli.pipeline.mesh import save_mesh_plot, save_revolution_plot, write_mesh
+    from gearcli.pipeline.mesh import (
+        mesh_document,
+        save_mesh_plot,
+        save_revolution_plot,
+        write_mesh,
+    )
 
     if method not in ("pe", "fe"):
         raise CaseError(f"--method {method!r:.40}: expected pe or fe")
@@ -79,7 +84,8 @@ def mesh(
     if out is not None:
         check_target(out, force)  # before the work, not after
     analysis = api.mesh(case, set_, load_N=load, harris=harris, method=method)
-    res, typed, units = analysis, analysis.summary, display_units()
+    res, units = analysis, display_units()
+    typed = mesh_document(res, units)  # its texts (the single-pair limit's note) in ``units``
     doc = typed.to_dict()
     if out is not None:
         write_mesh(res, out, force, set_, units, doc)

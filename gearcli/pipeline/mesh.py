@@ -88,9 +88,9 @@ class MeshAnalysis:
 
         return columns_to_frame(mesh_table(self), "roll_mm")
 
-    def document(self) -> dict:
-        """What `gearcli mesh --json` prints."""
-        return mesh_document(self).to_dict()
+    def document(self, units: str = "engineering") -> dict:
+        """What `gearcli mesh --json` prints (its texts in the display ``units``)."""
+        return mesh_document(self, units).to_dict()
 
     def __repr__(self) -> str:
         from gearcli.display_units import convert
@@ -212,10 +212,13 @@ def _iso_resonance(res: MeshAnalysis) -> IsoResonance:
     return iso
 
 
-def _limit_note(res: MeshAnalysis) -> str:
+def _limit_note(res: MeshAnalysis, units: str) -> str:
     """Why the single-pair limit is not a force: 0, or +inf (rigid engagement: no contact
     outside the path; extended: a second pair's first touch is past the gap tables' cap, the
-    contact model's range, so F* lies above the force of that deflection, not at "any load")."""
+    contact model's range, so F* lies above the force of that deflection, not at "any load").
+    The cap is quoted in the display ``units`` (gearcli/display_units.py: mm or m)."""
+    from gearcli.display_units import convert
+
     limit = res.single_pair_limit_N
     if limit == 0.0:
         return "no load (two or more pairs everywhere, unloaded too)"
@@ -223,12 +226,14 @@ def _limit_note(res: MeshAnalysis) -> str:
         return ""
     if res.source.case.contact.engagement == "rigid":
         return "any load (rigid engagement: no contact outside the path)"
-    return (f"above the model's range (a second pair touches past {res.tables_cap_mm:.3g} mm, "
+    cap, unit = convert(res.tables_cap_mm, "mm", units)
+    return (f"above the model's range (a second pair touches past {cap:.3g} {unit}, "
             "the gap tables' end)")
 
 
-def _sharing(res: MeshAnalysis) -> MeshSharing:
-    """Pairs in contact over the cycle and the single-pair limit (force and per face width)."""
+def _sharing(res: MeshAnalysis, units: str) -> MeshSharing:
+    """Pairs in contact over the cycle and the single-pair limit (force and per face width;
+    its note's text in the display ``units``)."""
     g = res.geometry.geometry
     lm, limit = res.loaded, res.single_pair_limit_N
     finite = math.isfinite(limit)
@@ -239,12 +244,13 @@ def _sharing(res: MeshAnalysis) -> MeshSharing:
         single_pair_limit_N=json_number(limit) if finite else None,
         single_pair_limit_N_per_mm=json_number(limit / g.narrow_face_width_mm)
         if finite else None,
-        single_pair_limit_note=_limit_note(res))
+        single_pair_limit_note=_limit_note(res, units))
 
 
-def mesh_document(res: MeshAnalysis) -> MeshSummary:
+def mesh_document(res: MeshAnalysis, units: str = "engineering") -> MeshSummary:
     """The typed document of a mesh analysis (its JSON: ``.to_dict()``; internal units, names
-    carry units)."""
+    carry units; the quantities inside its texts, such as the single-pair limit's note, in the
+    display ``units``, gearcli/display_units.py)."""
     lm, g = res.loaded, res.geometry.geometry
     to_arcsec = ARCSEC_PER_RAD / g.pinion.r_b_mm  # δ along the LoA -> pinion angle
     harm = lm.ste_harmonics_mm(3)
@@ -270,7 +276,7 @@ def mesh_document(res: MeshAnalysis) -> MeshSummary:
             double_pair_zone_N_mm=json_number(lm.zone_stiffness_N_mm(2)),
             iso6336_single_pair_c_prime_b_N_mm=res.iso.pair_stiffness_N_mm,
             iso6336_mean_c_gamma_alpha_b_N_mm=res.iso.mesh_stiffness_N_mm),
-        sharing=_sharing(res),
+        sharing=_sharing(res, units),
         iso6336_method_b=_iso_resonance(res),
         notes=tuple(res.notes), harris=harris, fe_check=res.fe,
         faulted_revolution=None if res.revolution is None else revolution_summary(
@@ -350,7 +356,7 @@ def write_mesh(res: MeshAnalysis, folder: str | Path, force: bool,
     case_json = json.loads(res.source.case.model_dump_json())
     with atomic_dir(folder, force) as tmp:
         write_atomic(tmp / "mesh.json",
-                     json.dumps(doc or mesh_document(res).to_dict(), indent=2) + "\n")
+                     json.dumps(doc or mesh_document(res, units).to_dict(), indent=2) + "\n")
         write_atomic(tmp / "mesh.csv", columns_to_csv(mesh_table(res)))
         save_mesh_plot(res, tmp / "mesh.png", units)
         if res.revolution is not None:  # faults: the faulted revolution, its table and figure

@@ -82,3 +82,28 @@ def test_a_load_below_the_solvers_resolution_is_refused_not_answered():
         ok = runner.invoke(app, ["mesh", case, "--load", load, "--json"])
         assert ok.exit_code == 0, ok.output
         assert json.loads(ok.output)["sharing"]["pairs_in_contact_min"] >= 1
+
+
+def test_single_pair_limit_note_quotes_the_cap_in_the_display_units(tmp_path):
+    """The stub-toothed iso_pair of tests/unit/test_single_pair_limit.py has no single-pair
+    limit within the gap tables, and mesh.json's note names the tables' cap. Like every other
+    quantity of the command it follows ``--units``: the same cap in mm (engineering) and in m
+    (si), 1e-3 apart to the printed 3 digits."""
+    import re
+
+    from tests.conftest import ROOT
+
+    case = ROOT / "cases" / "iso_pair.yaml"
+    stub = "gears.rack={addendum: 0.7, dedendum: 1.0, root_radius: 0.25}"
+    caps = {}
+    for system, unit in (("engineering", "mm"), ("si", "m")):
+        out = tmp_path / system
+        r = runner.invoke(app, ["--units", system, "mesh", str(case), "--set", stub,
+                                "-o", str(out), "--quiet"])
+        assert r.exit_code == 0, r.output
+        note = json.loads((out / "mesh.json").read_text())["sharing"]["single_pair_limit_note"]
+        hit = re.search(r"touches past (\S+) (\S+),", note)
+        assert hit is not None, note
+        assert hit.group(2) == unit, note
+        caps[system] = float(hit.group(1))
+    assert caps["si"] == pytest.approx(1e-3 * caps["engineering"], rel=5e-3)  # 3 digits each

@@ -30,12 +30,21 @@ def test_the_default_is_the_engineering_pair(tmp_path):
 
 
 def test_the_pair_runs_clean(tmp_path):
-    """Exit 0 and not one warning: no contact loss, no coast-flank impacts, no overdamping."""
+    """Exit 0 and not one warning: no contact loss, no coast-flank impacts, no overdamping.
+    The line load its description states is the one the run's input digest prints (the
+    description rounds it to whole N/mm; it said 174, the gear's torque over the pinion's
+    diameter, where the digest prints 2 T2/(d2 b) = 85.11 N/mm)."""
+    import re
+
     target = tmp_path / "pair.yaml"
     assert runner.invoke(app, ["new", str(target)]).exit_code == 0
     res = runner.invoke(app, ["simulate", str(target), "-o", str(tmp_path / "out")])
     assert res.exit_code == 0, res.output
     assert "warning" not in res.stderr, res.stderr
+    stated = re.search(r"F_t/b about (\d+) N/mm", target.read_text())
+    printed = re.search(r"F_t/b = ([\d.]+) N/mm", res.stdout)
+    assert stated is not None and printed is not None, res.stdout
+    assert abs(float(stated.group(1)) - float(printed.group(1))) <= 0.5
 
 
 @pytest.mark.parametrize("name", [n for n in TEMPLATES
@@ -69,7 +78,10 @@ SHORTER = {"study": [('["40 mm", "50 mm", "60 mm"]', '["40 mm", "60 mm"]'),
 @pytest.mark.parametrize("name", STUDY_TEMPLATES)
 def test_the_study_templates_sweep(name, tmp_path):
     """`new --template study|speed-curve` writes a study file (the pair case inline) that
-    `gearcli sweep` runs to the end, exit 0, every point ok (shortened here)."""
+    `gearcli sweep` runs to the end, exit 0, every point ok (shortened here), and writes the
+    files its header names (the speed curve's named a speed_curve.csv it never wrote)."""
+    import re
+
     target = tmp_path / f"{name}.yaml"
     res = runner.invoke(app, ["new", "--template", name, str(target)])
     assert res.exit_code == 0 and "gearcli sweep" in res.stdout, res.output
@@ -85,6 +97,9 @@ def test_the_study_templates_sweep(name, tmp_path):
     rows = (out / "summary.csv").read_text().splitlines()
     status = rows[0].split(",").index("status")
     assert len(rows) > 2 and all(r.split(",")[status] == "ok" for r in rows[1:]), rows
+    header = "".join(line for line in text.splitlines(True) if line.startswith("#"))
+    named = set(re.findall(r"(?<![\w/.])\w+\.(?:csv|png|json|md|parquet)\b", header))
+    assert "summary.csv" in named and named <= {p.name for p in out.iterdir()}, named
 
 
 def test_a_fresh_pair_runs_to_a_report_titled_by_its_own_name(tmp_path):

@@ -121,15 +121,17 @@ def test_load_case_from_a_mapping_with_overrides_and_the_cli_error_messages(tmp_
 
 @pytest.mark.slow
 @pytest.mark.parametrize("script", ["seed_study.py", "module_loop.py",
-                                    "spectra_postprocessing.py"])
+                                    "spectra_postprocessing.py", "fault_metrics.py"])
 def test_examples_run(tmp_path, script):
     args = [str(tmp_path / "out")] if script != "spectra_postprocessing.py" else []
-    if script == "module_loop.py":
-        args = [str(tmp_path / "loop.png")]
+    if script in ("module_loop.py", "fault_metrics.py"):  # a figure, not docs/'s
+        args = [str(tmp_path / "figure.png")]
     out = subprocess.run([sys.executable, str(ROOT / "examples" / script), *args],
                          capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert out.returncode == 0, out.stderr[-2000:]
     assert "Traceback" not in out.stderr
+    if script == "fault_metrics.py":
+        assert (tmp_path / "figure.png").stat().st_size > 0
 
 
 def test_documents_carry_the_schema_version_and_the_results_schema_validates_one(tmp_path):

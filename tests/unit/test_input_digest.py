@@ -60,3 +60,29 @@ def test_slip_warnings_thresholds():
     assert slip_warnings(50.0, 5.0, 10.0) == []
     assert "did you mean rpm?" in slip_warnings(50.0, 0.01, 10.0)[0]
     assert slip_warnings(50.0, 0.1, 10.0) == []
+
+
+def test_slip_warnings_speak_the_case_unit_system():
+    """A bare torque is N·mm only in "adams" (the default): in an engineering or SI case it is
+    N·m already, and "did you mean N·m? the torque reads as N·mm" was false there. A bare speed
+    is rpm in "engineering" (no "did you mean rpm?"), rad/s in "si"."""
+    for system in ("engineering", "si"):
+        (torque,) = slip_warnings(0.5, 5.0, 5.0, system)
+        assert "did you mean" not in torque and "bare torques are N*m" in torque
+    assert "the torque reads as N·mm" in slip_warnings(0.5, 5.0, 5.0, "adams")[0]
+    (speed,) = slip_warnings(50.0, 0.01, 10.0, "engineering")
+    assert "did you mean" not in speed and "bare speeds are rpm" in speed
+    assert "did you mean rpm? bare speeds read as rad/s" in slip_warnings(50.0, 0.01, 10.0, "si")[0]
+    assert "bare speeds read as deg/s" in slip_warnings(50.0, 0.01, 10.0, None)[0]
+
+
+def test_tiny_torque_in_the_engineering_starter_is_not_called_N_mm(tmp_path):
+    """`gearcli new` writes an engineering case: its 0.5 (N·m) load warns, without claiming
+    that the torque reads as N·mm."""
+    runner = CliRunner()
+    case = tmp_path / "pair.yaml"
+    assert runner.invoke(app, ["new", str(case)]).exit_code == 0
+    r = runner.invoke(app, ["simulate", str(case), "-o", "-", "--set", "run.end_time=0.3",
+                            "--set", "load.torque=STEP(time, 0, 0, 0.2, 0.5)"])
+    assert "load.torque: F_t/b = 0.0851 N/mm" in r.stderr, r.stderr
+    assert "reads as N·mm" not in r.stderr and "bare torques are N*m" in r.stderr
