@@ -129,7 +129,7 @@ class StudyFile(_Strict):
     set: dict[str, Any] = Field(default_factory=dict)
     design: Literal["grid", "zip", "lhs", "one_at_a_time", "speed_curve"] = "grid"
     samples: int | None = Field(None, ge=1)
-    seed: int | None = None
+    seed: int | None = Field(None, ge=0)  # numpy's seeds are non-negative
     parameters: dict[str, list[Any] | Range] = Field(min_length=1)
     metrics: list[str] | None = Field(None, min_length=1)
     checks: list[Check] = Field(default_factory=list)
@@ -381,6 +381,8 @@ def _range(src: Source, key: str, spec: Range, system: str | None = None) -> Par
     except Exception:
         raise src.error((*loc, kind), f"got {ends!r}: wrong or inconsistent units; both ends "
                         "need units of the same dimension") from None
+    if not (math.isfinite(lo) and math.isfinite(hi)):  # numpy would fill the range with NaN
+        raise src.error((*loc, kind), f"got {ends!r}; expected finite ends")
     if kind == "logspace" and (lo <= 0 or hi <= 0):
         raise src.error((*loc, kind), f"got {ends!r}; logspace needs positive ends")
     num = spec.num or 0

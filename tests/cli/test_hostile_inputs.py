@@ -1,0 +1,177 @@
+"""Session 14 robustness sweep: hostile inputs that still ended as an internal error (exit 3),
+a Python warning or traceback on stderr, a corrupt output stream, a results file replaced by
+another kind of file, or an error that named the wrong key. Each test failed before its fix."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+from typer.testing import CliRunner
+
+from gearcli.cli import app
+from tests.conftest import ROOT, SEED
+
+runner = CliRunner()
+SHORT = ("--set", "run.end_time=0.5")
+
+
+def invoke(*args):
+    return runner.invoke(app, [str(a) for a in args])
+
+
+def error_line(r) -> str:
+    """The error of a refused input: no traceback, no Python warning, one line (and the YAML
+    line it is about, quoted as ``   3 | key: value``)."""
+    text = r.stderr
+    assert "Traceback" not in text and "internal error" not in text, text
+    assert "Warning" not in text, text
+    lines = text.splitlines()
+    assert len(lines) == 1 or (len(lines) == 2 and " | " in lines[1]), text
+    return lines[0]
+
+
+@pytest.fixture(scope="module")
+def finished(tmp_path_factory):
+    """A complete `gearcli run` folder (results, analysis, report)."""
+    out = tmp_path_factory.mktemp("run") / "seed"
+    r = invoke("run", SEED, "-o", out, "-q", *SHORT)
+    assert r.exit_code in (0, 4), r.stderr
+    return out
+
+
+# --- exit 3 for a user's value ----------------------------------------------------------------
+@pytest.mark.parametrize("rate", ["1e-9 Hz", "1 Hz"])
+def test_a_sensor_rate_too_low_for_the_run_is_a_located_error(rate):
+    # 1e-9 Hz: LinAlgError from the anti-alias filter (exit 3); 1 Hz: two samples in 0.5 s
+    r = invoke("simulate", SEED, "-o", "-", "-q", *SHORT, "--set",
+               f"sensors={{sample_rate: {rate}}}")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "sensors.sample_rate" in line and "at least" in line
+
+
+@pytest.mark.parametrize("fault, key", [
+    ("{kind: root_crack, gear: pinion, tooth: 2, depth: 1000 mm}", "faults.0.depth"),
+    ("{kind: spall, gear: pinion, tooth: 2, diameter: 100 mm, length: 3 mm, width: 0.5, "
+     "depth: 0.05 mm}", "faults.0.diameter"),
+    ("{kind: spall, gear: gear, tooth: 2, diameter: 1000 mm, length: 3 mm, width: 0.5, "
+     "depth: 0.05 mm}", "faults.0.diameter"),
+    ("{kind: spall, gear: gear, tooth: 2, roll_angle: 300 deg, length: 3 mm, width: 0.5, "
+     "depth: 0.05 mm}", "faults.0.roll_angle"),
+])
+@pytest.mark.parametrize("command", ["geometry", "simulate"])
+def test_a_fault_off_the_tooth_is_a_located_error(command, fault, key):
+    """A crack through the tooth was exit 3 (ValueError of the fault model), a spall inside the
+    base circle too; a spall beyond the tip ran as the healthy pair (exit 0)."""
+    args = ["-o", "-"] if command == "simulate" else []
+    r = invoke(command, SEED, *args, "-q", *SHORT, "--set", f"faults=[{fault}]")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert key in line and "expected" in line
+
+
+def test_a_negative_lhs_seed_is_a_located_error(tmp_path):
+    study = tmp_path / "s.yaml"
+    study.write_text(f"name: s\nbase: {SEED}\ndesign: lhs\nsamples: 2\nseed: -1\n"
+                     "parameters: {gears.module: {linspace: [8, 12]}}\n")
+    r = invoke("sweep", study, "-o", tmp_path / "out", "-q", "-j", "1")
+    assert r.exit_code == 1
+    assert "seed" in error_line(r)
+
+
+# --- Python warnings on stderr ---------------------------------------------------------------
+@pytest.mark.filterwarnings("error")  # a numpy warning: an internal error, not a line to ignore
+@pytest.mark.parametrize("end", [".inf", ".nan", "'1e400 mm'"])
+def test_a_range_with_a_non_finite_end_is_refused(tmp_path, end):
+    study = tmp_path / "s.yaml"
+    study.write_text(f"name: s\nbase: {SEED}\n"
+                     f"parameters: {{gears.module: {{linspace: [8, {end}], num: 3}}}}\n")
+    r = invoke("sweep", study, "-o", tmp_path / "out", "-q", "-j", "1")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "parameters.gears.module.linspace" in line and "finite" in line
+
+
+@pytest.mark.filterwarnings("error")
+def test_a_run_stopped_at_once_warns_no_division_by_zero():
+    slope = "[" + ", ".join(["5"] * 17) + "]"  # 5 mm: penetration beyond the tables at once
+    r = invoke("simulate", SEED, "-o", "-", "-q", *SHORT, "--set",
+               f"errors.profile_slope_deviation.pinion={slope}")
+    assert r.exit_code == 4
+    assert "left the contact tables" in error_line(r)
+
+
+# --- outputs ---------------------------------------------------------------------------------
+def test_csv_and_json_on_stdout_together_are_refused():
+    r = invoke("simulate", SEED, "-o", "-", "--json", "-q", *SHORT)
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "--json" in line and "-o -" in line
+    assert r.stdout == ""
+
+
+@pytest.mark.parametrize("args, name", [
+    (("report", "{run}", "--force", "-o", "{run}/summary.json"), "summary.json"),
+    (("report", "{run}", "--force", "--format", "md", "-o", "{run}/report.html"), "report.html"),
+    (("monitor", "{run}", "--force", "--wav", "{run}/timeseries.csv"), "timeseries.csv"),
+])
+def test_a_file_option_never_replaces_another_kind_of_file(finished, tmp_path, args, name):
+    """`report -o DIR/summary.json --force` wrote the report over the run's summary.json."""
+    run = tmp_path / "copy"
+    shutil.copytree(finished, run)
+    before = (run / name).read_bytes()
+    r = invoke(*(a.format(run=run) for a in args), "-q")
+    assert r.exit_code == 1
+    assert "expected a file name ending in" in error_line(r)
+    assert (run / name).read_bytes() == before
+
+
+# --- errors name the key the user wrote ------------------------------------------------------
+@pytest.mark.parametrize("fault, key, value", [
+    ("{kind: root_crack, gear: pinion, tooth: 2, depth: 1 mm, angle: -45 deg}", "faults.0.angle",
+     "got '-45 deg'"),
+    ("{kind: root_crack, gear: pinion, tooth: -1, depth: 1 mm}", "faults.0.tooth", "got -1"),
+    ("{kind: spall, gear: pinion, tooth: 1, diameter: 170 mm, length: 1 mm, depth: 0.01 mm}",
+     "faults.0.width", "missing"),
+])
+def test_a_fault_error_names_the_fault_key(fault, key, value):
+    r = invoke("geometry", SEED, "-q", "--set", f"faults=[{fault}]")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert f"--set faults=[{fault}]: {key}: " in line and value in line
+
+
+@pytest.mark.parametrize("num", ["0", "-3", "2.5"])
+def test_a_bad_range_count_names_num(tmp_path, num):
+    study = tmp_path / "s.yaml"
+    study.write_text(f"name: s\nbase: {SEED}\n"
+                     f"parameters: {{gears.module: {{linspace: [8, 12], num: {num}}}}}\n")
+    r = invoke("sweep", study, "-o", tmp_path / "out", "-q", "-j", "1")
+    assert r.exit_code == 1
+    assert "parameters.gears.module.num" in error_line(r)
+
+
+def test_an_error_inside_an_overridden_section_names_the_override():
+    duty = "[{torque: 1e3 N*m, speed: 0 rpm, time_share: 1}]"
+    r = invoke("rate", ROOT / "cases" / "nrel5mw_sun_planet.yaml", "-q", "--set",
+               f"rating.duty_cycle={duty}")
+    assert r.exit_code == 1
+    assert error_line(r).startswith(f"error: --set rating.duty_cycle={duty}: "
+                                    "rating.duty_cycle.0.speed: got '0 rpm'")
+
+
+@pytest.mark.parametrize("unit", ["''", "' '"])
+def test_an_empty_unit_of_a_time_function_is_refused(unit):
+    """`unit: ''` read the function's numbers in the default unit (deg/s) without a word."""
+    r = invoke("geometry", SEED, "-q", "--set",
+               f"drive.speed={{function: 'STEP(time, 0, 0, 1, 100)', unit: {unit}}}")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "drive.speed" in line and "unit" in line
+
+
+def test_a_non_finite_option_value_reads_well():
+    r = invoke("modal", SEED, "-q", "--speed-range", "0", "1e400 rpm")
+    assert r.exit_code == 1
+    assert "expected a finite angular velocity" in error_line(r)  # was "an finite"
