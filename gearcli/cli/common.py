@@ -189,12 +189,21 @@ def check_figure_path(option: str, path: Path | None, force: bool) -> None:
     .pdf name that is new (or ``force``), in an existing folder; checked before the work."""
     if path is None:
         return
-    from gearcli.errors import OutputError
     from gearcli.io.files import check_new_file
 
-    if path.suffix.lower() not in (".png", ".svg", ".pdf"):
-        raise OutputError(f"{option} {path}: expected a file name ending in .png, .svg or .pdf")
+    check_suffix(option, path, (".png", ".svg", ".pdf"))
     check_new_file(path, force, option)
+
+
+def check_suffix(option: str, path: Path, suffixes: tuple[str, ...]) -> None:
+    """A file an option writes is named for what it holds (``--force`` then never replaces a
+    results folder's summary.json by a report or a sound)."""
+    if path.suffix.lower() not in suffixes:
+        from gearcli.errors import OutputError
+
+        names = ", ".join(suffixes[:-1]) + " or " + suffixes[-1] if len(suffixes) > 1 \
+            else suffixes[0]
+        raise OutputError(f"{option} {path}: expected a file name ending in {names}")
 
 
 def is_terminal() -> bool:

@@ -8,12 +8,16 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import (
+    check_suffix,
     display_units,
     handle_errors,
     report_findings,
     status_reporter,
     table_options,
 )
+
+#: The file names a report of each --format may have.
+REPORT_SUFFIXES = {"html": (".html", ".htm"), "md": (".md", ".markdown")}
 
 
 @app.command()
@@ -22,7 +26,8 @@ def report(
     folder: Path = typer.Argument(..., help="Results folder (after gearcli analyze)."),
     fmt: str = typer.Option("html", "--format", help="html (one self-contained file) or md."),
     out: Path | None = typer.Option(
-        None, "-o", "--out", help="Report file (default DIR/report.*)."
+        None, "-o", "--out",
+        help="Report file, named .html or .md after --format (default DIR/report.*)."
     ),
     force: bool = typer.Option(False, "--force", help="Replace an earlier report."),
     svg: bool = typer.Option(False, "--svg", help="Also write every figure as SVG (vector; "
@@ -43,6 +48,7 @@ def report(
     target = out if out is not None else folder / f"report.{fmt}"
     with folder_lock(folder):  # nothing replaces the run between reading it and writing
         check_new_file(target, force, "-o" if out is not None else "the report")
+        check_suffix("-o", target, REPORT_SUFFIXES[fmt])
         if out is None:
             check_no_earlier(folder, ("figures", target.name), force, "report's figures")
         _note_monitor(_write_monitor(folder), quiet)  # faults: the monitoring section
