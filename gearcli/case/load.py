@@ -115,6 +115,8 @@ def _schema_errors(exc: ValidationError, src: Source) -> list[CaseError]:
     found: dict[Loc, tuple] = {}
     for err in exc.errors():
         loc = data_loc(tuple(err["loc"]), src.data)
+        if err["type"] in _TAG_ERRORS:  # a fault's kind: the key the tag is read from
+            loc = (*loc, str(err.get("ctx", {}).get("discriminator", "kind")).strip("'"))
         cause = err.get("ctx", {}).get("error")
         parts = cause.errors if isinstance(cause, FieldErrors) else [cause]
         for part in parts:
@@ -169,17 +171,27 @@ def data_loc(loc: tuple, data: object) -> Loc:
     """Drop pydantic's union/validator tags from ``loc`` so it follows the YAML keys."""
     out: list = []
     node = data
-    for part in loc:
+    for i, part in enumerate(loc):
         if isinstance(node, dict) and part in node:
             out.append(part)
             node = node[part]
         elif isinstance(node, list) and isinstance(part, int) and part < len(node):
             out.append(part)
             node = node[part]
-        elif isinstance(part, str) and not any(c in part for c in "[]()") and node is not None:
+        elif isinstance(node, dict) and isinstance(part, str) and not _is_tag(node, part,
+                                                                               loc[i + 1:]):
             out.append(part)  # a key that is missing or unknown
             node = None
     return tuple(out)
+
+
+def _is_tag(node: dict, part: str, rest: tuple) -> bool:
+    """Whether ``part``, not a key of the mapping ``node``, is pydantic's name of a union
+    member rather than a missing key: a validator or type ("function-after[...]", "list[any]"),
+    a model class ("Range"), a discriminator's value ("root_crack" of ``kind: root_crack``), or
+    a step followed by a key of ``node`` (schema keys are lower case)."""
+    return (any(c in part for c in "[]()") or part[:1].isupper() or node.get("kind") == part
+            or (bool(rest) and rest[0] in node))
 
 
 def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -> str:
@@ -194,6 +206,18 @@ def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -
         return compose("missing required key", _what(loc))
     if cause is not None:
         return str(cause)
+    ctx = err.get("ctx", {})
+    if kind == "union_tag_invalid":
+        return compose("", "one of " + str(ctx.get("expected_tags", "")))
+    if kind == "union_tag_not_found":
+        from gearcli.case.schema_faults import FAULT_KINDS  # the only tagged union
+
+        return compose("missing", "one of " + ", ".join(FAULT_KINDS))
+    if kind == "too_short":
+        n = ctx.get("min_length", 1)
+        return compose("", f"at least {n} entr{'y' if n == 1 else 'ies'}")
+    if kind in ("model_type", "dict_type"):
+        return compose("", f"a mapping: {_what(loc)}")
     limit = _limit_message(err, loc, system)
     if limit:
         return limit
@@ -203,6 +227,10 @@ def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -
     msg = msg.replace("greater than or equal to", ">=").replace("less than or equal to", "<=")
     msg = msg.replace("greater than", ">").replace("less than", "<")
     return compose("", msg)
+
+
+#: pydantic's errors of a tagged union (``faults:``): located at the tag's key.
+_TAG_ERRORS = ("union_tag_invalid", "union_tag_not_found")
 
 
 def _what(loc: Loc) -> str:

@@ -189,6 +189,10 @@ def _time_function_validator(dim: Dim):
                     "'STEP(time, 0, 0, 1, 450)') and optional 'unit'"
                 )
             unit_given = "unit" in value
+            if unit_given and not (isinstance(value["unit"], str) and value["unit"].strip()):
+                # "" read the numbers in the default unit; 5 as a unit is no unit at all
+                raise ValueError(f"unit {value['unit']!r}: expected the unit of the function's "
+                                 f"numbers, e.g. unit: {own.default}")
             unit = str(value.get("unit", own.default))
             checked_unit(unit, own)  # validates the unit and its dimension
             value = value["function"]

@@ -175,3 +175,33 @@ def test_a_non_finite_option_value_reads_well():
     r = invoke("modal", SEED, "-q", "--speed-range", "0", "1e400 rpm")
     assert r.exit_code == 1
     assert "expected a finite angular velocity" in error_line(r)  # was "an finite"
+
+
+def test_fault_kind_errors_name_the_kind():
+    r = invoke("geometry", SEED, "-q", "--set", "faults=[{kind: nope, gear: pinion, tooth: 1}]")
+    assert r.exit_code == 1
+    assert ("faults.0.kind: got 'nope'; expected one of 'root_crack', 'spall', 'chipped_tip', "
+            "'missing_tooth'") in error_line(r)
+    r = invoke("geometry", SEED, "-q", "--set", "faults=[{gear: pinion, tooth: 1}]")
+    assert r.exit_code == 1
+    assert "faults.0.kind: missing; expected one of root_crack, spall" in error_line(r)
+
+
+def test_a_spall_without_width_is_refused_before_the_model():
+    """The schema took `width` as optional (None), and the fault model failed on it: exit 3."""
+    fault = "{kind: spall, gear: pinion, tooth: 1, diameter: 170 mm, length: 1 mm, depth: 0.01 mm}"
+    r = invoke("simulate", SEED, "-o", "-", "-q", *SHORT, "--set", f"faults=[{fault}]")
+    assert r.exit_code == 1
+    assert "faults.0.width: missing" in error_line(r)
+
+
+@pytest.mark.parametrize("text, fragment", [
+    ("[]", "expected at least 1 entry"),
+    ("5", "expected a mapping: a 'accelerometer' section"),
+])
+def test_pydantic_wording_is_not_shown(text, fragment):
+    r = invoke("geometry", SEED, "-q", "--set", f"sensors.accelerometer.housing={text}"
+               if text == "[]" else f"sensors.accelerometer={text}")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert fragment in line and "List should" not in line and "instance of" not in line

@@ -180,9 +180,14 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
     try:
         spec = StudyFile.model_validate(src.data)
     except ValidationError as exc:
-        err = sorted(exc.errors(), key=lambda e: e["type"] == "missing")[0]  # a typo first
+        # a typo first, then the deepest key (a range's 'num', not the list it is not)
+        err = min(exc.errors(), key=lambda e: (e["type"] == "missing",
+                                               -len(data_loc(tuple(e["loc"]), src.data))))
         loc = data_loc(tuple(err["loc"]), src.data)
         msg = err["msg"].removeprefix("Value error, ")
+        if msg.startswith("Input should be "):  # pydantic's words, as the case's errors read
+            msg = "expected " + msg.removeprefix("Input should be ").replace(
+                "greater than or equal to", ">=").replace("less than or equal to", "<=")
         if err["type"] == "missing":
             msg = "missing required key"
         if err["type"] == "extra_forbidden":
