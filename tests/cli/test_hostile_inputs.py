@@ -205,3 +205,23 @@ def test_pydantic_wording_is_not_shown(text, fragment):
     assert r.exit_code == 1
     line = error_line(r)
     assert fragment in line and "List should" not in line and "instance of" not in line
+
+
+@pytest.mark.parametrize("load, fragment", [
+    ("inf", "--load 'inf': expected a finite number (N)"),  # was "load_N inf: ..."
+    ("-5", "--load must be a force > 0 N, got -5 N"),
+    ("5 kg", "--load '5 kg': wrong dimension"),
+])
+def test_mesh_load_errors_name_the_option(load, fragment):
+    r = invoke("mesh", SEED, "-q", "--load", load)
+    assert r.exit_code == 1
+    assert fragment in error_line(r)
+
+
+def test_mesh_load_takes_a_force_with_units():
+    """--load '5 kN' was a usage error (exit 2): the option took a bare float only."""
+    r = invoke("mesh", SEED, "--json", "--load", "5 kN")
+    assert r.exit_code == 0, r.stderr
+    import json
+
+    assert json.loads(r.stdout)["force_N"] == pytest.approx(5000.0)
