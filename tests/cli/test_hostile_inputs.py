@@ -225,3 +225,13 @@ def test_mesh_load_takes_a_force_with_units():
     import json
 
     assert json.loads(r.stdout)["force_N"] == pytest.approx(5000.0)
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf mm", "NaN mm", "Infinity"])
+def test_nan_and_inf_as_text_are_not_called_a_unit(value):
+    """'got 'nan'; expected a number with units ... (a unit alone is not a value)'."""
+    r = invoke("geometry", SEED, "-q", "--set", f"gears.module={value}")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "gears.module" in line and "expected a finite number" in line
+    assert "unit alone" not in line
