@@ -213,6 +213,8 @@ def check_faults(loaded: LoadedCase, geo: PairGeometry) -> None:
     on the active flank, between the active profile start d_Nf and the tip d_a (inside the base
     circle there is no involute; beyond the flank the spall would change nothing, and the run
     would be the healthy pair's)."""
+    if not loaded.case.faults:  # the fault model imports scipy.interpolate (~0.4 s)
+        return
     from gearcli.case.schema_faults import RootCrackFault, SpallFault
     from gearcli.model.faults.factors import crack_section
 
