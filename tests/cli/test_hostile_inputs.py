@@ -32,12 +32,20 @@ def error_line(r) -> str:
 
 
 @pytest.fixture(scope="module")
-def finished(tmp_path_factory):
-    """A complete `gearcli run` folder (results, analysis, report)."""
-    out = tmp_path_factory.mktemp("run") / "seed"
-    r = invoke("run", SEED, "-o", out, "-q", *SHORT)
-    assert r.exit_code in (0, 4), r.stderr
+def simulated(tmp_path_factory):
+    """A `gearcli simulate` results folder of the seed case, analysed (a report can be made)."""
+    out = tmp_path_factory.mktemp("sim") / "seed"
+    r = invoke("simulate", SEED, "-o", out, "-q", "--set", "run.end_time=2")  # monitor: > 1 rev
+    assert r.exit_code in (0, 4)
+    assert invoke("analyze", out, "-q").exit_code in (0, 4)
     return out
+
+
+def sweep_study(tmp_path, text: str):
+    """`gearcli sweep` of a study on the seed case: ``text`` is its lines after ``base:``."""
+    study = tmp_path / "s.yaml"
+    study.write_text(f"name: s\nbase: {SEED}\n{text}\n")
+    return invoke("sweep", study, "-o", tmp_path / "out", "-q", "-j", "1")
 
 
 # --- exit 3 for a user's value ----------------------------------------------------------------
@@ -72,10 +80,8 @@ def test_a_fault_off_the_tooth_is_a_located_error(command, fault, key):
 
 
 def test_a_negative_lhs_seed_is_a_located_error(tmp_path):
-    study = tmp_path / "s.yaml"
-    study.write_text(f"name: s\nbase: {SEED}\ndesign: lhs\nsamples: 2\nseed: -1\n"
-                     "parameters: {gears.module: {linspace: [8, 12]}}\n")
-    r = invoke("sweep", study, "-o", tmp_path / "out", "-q", "-j", "1")
+    r = sweep_study(tmp_path, "design: lhs\nsamples: 2\nseed: -1\n"
+                    "parameters: {gears.module: {linspace: [8, 12]}}")
     assert r.exit_code == 1
     assert "seed" in error_line(r)
 
@@ -84,10 +90,7 @@ def test_a_negative_lhs_seed_is_a_located_error(tmp_path):
 @pytest.mark.filterwarnings("error")  # a numpy warning: an internal error, not a line to ignore
 @pytest.mark.parametrize("end", [".inf", ".nan", "'1e400 mm'"])
 def test_a_range_with_a_non_finite_end_is_refused(tmp_path, end):
-    study = tmp_path / "s.yaml"
-    study.write_text(f"name: s\nbase: {SEED}\n"
-                     f"parameters: {{gears.module: {{linspace: [8, {end}], num: 3}}}}\n")
-    r = invoke("sweep", study, "-o", tmp_path / "out", "-q", "-j", "1")
+    r = sweep_study(tmp_path, f"parameters: {{gears.module: {{linspace: [8, {end}], num: 3}}}}")
     assert r.exit_code == 1
     line = error_line(r)
     assert "parameters.gears.module.linspace" in line and "finite" in line
@@ -113,13 +116,13 @@ def test_csv_and_json_on_stdout_together_are_refused():
 
 @pytest.mark.parametrize("args, name", [
     (("report", "{run}", "--force", "-o", "{run}/summary.json"), "summary.json"),
-    (("report", "{run}", "--force", "--format", "md", "-o", "{run}/report.html"), "report.html"),
+    (("report", "{run}", "--force", "--format", "md", "-o", "{run}/zoom.csv"), "zoom.csv"),
     (("monitor", "{run}", "--force", "--wav", "{run}/timeseries.csv"), "timeseries.csv"),
 ])
-def test_a_file_option_never_replaces_another_kind_of_file(finished, tmp_path, args, name):
+def test_a_file_option_never_replaces_another_kind_of_file(simulated, tmp_path, args, name):
     """`report -o DIR/summary.json --force` wrote the report over the run's summary.json."""
     run = tmp_path / "copy"
-    shutil.copytree(finished, run)
+    shutil.copytree(simulated, run)
     before = (run / name).read_bytes()
     r = invoke(*(a.format(run=run) for a in args), "-q")
     assert r.exit_code == 1
@@ -144,10 +147,7 @@ def test_a_fault_error_names_the_fault_key(fault, key, value):
 
 @pytest.mark.parametrize("num", ["0", "-3", "2.5"])
 def test_a_bad_range_count_names_num(tmp_path, num):
-    study = tmp_path / "s.yaml"
-    study.write_text(f"name: s\nbase: {SEED}\n"
-                     f"parameters: {{gears.module: {{linspace: [8, 12], num: {num}}}}}\n")
-    r = invoke("sweep", study, "-o", tmp_path / "out", "-q", "-j", "1")
+    r = sweep_study(tmp_path, f"parameters: {{gears.module: {{linspace: [8, 12], num: {num}}}}}")
     assert r.exit_code == 1
     assert "parameters.gears.module.num" in error_line(r)
 
