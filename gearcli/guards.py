@@ -168,7 +168,8 @@ def check_unit_text(text: str, need_number: bool, example: str = "10 mm") -> Non
                              f"{clip(text[m.start():m.end()].strip())!r}")
         pos = m.end()
     if need_number and _NON_FINITE.match(text):  # "nan", "-inf mm": not a unit alone
-        raise ValueError(f"expected a finite number with units, e.g. '{example}'")
+        raise ValueError(f"expected a number with units, e.g. '{example}' (a finite number: "
+                         "not NaN or infinity)")
     if need_number and not _LEADING_NUMBER.match(text):
         raise ValueError(f"expected a number with units, e.g. '{example}' (no number in front: "
                          "a unit alone is not a value)")
