@@ -19,6 +19,7 @@ from gearcli.case.keypaths import allowed_keys, field_at
 from gearcli.case.overrides import apply_overrides, text_name
 from gearcli.case.schema import Case
 from gearcli.case.section import FieldError, FieldErrors, compose
+from gearcli.case.types import info_dim
 from gearcli.case.yamlsrc import Loc, Source, parse_source, read_source
 from gearcli.errors import CaseError
 
@@ -198,12 +199,13 @@ def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -
     """What is wrong and what is allowed (:func:`~gearcli.case.section.compose`); the loader
     adds file, line, key and value. A validator's own error says both itself."""
     kind = err["type"]
+    raw = tuple(err["loc"])  # with pydantic's union member names: the schema's own path
     if kind == "extra_forbidden":
-        close = _close_keys(loc)
+        close = _close_keys(raw)
         return compose("unknown key" + (f" (did you mean '{close[0]}'?)" if close else ""),
-                       "one of: " + ", ".join(allowed_keys(Case, loc[:-1])))
+                       "one of: " + ", ".join(allowed_keys(Case, raw[:-1])))
     if kind == "missing":
-        return compose("missing required key", _what(loc))
+        return compose("missing required key", _what(raw))
     if cause is not None:
         return str(cause)
     ctx = err.get("ctx", {})
@@ -217,8 +219,8 @@ def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -
         n = ctx.get("min_length", 1)
         return compose("", f"at least {n} entr{'y' if n == 1 else 'ies'}")
     if kind in ("model_type", "dict_type"):
-        return compose("", f"a mapping: {_what(loc)}")
-    limit = _limit_message(err, loc, system)
+        return compose("", f"a mapping: {_what(raw)}")
+    limit = _limit_message(err, raw, system)
     if limit:
         return limit
     msg = err["msg"]
@@ -259,12 +261,10 @@ def _limit_message(err: dict, loc: Loc, system: str | None) -> str | None:
     op, key = _LIMITS[err["type"]]
     limit = err.get("ctx", {}).get(key)
     field = field_at(Case, loc)
-    dim = None
-    for meta in getattr(field, "metadata", ()):
-        dim = getattr(getattr(meta, "func", None), "dim", None) or dim
+    dim = info_dim(field) if field is not None else None  # Length | None too
     if limit is None:
         return None
-    if isinstance(limit, int) and not isinstance(limit, bool):  # counts, seeds: exact
+    if dim is None and isinstance(limit, int) and not isinstance(limit, bool):  # counts, seeds
         return compose("", f"{op} {limit}")
     if dim is None:  # a plain number (a coefficient): the bound as written, not pydantic's
         return compose("", f"{op} {float(limit):g}")  # fixed-point 0.000000000000023

@@ -69,7 +69,11 @@ def field_dim(section: Any, name: str) -> Dim | None:
     (a model or its class), from the validator its :func:`quantity` type records; None for a
     plain number, a word or a sub-section. A name the section does not have is a KeyError."""
     cls = section if isinstance(section, type) else type(section)
-    info = cls.model_fields[name]
+    return info_dim(cls.model_fields[name])
+
+
+def info_dim(info) -> Dim | None:
+    """The dimension of a quantity field from its pydantic FieldInfo (:func:`field_dim`)."""
     metas, args = list(info.metadata), list(getattr(info.annotation, "__args__", ()))
     while args:  # Length | None, list[Length] | None
         arg = args.pop()

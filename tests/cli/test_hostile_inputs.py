@@ -235,3 +235,24 @@ def test_nan_and_inf_as_text_are_not_called_a_unit(value):
     line = error_line(r)
     assert "gears.module" in line and "(a finite number: not NaN or infinity)" in line
     assert "unit alone" not in line
+
+
+@pytest.mark.parametrize("setting, fragment", [
+    ("run.atol=0", "run.atol: got 0; expected > 0 mm"),  # the unit was left out (an int bound)
+    ("run.max_step=-1", "run.max_step: got -1; expected > 0 s"),
+    ("faults=[{kind: spall, gear: pinion, tooth: 1, diameter: -170 mm, length: 1 mm, "
+     "depth: 0.01 mm, width: 1}]", "faults.0.diameter: got '-170 mm'; expected > 0 mm"),
+    ("faults=[{kind: root_crack, gear: pinion, tooth: 2, depth: 1 mm, angle: 100 deg}]",
+     "faults.0.angle: got '100 deg'; expected <= 90 deg"),
+    # a spall's own keys (the union's first member, the root crack's, were listed)
+    ("faults=[{kind: spall, gear: pinion, tooth: 1, diameter: 170 mm, length: 1 mm, "
+     "depth: 0.01 mm, widht: 1}]", "faults.0.widht: got 1; unknown key (did you mean 'width'?); "
+     "expected one of: kind, gear, tooth, diameter, roll_angle, length, width, depth"),
+    ("faults=[{kind: spall, gear: pinion, tooth: 1, diameter: 170 mm, length: 1 mm, "
+     "depth: 0.01 mm}]", "faults.0.width: missing required key; expected share of the face "
+     "width the spall covers"),
+])
+def test_limits_and_keys_of_optional_and_listed_fields(setting, fragment):
+    r = invoke("geometry", SEED, "-q", "--set", setting)
+    assert r.exit_code == 1
+    assert fragment in error_line(r)
