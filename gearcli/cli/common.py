@@ -17,13 +17,18 @@ import typer
 from gearcli import interrupts
 from gearcli.cli.app import TABLE_FORMATS
 from gearcli.errors import ExitCode, GearcliError
-from gearcli.guards import clip_message
+from gearcli.guards import clip, clip_message
 from gearcli.interrupts import Terminated
 
 #: errno values of a full or broken output stream or disk: the user's environment, not a bug.
 _OUTPUT_ERRNOS = frozenset(getattr(errno, n) for n in (
     "ENOSPC", "EDQUOT", "EFBIG", "EPIPE", "EIO", "EROFS", "EACCES", "EPERM", "ENXIO")
     if hasattr(errno, n))
+
+
+#: errno values of a path the system refuses whatever the folder holds: a name longer than
+#: NAME_MAX (255 bytes) or a path longer than PATH_MAX.
+_PATH_ERRNOS = frozenset({errno.ENAMETOOLONG})
 
 
 def handle_errors(func):
@@ -52,6 +57,10 @@ def handle_errors(func):
         except KeyboardInterrupt:
             _signal_exit(signal.SIGINT)
         except OSError as exc:
+            if exc.errno in _PATH_ERRNOS:  # a path the user gave that the system cannot take
+                _echo_err(f"error: {clip(str(exc.filename or ''), 200)}: {exc.strerror}; "
+                          "expected a shorter path or name")
+                raise typer.Exit(int(ExitCode.INPUT)) from None
             if exc.errno not in _OUTPUT_ERRNOS:
                 return _internal()
             reader_gone = exc.errno == errno.EPIPE and not exc.filename and _stdout_widowed()

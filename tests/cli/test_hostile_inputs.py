@@ -256,3 +256,22 @@ def test_limits_and_keys_of_optional_and_listed_fields(setting, fragment):
     r = invoke("geometry", SEED, "-q", "--set", setting)
     assert r.exit_code == 1
     assert fragment in error_line(r)
+
+
+LONG = "a" * 300  # a file name above NAME_MAX (255 bytes)
+
+
+@pytest.mark.parametrize("args", [
+    ("geometry", f"{LONG}.yaml"),
+    ("geometry", SEED, "--plot", f"{LONG}.png"),
+    ("simulate", SEED, *SHORT, "-o", LONG),
+    ("new", f"{LONG}.yaml"),
+    ("mesh", SEED, "-o", LONG),
+])
+def test_a_file_name_too_long_is_a_user_error(tmp_path, monkeypatch, args):
+    """ENAMETOOLONG was an internal error (exit 3) in every command."""
+    monkeypatch.chdir(tmp_path)
+    r = invoke(*args, "-q") if args[0] != "new" else invoke(*args)
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert "File name too long" in line and f"{LONG[:20]}" in line
