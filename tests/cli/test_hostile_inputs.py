@@ -275,3 +275,22 @@ def test_a_file_name_too_long_is_a_user_error(tmp_path, monkeypatch, args):
     assert r.exit_code == 1
     line = error_line(r)
     assert "File name too long" in line and f"{LONG[:20]}" in line
+
+
+def test_a_bad_value_in_a_studys_set_names_the_set_line(tmp_path):
+    """It quoted the base file's line of the value it replaced ("50 |   end_time: 5" beside
+    "got '-1 s'")."""
+    r = sweep_study(tmp_path, "set:\n  run.end_time: -1 s\nparameters: {gears.module: [9, 10]}")
+    assert r.exit_code == 1
+    line = error_line(r)
+    assert line.startswith(f"error: {tmp_path / 's.yaml'}:4: the base case is invalid: "
+                           "--set run.end_time=-1 s: run.end_time: got '-1 s'")
+    assert "end_time: 5" not in r.stderr
+
+
+def test_a_study_check_no_value_passes_is_refused(tmp_path):
+    """min > max failed every point after the whole study had run (exit 4)."""
+    r = sweep_study(tmp_path, "parameters: {gears.module: [9, 10]}\n"
+                    "checks: [{metric: dynamic_factor, min: 5, max: 1}]")
+    assert r.exit_code == 1
+    assert "checks.0: min 5 > max 1" in error_line(r)

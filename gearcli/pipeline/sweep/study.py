@@ -197,12 +197,17 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
     fixed = [f"{k}={_yaml(v)}" for k, v in spec.set.items()]
     _check_keys(src, ("set",), spec.set)
     _check_keys(src, ("parameters",), spec.parameters)
+    texts = dict(zip(spec.set, fixed, strict=True))
+    for key, text in texts.items():  # errors name the study's set:, not the base file's line
+        base_src.key_lines.pop(tuple(key.split(".")), None)
+        base_src.overridden[tuple(key.split("."))] = text
     try:
         base_src.data = apply_overrides(base_src.data, fixed, Case)
         base = validate_source(base_src, stem)
     except CaseError as exc:
+        key = next((k for k, t in texts.items() if exc.file == f"--set {t}"), None)
         raise CaseError(f"the base case is invalid: {exc}", file=src.file,
-                        line=src.line_of(("base",))) from None
+                        line=src.line_of(("base",) if key is None else ("set", key))) from None
     system = base_src.data.get("units") if isinstance(base_src.data, dict) else None
     params = [_parameter(src, key, spec.parameters[key], system) for key in spec.parameters]
     for key, spec_p in spec.parameters.items():
@@ -258,6 +263,9 @@ def _check_metrics(src: Source, spec: StudyFile) -> None:
                             "metrics; add it to 'metrics' or drop the check")
         if c.min is None and c.max is None:
             raise src.error(("checks", k), "a check needs 'min' and/or 'max'")
+        if c.min is not None and c.max is not None and not c.min <= c.max:
+            raise src.error(("checks", k), f"min {c.min:g} > max {c.max:g}: no value passes; "
+                            "expected min <= max")
 
 
 def _yaml(value) -> str:
