@@ -49,8 +49,10 @@ def report(
     with folder_lock(folder):  # nothing replaces the run between reading it and writing
         check_new_file(target, force, "-o" if out is not None else "the report")
         check_suffix("-o", target, REPORT_SUFFIXES[fmt])
-        if out is None:
-            check_no_earlier(folder, ("figures", target.name), force, "report's figures")
+        # the figures go into DIR with -o too: an earlier report (report.md links them) keeps
+        # its own unless --force
+        check_no_earlier(folder, ("figures",) if out is not None else ("figures", target.name),
+                         force, "report's figures")
         _note_monitor(_write_monitor(folder), quiet)  # faults: the monitoring section
         figures = folder / "figures"
         new_figures = not (figures.exists() or figures.is_symlink())

@@ -294,3 +294,18 @@ def test_a_study_check_no_value_passes_is_refused(tmp_path):
                     "checks: [{metric: dynamic_factor, min: 5, max: 1}]")
     assert r.exit_code == 1
     assert "checks.0: min 5 > max 1" in error_line(r)
+
+
+def test_a_report_elsewhere_keeps_the_figures_of_the_earlier_report(simulated, tmp_path):
+    """`report DIR -o other.md` rewrote DIR/figures, which DIR/report.md links, without
+    --force."""
+    run = tmp_path / "copy"
+    shutil.copytree(simulated, run)
+    assert invoke("report", run, "-q", "--format", "md").exit_code in (0, 4)
+    before = {p.name: p.stat().st_mtime_ns for p in (run / "figures").iterdir()}
+    r = invoke("report", run, "-q", "--format", "md", "-o", tmp_path / "other.md")
+    assert r.exit_code == 1
+    assert "figures" in error_line(r) and "--force" in error_line(r)
+    assert {p.name: p.stat().st_mtime_ns for p in (run / "figures").iterdir()} == before
+    r = invoke("report", run, "-q", "--format", "md", "-o", tmp_path / "other.md", "--force")
+    assert r.exit_code in (0, 4) and (tmp_path / "other.md").is_file()
