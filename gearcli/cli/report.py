@@ -41,10 +41,12 @@ def report(
     from gearcli.errors import OutputError
     from gearcli.io.files import check_new_file, check_no_earlier, record_outputs
     from gearcli.io.owner import folder_lock
+    from gearcli.io.results import check_folder
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):
         raise OutputError(f"--format {fmt}: expected html or md")
+    check_folder(folder)  # before its report's path: "DIR: not found", not "folder DIR ..."
     target = out if out is not None else folder / f"report.{fmt}"
     with folder_lock(folder):  # nothing replaces the run between reading it and writing
         check_new_file(target, force, "-o" if out is not None else "the report")

@@ -309,3 +309,15 @@ def test_a_report_elsewhere_keeps_the_figures_of_the_earlier_report(simulated, t
     assert {p.name: p.stat().st_mtime_ns for p in (run / "figures").iterdir()} == before
     r = invoke("report", run, "-q", "--format", "md", "-o", tmp_path / "other.md", "--force")
     assert r.exit_code in (0, 4) and (tmp_path / "other.md").is_file()
+
+
+@pytest.mark.parametrize("name, fragment", [
+    ("missing", "missing: not found; expected a results folder"),  # was "the report
+    ("case.yaml", "case.yaml: not a folder; expected a results folder"),  # missing/report.html"
+])
+def test_report_on_no_folder_says_so(tmp_path, monkeypatch, name, fragment):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "case.yaml").write_text("x: 1\n")
+    r = invoke("report", name, "-q")
+    assert r.exit_code == 1
+    assert error_line(r) == f"error: {fragment} from gearcli simulate"
