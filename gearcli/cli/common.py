@@ -26,8 +26,7 @@ _OUTPUT_ERRNOS = frozenset(getattr(errno, n) for n in (
     if hasattr(errno, n))
 
 
-#: errno values of a path the system refuses whatever the folder holds: a name longer than
-#: NAME_MAX (255 bytes) or a path longer than PATH_MAX.
+#: errno of a path the system refuses: a name above NAME_MAX or a path above PATH_MAX.
 _PATH_ERRNOS = frozenset({errno.ENAMETOOLONG})
 
 
@@ -198,21 +197,10 @@ def check_figure_path(option: str, path: Path | None, force: bool) -> None:
     .pdf name that is new (or ``force``), in an existing folder; checked before the work."""
     if path is None:
         return
-    from gearcli.io.files import check_new_file
+    from gearcli.io.files import check_new_file, check_suffix
 
     check_suffix(option, path, (".png", ".svg", ".pdf"))
     check_new_file(path, force, option)
-
-
-def check_suffix(option: str, path: Path, suffixes: tuple[str, ...]) -> None:
-    """A file an option writes is named for what it holds (``--force`` then never replaces a
-    results folder's summary.json by a report or a sound)."""
-    if path.suffix.lower() not in suffixes:
-        from gearcli.errors import OutputError
-
-        names = ", ".join(suffixes[:-1]) + " or " + suffixes[-1] if len(suffixes) > 1 \
-            else suffixes[0]
-        raise OutputError(f"{option} {path}: expected a file name ending in {names}")
 
 
 def is_terminal() -> bool:

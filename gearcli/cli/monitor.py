@@ -56,8 +56,8 @@ def monitor(
     import json
 
     from gearcli import api
-    from gearcli.cli.common import check_figure_path, check_suffix
-    from gearcli.io.files import check_new_file
+    from gearcli.cli.common import check_figure_path
+    from gearcli.io.files import check_new_file, check_suffix
     from gearcli.io.outdir import check_target
     from gearcli.pipeline import monitor_outputs as views
     from gearcli.pipeline.monitor import write_monitor

@@ -8,7 +8,6 @@ import typer
 
 from gearcli.cli.app import app
 from gearcli.cli.common import (
-    check_suffix,
     display_units,
     handle_errors,
     report_findings,
@@ -39,7 +38,12 @@ def report(
 
     Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError
-    from gearcli.io.files import check_new_file, check_no_earlier, record_outputs
+    from gearcli.io.files import (
+        check_new_file,
+        check_no_earlier,
+        check_suffix,
+        record_outputs,
+    )
     from gearcli.io.owner import folder_lock
     from gearcli.io.results import check_folder
     from gearcli.report import build_report

@@ -321,3 +321,9 @@ def test_report_on_no_folder_says_so(tmp_path, monkeypatch, name, fragment):
     r = invoke("report", name, "-q")
     assert r.exit_code == 1
     assert error_line(r) == f"error: {fragment} from gearcli simulate"
+
+
+def test_a_case_file_given_to_sweep_says_it_wants_a_study(tmp_path):
+    r = invoke("sweep", SEED, "-o", tmp_path / "out", "-q")
+    assert r.exit_code == 1
+    assert "gears: unknown key" in error_line(r) and "gearcli new --template study" in r.stderr

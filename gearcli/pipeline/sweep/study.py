@@ -180,8 +180,7 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
     try:
         spec = StudyFile.model_validate(src.data)
     except ValidationError as exc:
-        # a typo first, then the deepest key (a range's 'num', not the list it is not)
-        err = min(exc.errors(), key=lambda e: (e["type"] == "missing",
+        err = min(exc.errors(), key=lambda e: (e["type"] == "missing",  # a typo first, then
                                                -len(data_loc(tuple(e["loc"]), src.data))))
         loc = data_loc(tuple(err["loc"]), src.data)
         msg = err["msg"].removeprefix("Value error, ")
@@ -192,6 +191,8 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
             msg = "missing required key"
         if err["type"] == "extra_forbidden":
             msg = "unknown key; expected one of: " + ", ".join(StudyFile.model_fields)
+            if loc[:1] == ("gears",):  # a case file given to sweep
+                msg += " (a case file? sweep takes a study: gearcli new --template study)"
         raise src.error(loc, msg) from None
     base_src = _base_source(spec, src, folder)
     fixed = [f"{k}={_yaml(v)}" for k, v in spec.set.items()]
