@@ -134,6 +134,7 @@ _NUMBER = r"(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 _POWER = re.compile(r"(\*\*|\^)\s*(\(\s*[-+]?\s*" + _NUMBER + r"\s*\)|[-+]?\s*" + _NUMBER
                     + r")?")
 _LEADING_NUMBER = re.compile(r"^\s*\(?\s*[-+]?\s*(?:\d|\.\d)")
+_NON_FINITE = re.compile(r"^\s*[-+]?\s*(?:nan|inf(?:inity)?)(?:\s|$)", re.IGNORECASE)
 
 
 def check_unit_text(text: str, need_number: bool, example: str = "10 mm") -> None:
@@ -166,6 +167,9 @@ def check_unit_text(text: str, need_number: bool, example: str = "10 mm") -> Non
             raise ValueError(f"expected powers of at most {MAX_UNIT_EXPONENT} in units, got "
                              f"{clip(text[m.start():m.end()].strip())!r}")
         pos = m.end()
+    if need_number and _NON_FINITE.match(text):  # "nan", "-inf mm": not a unit alone
+        raise ValueError(f"expected a number with units, e.g. '{example}' (a finite number: "
+                         "not NaN or infinity)")
     if need_number and not _LEADING_NUMBER.match(text):
         raise ValueError(f"expected a number with units, e.g. '{example}' (no number in front: "
                          "a unit alone is not a value)")

@@ -49,6 +49,21 @@ def on_signal(signum, frame) -> None:
     raise_for(signum)
 
 
+def _after_fork_in_child() -> None:
+    """A process forked during a command (a sweep's worker) is not the command: SIGTERM and
+    SIGHUP end it at once, by the default action, instead of raising :class:`Terminated`
+    wherever it is (in its pool's start-up that printed a traceback on the sweep's stderr)."""
+    for name in ("SIGTERM", "SIGHUP"):
+        signum = getattr(signal, name, None)
+        if signum is not None and signal.getsignal(signum) is on_signal:
+            with contextlib.suppress(ValueError):  # not the main thread: nothing to reset
+                signal.signal(signum, signal.SIG_DFL)
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_after_fork_in_child)
+
+
 @contextlib.contextmanager
 def deferred():
     """Hold SIGINT, SIGTERM and SIGHUP back for a short section (a few renames): a signal that

@@ -179,7 +179,7 @@ def parse_quantity(value: object, dim: Dim) -> float:
     own = own_unit_quantity(text, dim)
     if own is not None:
         if not math.isfinite(own):
-            raise UnitError(f"expected {article(dim.name)} finite {dim.name}")
+            raise UnitError(f"expected a finite {dim.name}")
         return own
     ureg = registry()
     try:
@@ -200,7 +200,7 @@ def parse_quantity(value: object, dim: Dim) -> float:
             f"expected {expected}"
         ) from None
     if not math.isfinite(out):
-        raise UnitError(f"expected {article(dim.name)} finite {dim.name}")
+        raise UnitError(f"expected a finite {dim.name}")
     return out
 
 

@@ -19,6 +19,7 @@ from gearcli.case.keypaths import allowed_keys, field_at
 from gearcli.case.overrides import apply_overrides, text_name
 from gearcli.case.schema import Case
 from gearcli.case.section import FieldError, FieldErrors, compose
+from gearcli.case.types import info_dim
 from gearcli.case.yamlsrc import Loc, Source, parse_source, read_source
 from gearcli.errors import CaseError
 
@@ -115,6 +116,8 @@ def _schema_errors(exc: ValidationError, src: Source) -> list[CaseError]:
     found: dict[Loc, tuple] = {}
     for err in exc.errors():
         loc = data_loc(tuple(err["loc"]), src.data)
+        if err["type"] in _TAG_ERRORS:  # a fault's kind: the key the tag is read from
+            loc = (*loc, str(err.get("ctx", {}).get("discriminator", "kind")).strip("'"))
         cause = err.get("ctx", {}).get("error")
         parts = cause.errors if isinstance(cause, FieldErrors) else [cause]
         for part in parts:
@@ -169,32 +172,55 @@ def data_loc(loc: tuple, data: object) -> Loc:
     """Drop pydantic's union/validator tags from ``loc`` so it follows the YAML keys."""
     out: list = []
     node = data
-    for part in loc:
+    for i, part in enumerate(loc):
         if isinstance(node, dict) and part in node:
             out.append(part)
             node = node[part]
         elif isinstance(node, list) and isinstance(part, int) and part < len(node):
             out.append(part)
             node = node[part]
-        elif isinstance(part, str) and not any(c in part for c in "[]()") and node is not None:
+        elif isinstance(node, dict) and isinstance(part, str) and not _is_tag(node, part,
+                                                                               loc[i + 1:]):
             out.append(part)  # a key that is missing or unknown
             node = None
     return tuple(out)
+
+
+def _is_tag(node: dict, part: str, rest: tuple) -> bool:
+    """Whether ``part``, not a key of the mapping ``node``, is pydantic's name of a union
+    member rather than a missing key: a validator or type ("function-after[...]", "list[any]"),
+    a model class ("Range"), a discriminator's value ("root_crack" of ``kind: root_crack``), or
+    a step followed by a key of ``node`` (schema keys are lower case)."""
+    return (any(c in part for c in "[]()") or part[:1].isupper() or node.get("kind") == part
+            or (bool(rest) and rest[0] in node))
 
 
 def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -> str:
     """What is wrong and what is allowed (:func:`~gearcli.case.section.compose`); the loader
     adds file, line, key and value. A validator's own error says both itself."""
     kind = err["type"]
+    raw = tuple(err["loc"])  # with pydantic's union member names: the schema's own path
     if kind == "extra_forbidden":
-        close = _close_keys(loc)
+        close = _close_keys(raw)
         return compose("unknown key" + (f" (did you mean '{close[0]}'?)" if close else ""),
-                       "one of: " + ", ".join(allowed_keys(Case, loc[:-1])))
+                       "one of: " + ", ".join(allowed_keys(Case, raw[:-1])))
     if kind == "missing":
-        return compose("missing required key", _what(loc))
+        return compose("missing required key", _what(raw))
     if cause is not None:
         return str(cause)
-    limit = _limit_message(err, loc, system)
+    ctx = err.get("ctx", {})
+    if kind == "union_tag_invalid":
+        return compose("", "one of " + str(ctx.get("expected_tags", "")))
+    if kind == "union_tag_not_found":
+        from gearcli.case.schema_faults import FAULT_KINDS  # the only tagged union
+
+        return compose("missing", "one of " + ", ".join(FAULT_KINDS))
+    if kind == "too_short":
+        n = ctx.get("min_length", 1)
+        return compose("", f"at least {n} entr{'y' if n == 1 else 'ies'}")
+    if kind in ("model_type", "dict_type"):
+        return compose("", f"a mapping: {_what(raw)}")
+    limit = _limit_message(err, raw, system)
     if limit:
         return limit
     msg = err["msg"]
@@ -203,6 +229,10 @@ def _message(err: dict, cause: Exception | None, loc: Loc, system: str | None) -
     msg = msg.replace("greater than or equal to", ">=").replace("less than or equal to", "<=")
     msg = msg.replace("greater than", ">").replace("less than", "<")
     return compose("", msg)
+
+
+#: pydantic's errors of a tagged union (``faults:``): located at the tag's key.
+_TAG_ERRORS = ("union_tag_invalid", "union_tag_not_found")
 
 
 def _what(loc: Loc) -> str:
@@ -231,12 +261,10 @@ def _limit_message(err: dict, loc: Loc, system: str | None) -> str | None:
     op, key = _LIMITS[err["type"]]
     limit = err.get("ctx", {}).get(key)
     field = field_at(Case, loc)
-    dim = None
-    for meta in getattr(field, "metadata", ()):
-        dim = getattr(getattr(meta, "func", None), "dim", None) or dim
+    dim = info_dim(field) if field is not None else None  # Length | None too
     if limit is None:
         return None
-    if isinstance(limit, int) and not isinstance(limit, bool):  # counts, seeds: exact
+    if dim is None and isinstance(limit, int) and not isinstance(limit, bool):  # counts, seeds
         return compose("", f"{op} {limit}")
     if dim is None:  # a plain number (a coefficient): the bound as written, not pydantic's
         return compose("", f"{op} {float(limit):g}")  # fixed-point 0.000000000000023

@@ -33,10 +33,11 @@ _TOOTH = Field(ge=0, description="tooth index: 0 is the tooth in mesh at the pit
                "t = 0, i + 1 the next to enter the mesh (docs/theory.md, Tooth faults)")
 
 
-def _share(default: float | None, what: str):
+def _share(default, what: str):
+    """A share of the face width: ``default`` a number, or ``...`` (required)."""
     text = f"share of the face width {what}, 0 ... 1"
     return Field(default, ge=0.0, le=1.0, description=text + (
-        f" ({default:g})" if default is not None else " (required)"))
+        " (required)" if default is ... else f" ({default:g})"))
 
 
 class RootCrackFault(Section):
@@ -61,7 +62,7 @@ class SpallFault(Section):
     roll_angle: Angle | None = qfield(units.ANGLE, None, "roll angle of the involute at the "
                                       "spall's centre", ge=0)
     length: Length = qfield(units.LENGTH, ..., "extent along the profile", ge=0)
-    width: Coefficient = _share(None, "the spall covers")
+    width: Coefficient = _share(..., "the spall covers")
     depth: Length = qfield(units.LENGTH, ..., "pit depth", ge=0)
 
     @model_validator(mode="after")
@@ -89,6 +90,8 @@ class MissingToothFault(Section):
 
 Fault = Annotated[Union[RootCrackFault, SpallFault, ChippedTipFault, MissingToothFault],  # noqa: UP007
                   Field(discriminator="kind")]
+#: The ``kind`` of each fault, as a case file writes it.
+FAULT_KINDS = ("root_crack", "spall", "chipped_tip", "missing_tooth")
 
 
 def fault_records(faults) -> list:

@@ -69,7 +69,11 @@ def field_dim(section: Any, name: str) -> Dim | None:
     (a model or its class), from the validator its :func:`quantity` type records; None for a
     plain number, a word or a sub-section. A name the section does not have is a KeyError."""
     cls = section if isinstance(section, type) else type(section)
-    info = cls.model_fields[name]
+    return info_dim(cls.model_fields[name])
+
+
+def info_dim(info) -> Dim | None:
+    """The dimension of a quantity field from its pydantic FieldInfo (:func:`field_dim`)."""
     metas, args = list(info.metadata), list(getattr(info.annotation, "__args__", ()))
     while args:  # Length | None, list[Length] | None
         arg = args.pop()
@@ -189,6 +193,10 @@ def _time_function_validator(dim: Dim):
                     "'STEP(time, 0, 0, 1, 450)') and optional 'unit'"
                 )
             unit_given = "unit" in value
+            if unit_given and not (isinstance(value["unit"], str) and value["unit"].strip()):
+                # "" read the numbers in the default unit; 5 as a unit is no unit at all
+                raise ValueError(f"unit {value['unit']!r}: expected the unit of the function's "
+                                 f"numbers, e.g. unit: {own.default}")
             unit = str(value.get("unit", own.default))
             checked_unit(unit, own)  # validates the unit and its dimension
             value = value["function"]

@@ -38,6 +38,15 @@ class Source:
             loc = loc[:-1]
         return self.key_lines.get((), None)
 
+    def override_of(self, loc: Loc) -> str | None:
+        """The --set text that set the value at ``loc``: its own, or that of a section or list
+        it lies in (``--set faults=[...]`` sets ``faults.0.depth``); None when the file did."""
+        parts = tuple(str(p) for p in loc)
+        for n in range(len(parts), 0, -1):
+            if parts[:n] in self.overridden:
+                return self.overridden[parts[:n]]
+        return None
+
     def text_of(self, line: int | None) -> str | None:
         if line is None or not 1 <= line <= len(self.lines):
             return None
@@ -46,10 +55,11 @@ class Source:
     def error(self, loc: Loc, message: str, value: object = None, has_value: bool = False):
         """A :class:`CaseError` located at ``loc`` (or at the --set option that set it)."""
         loc = tuple(loc)
-        if loc in self.overridden:
+        given = self.override_of(loc)
+        if given is not None:
             return CaseError(
                 message,
-                file=f"--set {self.overridden[loc]}",
+                file=f"--set {given}",
                 path=".".join(str(p) for p in loc),
                 value=value,
                 has_value=has_value,

@@ -17,13 +17,17 @@ import typer
 from gearcli import interrupts
 from gearcli.cli.app import TABLE_FORMATS
 from gearcli.errors import ExitCode, GearcliError
-from gearcli.guards import clip_message
+from gearcli.guards import clip, clip_message
 from gearcli.interrupts import Terminated
 
 #: errno values of a full or broken output stream or disk: the user's environment, not a bug.
 _OUTPUT_ERRNOS = frozenset(getattr(errno, n) for n in (
     "ENOSPC", "EDQUOT", "EFBIG", "EPIPE", "EIO", "EROFS", "EACCES", "EPERM", "ENXIO")
     if hasattr(errno, n))
+
+
+#: errno of a path the system refuses: a name above NAME_MAX or a path above PATH_MAX.
+_PATH_ERRNOS = frozenset({errno.ENAMETOOLONG})
 
 
 def handle_errors(func):
@@ -52,6 +56,10 @@ def handle_errors(func):
         except KeyboardInterrupt:
             _signal_exit(signal.SIGINT)
         except OSError as exc:
+            if exc.errno in _PATH_ERRNOS:  # a path the user gave that the system cannot take
+                _echo_err(f"error: {clip(str(exc.filename or ''), 200)}: {exc.strerror}; "
+                          "expected a shorter path or name")
+                raise typer.Exit(int(ExitCode.INPUT)) from None
             if exc.errno not in _OUTPUT_ERRNOS:
                 return _internal()
             reader_gone = exc.errno == errno.EPIPE and not exc.filename and _stdout_widowed()
@@ -189,11 +197,9 @@ def check_figure_path(option: str, path: Path | None, force: bool) -> None:
     .pdf name that is new (or ``force``), in an existing folder; checked before the work."""
     if path is None:
         return
-    from gearcli.errors import OutputError
-    from gearcli.io.files import check_new_file
+    from gearcli.io.files import check_new_file, check_suffix
 
-    if path.suffix.lower() not in (".png", ".svg", ".pdf"):
-        raise OutputError(f"{option} {path}: expected a file name ending in .png, .svg or .pdf")
+    check_suffix(option, path, (".png", ".svg", ".pdf"))
     check_new_file(path, force, option)
 
 

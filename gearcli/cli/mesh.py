@@ -13,6 +13,7 @@ from gearcli.cli.common import (
     emit,
     format_value,
     handle_errors,
+    option_quantities,
     table_options,
 )
 from gearcli.io.files import write_stdout
@@ -23,8 +24,9 @@ from gearcli.io.files import write_stdout
 @table_options
 def mesh(
     case: Path = typer.Argument(..., help="Case file (YAML)."),
-    load: float | None = typer.Option(
-        None, "--load", help="Static normal force [N] (default: the case's load torque / r_b2)."),
+    load: str | None = typer.Option(
+        None, "--load", help="Static normal force: a force with units ('5 kN') or a number in N "
+        "(default: the case's load torque / r_b2)."),
     harris: bool = typer.Option(False, "--harris", help="Also compute the Harris map (STE "
                                 "peak-to-peak against 0.1 .. 2 x the load)."),
     as_json: bool = typer.Option(False, "--json", help="Print the results as JSON."),
@@ -75,8 +77,10 @@ def mesh(
 
     if method not in ("pe", "fe"):
         raise CaseError(f"--method {method!r:.40}: expected pe or fe")
-    if load is not None and not load > 0.0:
-        raise CaseError(f"--load must be a force > 0 N, got {load}")
+    if load is not None:  # a number in N or a force with units, as the case file writes it
+        (load,) = option_quantities([load], "FORCE", "--load")
+        if not load > 0.0:
+            raise CaseError(f"--load must be a force > 0 N, got {load:g} N")
     from gearcli.io.outdir import check_target
 
     check_figure_path("--plot", plot, force)

@@ -57,7 +57,7 @@ def monitor(
 
     from gearcli import api
     from gearcli.cli.common import check_figure_path
-    from gearcli.io.files import check_new_file
+    from gearcli.io.files import check_new_file, check_suffix
     from gearcli.io.outdir import check_target
     from gearcli.pipeline import monitor_outputs as views
     from gearcli.pipeline.monitor import write_monitor
@@ -67,6 +67,7 @@ def monitor(
     check_figure_path("--orders", orders, force)
     check_figure_path("--teeth", teeth, force)
     if wav is not None:
+        check_suffix("--wav", wav, (".wav",))
         check_new_file(wav, force, "--wav")
     doc = api.monitor(run, baseline, signal=signal)
     if out is not None:

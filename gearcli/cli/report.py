@@ -15,6 +15,9 @@ from gearcli.cli.common import (
     table_options,
 )
 
+#: The file names a report of each --format may have.
+REPORT_SUFFIXES = {"html": (".html", ".htm"), "md": (".md", ".markdown")}
+
 
 @app.command()
 @handle_errors
@@ -22,7 +25,8 @@ def report(
     folder: Path = typer.Argument(..., help="Results folder (after gearcli analyze)."),
     fmt: str = typer.Option("html", "--format", help="html (one self-contained file) or md."),
     out: Path | None = typer.Option(
-        None, "-o", "--out", help="Report file (default DIR/report.*)."
+        None, "-o", "--out",
+        help="Report file, named .html or .md after --format (default DIR/report.*)."
     ),
     force: bool = typer.Option(False, "--force", help="Replace an earlier report."),
     svg: bool = typer.Option(False, "--svg", help="Also write every figure as SVG (vector; "
@@ -34,17 +38,27 @@ def report(
 
     Example: gearcli report out/seed --format md"""
     from gearcli.errors import OutputError
-    from gearcli.io.files import check_new_file, check_no_earlier, record_outputs
+    from gearcli.io.files import (
+        check_new_file,
+        check_no_earlier,
+        check_suffix,
+        record_outputs,
+    )
     from gearcli.io.owner import folder_lock
+    from gearcli.io.results import check_folder
     from gearcli.report import build_report
 
     if fmt not in ("html", "md"):
         raise OutputError(f"--format {fmt}: expected html or md")
+    check_folder(folder)  # before its report's path: "DIR: not found", not "folder DIR ..."
     target = out if out is not None else folder / f"report.{fmt}"
     with folder_lock(folder):  # nothing replaces the run between reading it and writing
         check_new_file(target, force, "-o" if out is not None else "the report")
-        if out is None:
-            check_no_earlier(folder, ("figures", target.name), force, "report's figures")
+        check_suffix("-o", target, REPORT_SUFFIXES[fmt])
+        # the figures go into DIR with -o too: an earlier report (report.md links them) keeps
+        # its own unless --force
+        check_no_earlier(folder, ("figures",) if out is not None else ("figures", target.name),
+                         force, "report's figures")
         _note_monitor(_write_monitor(folder), quiet)  # faults: the monitoring section
         figures = folder / "figures"
         new_figures = not (figures.exists() or figures.is_symlink())

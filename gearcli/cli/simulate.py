@@ -53,6 +53,9 @@ def simulate(
     to_stdout = out == "-"
     if fmt not in TIMESERIES_FORMATS:
         raise OutputError(f"--format {fmt}: expected one of {', '.join(TIMESERIES_FORMATS)}")
+    if to_stdout and as_json:  # one stream, two documents: neither CSV nor JSON
+        raise OutputError("--json with -o -: both print to stdout; expected one of them "
+                          "(-o DIR --json: the results folder and summary.json on stdout)")
     if to_stdout and fmt != "csv":
         raise OutputError("--format parquet writes a file: give a results folder with -o DIR")
     if not to_stdout:

@@ -67,6 +67,15 @@ def check_new_file(path: str | Path | None, force: bool, option: str) -> None:
     check_writable(p)
 
 
+def check_suffix(option: str, path: Path, suffixes: tuple[str, ...]) -> None:
+    """A file an option writes is named for what it holds (``--force`` then never replaces a
+    results folder's summary.json by a report or a sound)."""
+    if Path(path).suffix.lower() not in suffixes:
+        names = (", ".join(suffixes[:-1]) + " or " + suffixes[-1] if len(suffixes) > 1
+                 else suffixes[0])
+        raise OutputError(f"{option} {path}: expected a file name ending in {names}")
+
+
 def check_writable(p: str | Path) -> None:
     """Refuse, before any work, a target whose nearest existing folder cannot be written
     (a read-only file system or folder): a probe folder is made and removed there."""

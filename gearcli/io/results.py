@@ -43,13 +43,19 @@ class StoredRun:
         return self.columns[name]
 
 
-def read_run(folder: str | Path) -> StoredRun:
-    """Load manifest, summary and time series; every problem is a one-line ResultsError."""
+def check_folder(folder: str | Path) -> Path:
+    """``folder`` as a Path when it is an existing folder, else a one-line ResultsError."""
     p = Path(folder)
     if not p.exists():
         raise ResultsError(f"{p}: not found; expected a results folder from gearcli simulate")
     if not p.is_dir():
         raise ResultsError(f"{p}: not a folder; expected a results folder from gearcli simulate")
+    return p
+
+
+def read_run(folder: str | Path) -> StoredRun:
+    """Load manifest, summary and time series; every problem is a one-line ResultsError."""
+    p = check_folder(folder)
     series = next((p / f for f in TIMESERIES if (p / f).is_file()), p / TIMESERIES[0])
     missing = [f for f in FILES[:2] + (series.name,) if not (p / f).is_file()]
     if missing:

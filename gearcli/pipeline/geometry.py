@@ -129,6 +129,7 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
     check_relief_extents(loaded, geo)
     check_bores(loaded, geo)
     check_runout(loaded, geo)
+    check_faults(loaded, geo)
     pinion_in, gear_in = mass_inputs(case)
     mass = tuple(
         gear_mass_properties(
@@ -204,6 +205,37 @@ def check_runout(loaded: LoadedCase, geo: PairGeometry) -> None:
                                   "and more takes the teeth out of mesh contact (ISO 1328-2 "
                                   "runout tolerances are below ~0.02 m); expected < "
                                   f"{limit:.4g} mm")
+
+
+def check_faults(loaded: LoadedCase, geo: PairGeometry) -> None:
+    """A tooth fault must lie on its tooth (docs/theory.md, "Tooth faults"): a root crack that
+    stops short of the other flank (the fault model's cracked section exists), a spall centred
+    on the active flank, between the active profile start d_Nf and the tip d_a (inside the base
+    circle there is no involute; beyond the flank the spall would change nothing, and the run
+    would be the healthy pair's)."""
+    if not loaded.case.faults:  # the fault model imports scipy.interpolate (~0.4 s)
+        return
+    from gearcli.case.schema_faults import RootCrackFault, SpallFault
+    from gearcli.model.faults.factors import crack_section
+
+    for i, fault in enumerate(loaded.case.faults):
+        gg = getattr(geo, fault.gear)
+        if isinstance(fault, RootCrackFault) and fault.depth > 0.0:
+            try:
+                crack_section(gg, fault.depth, math.degrees(fault.angle))
+            except ValueError as exc:
+                raise loaded.error_at(("faults", i, "depth"), f"{exc}; expected a crack that "
+                                      "ends inside the tooth (a shorter depth or a smaller angle "
+                                      "to the centreline), or a missing_tooth fault") from None
+        if isinstance(fault, SpallFault):
+            key = "diameter" if fault.diameter is not None else "roll_angle"
+            d = fault.diameter if fault.diameter is not None else 2.0 * math.hypot(
+                gg.r_b_mm, gg.r_b_mm * fault.roll_angle)  # involute: rho = r_b x roll angle
+            if not gg.d_Nf_mm <= d <= gg.d_a_mm:
+                raise loaded.error_at(("faults", i, key), f"the spall's centre at d = {d:.6g} mm "
+                                      f"is off the {fault.gear}'s active flank; expected between "
+                                      f"its active profile start d_Nf = {gg.d_Nf_mm:.6g} mm and "
+                                      f"its tip d_a = {gg.d_a_mm:.6g} mm")
 
 
 def _interference_key(loaded: LoadedCase, gear: str) -> tuple[str, ...]:

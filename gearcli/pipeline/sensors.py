@@ -45,10 +45,17 @@ def output_rate_Hz(t_s) -> float:
     return (len(t_s) - 1) / (t_s[-1] - t_s[0])
 
 
+#: Fewest sensor samples over the run (as the output rate's floor, pipeline/simulate.py): a
+#: lower rate has nothing to show, and its anti-alias filter (cut-off ANTI_ALIAS_CUTOFF x the
+#: rate) becomes numerically singular far below the output rate.
+MIN_SENSOR_SAMPLES = 10
+
+
 def check_sensors(loaded, output_rate: float) -> None:
-    """Refuse, before the run, a sensor rate above the run's output rate (nothing to sample) and
-    a housing resonance the output does not resolve (above the anti-alias band of the output,
-    ANTI_ALIAS_CUTOFF · output rate), with the key to change."""
+    """Refuse, before the run, a sensor rate above the run's output rate (nothing to sample) or
+    giving fewer than MIN_SENSOR_SAMPLES samples over the run, and a housing resonance the
+    output does not resolve (above the anti-alias band of the output, ANTI_ALIAS_CUTOFF ·
+    output rate), with the key to change."""
     s = loaded.case.sensors
     if s is None:
         return
@@ -56,6 +63,11 @@ def check_sensors(loaded, output_rate: float) -> None:
         raise loaded.error_at(("sensors", "sample_rate"), f"{s.sample_rate:g} Hz is above the "
                               f"run's output rate {output_rate:.6g} Hz; expected at most that, "
                               "or a higher run.output_rate")
+    end = loaded.case.run.end_time
+    if s.sample_rate is not None and s.sample_rate * end < MIN_SENSOR_SAMPLES:
+        raise loaded.error_at(("sensors", "sample_rate"), f"{s.sample_rate:g} Hz gives fewer "
+                              f"than {MIN_SENSOR_SAMPLES} samples in the run of {end:g} s; "
+                              f"expected at least {MIN_SENSOR_SAMPLES / end:.6g} Hz")
     if s.accelerometer is not None:
         top = phys.ANTI_ALIAS_CUTOFF * output_rate
         for i, m in enumerate(s.accelerometer.housing):

@@ -339,7 +339,8 @@ def summarize(res: SimulationResult) -> Summary:
         gear_mesh_frequency_Hz=g.pinion.teeth * abs(float(omega1.mean())) / (2.0 * math.pi),
         pinion_speed_mean_deg_s=math.degrees(float(omega1.mean())),
         gear_speed_mean_deg_s=math.degrees(float(omega2.mean())),
-        speed_ratio_mean=float(omega1.mean() / omega2.mean()),
+        speed_ratio_mean=(float(omega1.mean()) / float(omega2.mean()) if omega2.mean() != 0.0
+                          else math.nan),  # at rest, or stopped before the gear moved
         speed_ratio_theory=g.ratio,
         force_mean_N=float(force.mean()),
         force_rms_N=float(np.sqrt(np.mean(force**2))),
@@ -490,3 +491,4 @@ def collect_warnings(res: SimulationResult) -> list[str]:
         out.append(f"short run: fewer than {MIN_MESH_CYCLES} mesh cycles; the spectra and "
                    "steady-state values are not meaningful")
     return out
+

@@ -67,3 +67,27 @@ def test_library_use_keeps_pythons_ctrl_c_and_the_default_action():
         assert signal.getsignal(signal.SIGHUP) is signal.SIG_IGN
     finally:
         signal.signal(signal.SIGHUP, previous)
+
+
+def test_a_forked_child_of_a_command_ends_on_sigterm_without_a_traceback(handlers):
+    """A sweep worker killed at its timeout while starting up (before its initializer reset the
+    signals) raised Terminated there: "Exception in initializer: Traceback ..." on the sweep's
+    stderr. A process forked by a command takes the default action at once."""
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: report its handlers, then wait to be terminated
+        try:
+            ok = all(signal.getsignal(s) == signal.SIG_DFL for s in (signal.SIGTERM,
+                                                                    signal.SIGHUP))
+            os.write(write, b"1" if ok else b"0")
+            time.sleep(30)
+        finally:
+            os._exit(0)  # never back into pytest
+    os.close(write)
+    reported = os.read(read, 1)
+    os.close(read)
+    os.kill(pid, signal.SIGTERM)
+    _, status = os.waitpid(pid, 0)
+    assert reported == b"1"
+    assert os.WIFSIGNALED(status) and os.WTERMSIG(status) == signal.SIGTERM
+    assert signal.getsignal(signal.SIGTERM) is interrupts.on_signal  # the command's own stays

@@ -129,7 +129,7 @@ class StudyFile(_Strict):
     set: dict[str, Any] = Field(default_factory=dict)
     design: Literal["grid", "zip", "lhs", "one_at_a_time", "speed_curve"] = "grid"
     samples: int | None = Field(None, ge=1)
-    seed: int | None = None
+    seed: int | None = Field(None, ge=0)  # numpy's seeds are non-negative
     parameters: dict[str, list[Any] | Range] = Field(min_length=1)
     metrics: list[str] | None = Field(None, min_length=1)
     checks: list[Check] = Field(default_factory=list)
@@ -180,24 +180,35 @@ def _build(src: Source, folder: Path, stem: str, allow_large: bool) -> Study:
     try:
         spec = StudyFile.model_validate(src.data)
     except ValidationError as exc:
-        err = sorted(exc.errors(), key=lambda e: e["type"] == "missing")[0]  # a typo first
+        err = min(exc.errors(), key=lambda e: (e["type"] == "missing",  # a typo first, then
+                                               -len(data_loc(tuple(e["loc"]), src.data))))
         loc = data_loc(tuple(err["loc"]), src.data)
         msg = err["msg"].removeprefix("Value error, ")
+        if msg.startswith("Input should be "):  # pydantic's words, as the case's errors read
+            msg = "expected " + msg.removeprefix("Input should be ").replace(
+                "greater than or equal to", ">=").replace("less than or equal to", "<=")
         if err["type"] == "missing":
             msg = "missing required key"
         if err["type"] == "extra_forbidden":
             msg = "unknown key; expected one of: " + ", ".join(StudyFile.model_fields)
+            if loc[:1] == ("gears",):  # a case file given to sweep
+                msg += " (a case file? sweep takes a study: gearcli new --template study)"
         raise src.error(loc, msg) from None
     base_src = _base_source(spec, src, folder)
     fixed = [f"{k}={_yaml(v)}" for k, v in spec.set.items()]
     _check_keys(src, ("set",), spec.set)
     _check_keys(src, ("parameters",), spec.parameters)
+    texts = dict(zip(spec.set, fixed, strict=True))
+    for key, text in texts.items():  # errors name the study's set:, not the base file's line
+        base_src.key_lines.pop(tuple(key.split(".")), None)
+        base_src.overridden[tuple(key.split("."))] = text
     try:
         base_src.data = apply_overrides(base_src.data, fixed, Case)
         base = validate_source(base_src, stem)
     except CaseError as exc:
+        key = next((k for k, t in texts.items() if exc.file == f"--set {t}"), None)
         raise CaseError(f"the base case is invalid: {exc}", file=src.file,
-                        line=src.line_of(("base",))) from None
+                        line=src.line_of(("base",) if key is None else ("set", key))) from None
     system = base_src.data.get("units") if isinstance(base_src.data, dict) else None
     params = [_parameter(src, key, spec.parameters[key], system) for key in spec.parameters]
     for key, spec_p in spec.parameters.items():
@@ -253,6 +264,9 @@ def _check_metrics(src: Source, spec: StudyFile) -> None:
                             "metrics; add it to 'metrics' or drop the check")
         if c.min is None and c.max is None:
             raise src.error(("checks", k), "a check needs 'min' and/or 'max'")
+        if c.min is not None and c.max is not None and not c.min <= c.max:
+            raise src.error(("checks", k), f"min {c.min:g} > max {c.max:g}: no value passes; "
+                            "expected min <= max")
 
 
 def _yaml(value) -> str:
@@ -381,6 +395,8 @@ def _range(src: Source, key: str, spec: Range, system: str | None = None) -> Par
     except Exception:
         raise src.error((*loc, kind), f"got {ends!r}: wrong or inconsistent units; both ends "
                         "need units of the same dimension") from None
+    if not (math.isfinite(lo) and math.isfinite(hi)):  # numpy would fill the range with NaN
+        raise src.error((*loc, kind), f"got {ends!r}; expected finite ends")
     if kind == "logspace" and (lo <= 0 or hi <= 0):
         raise src.error((*loc, kind), f"got {ends!r}; logspace needs positive ends")
     num = spec.num or 0
