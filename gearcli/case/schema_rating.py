@@ -135,9 +135,12 @@ class Rating(Section):
     edition: Literal[2006, 2019] = Field(
         2019, description="ISO 6336 edition followed where they differ (2019; 2006: the idler's "
         "Y_M = 0.7)")
-    application_factor: Coefficient = Field(1.0, gt=0, description="K_A (1.0)")
+    # K_A adds the external load increments to the nominal load (ISO 6336-1 §6.2; ISO 6336-6
+    # Annex A, Table A.1: 1.00 ... 2.25), K_γ is the largest mesh load over the mean one
+    # (ISO 6336-1 §6.1): neither is below 1 (K_v may be, in the super-critical range)
+    application_factor: Coefficient = Field(1.0, ge=1, description="K_A (1.0)")
     load_sharing_factor: Coefficient = Field(
-        1.0, gt=0, description="K_γ, the mesh load / mean mesh load (1.0; planets: e.g. 1.1)")
+        1.0, ge=1, description="K_γ, the mesh load / mean mesh load (1.0; planets: e.g. 1.1)")
     dynamic_factor: Literal["iso", "simulated"] | Coefficient = Field(
         "iso", description="K_v: 'iso' (ISO 6336-1 Method B, as gearcli mesh prints it; the "
         "default), 'simulated' (the dynamic factor of a run), or a number",

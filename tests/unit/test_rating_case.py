@@ -256,6 +256,8 @@ def test_hardness_gives_the_iso_6336_5_limits():
 
 @pytest.mark.parametrize(("override", "key"), [
     ("rating.application_factor=0", "rating.application_factor"),
+    ("rating.application_factor=0.5", "rating.application_factor"),  # K_A >= 1 (ISO 6336-6)
+    ("rating.load_sharing_factor=0.9", "rating.load_sharing_factor"),  # K_γ = max/mean >= 1
     ("rating.dynamic_factor=fast", "rating.dynamic_factor"),
     ("rating.edition=2010", "rating.edition"),
     ("rating.pinion.material.kind=unobtainium", "rating.pinion.material.kind"),
