@@ -56,7 +56,10 @@ def parse_override(text: str) -> tuple[tuple[str, ...], object]:
 def apply_overrides(data: dict, overrides: list[str], schema) -> dict:
     """A copy of ``data`` with each override set; unknown paths are refused.
 
-    ``schema`` is the pydantic model class of the whole case (to check key paths).
+    ``schema`` is the pydantic model class of the whole case (to check key paths). A null
+    value (``key=null`` or ``key=~``) removes the key, so its default applies, as ``null``
+    does in a JSON Merge Patch (RFC 7396): e.g. ``--set contact.law=tooth --set
+    contact.stiffness=null`` turns an IMPACT case to the tooth law without editing the file.
     """
     out = copy.deepcopy(data)
     for text in overrides:
@@ -66,10 +69,16 @@ def apply_overrides(data: dict, overrides: list[str], schema) -> dict:
         for part in path[:-1]:
             child = node.get(part)
             if not isinstance(child, dict):
+                if value is None:  # nothing there to remove
+                    break
                 child = {}
                 node[part] = child
             node = child
-        node[path[-1]] = value
+        else:
+            if value is None:
+                node.pop(path[-1], None)
+            else:
+                node[path[-1]] = value
     return out
 
 

@@ -52,7 +52,9 @@ class Contact(Section):
         """A key the chosen law does not read is an error, not silently ignored."""
         other = "impact" if self.law == "tooth" else "tooth"
         raise_all([FieldError((key,), f"applies to law '{other}' only, and this case uses law "
-                              f"'{self.law}'", f"no '{key}' here, or contact.law: {other}")
+                              f"'{self.law}'",
+                              f"no '{key}' here (--set contact.{key}=null removes it), or "
+                              f"contact.law: {other}")
                    for key in (IMPACT_KEYS if self.law == "tooth" else TOOTH_KEYS)
                    if key in self.model_fields_set])
         return self
