@@ -195,7 +195,7 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
     """The run's :class:`gearcli.pipeline.validity.Validity` (docs/theory.md §10.2);
     ``left_tables``: the solver stopped where a penetration left the gap tables."""
     from gearcli.core.layout import DRIVE_SPEED, P
-    from gearcli.pipeline.validity import check_validity, table_exit
+    from gearcli.pipeline.validity import check_validity, table_exit, tolerance_check
 
     k = res.kernel
     if left_tables:
@@ -203,7 +203,7 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
                           res.kernel_input.params[P.penetration_limit])
     w = k.column("t_s") >= res.window.t0_s
     free_pinion = res.kernel_input.params[P.drive_mode] != DRIVE_SPEED
-    return check_validity(
+    valid = check_validity(
         penetration_max_mm=k.extremum("penetration_max_mm"),
         # without load the guard is the thickness bound alone (validity.py, item 1)
         static_deflection_mm=res.kernel_input.mesh.loaded_deflection_mm,
@@ -213,6 +213,7 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
         window_s=res.window.t1_s - res.window.t0_s,
         teeth=(res.geometry.geometry.pinion.teeth, res.geometry.geometry.gear.teeth),
         energy_relative_residual=res.summary.energy_relative_residual)
+    return tolerance_check(res) if valid.status == "ok" else valid
 
 
 def output_rows(case, f_z: float | None) -> tuple[float, str]:
