@@ -373,20 +373,13 @@ def steadiness(res: SimulationResult) -> tuple[str, float, str]:
     """The window's operating state (pipeline/validity.operating_state, docs/theory.md
     §10.2): the pinion and gear speeds (a body counts when it turns by more than a tooth pitch
     over the window) and the load torque."""
-    from gearcli.pipeline.validity import operating_state
+    from gearcli.pipeline.validity import window_state
 
     k, g = res.kernel, res.geometry.geometry
-    t = k.column("t_s")
-    w = t >= res.window.t0_s
-    span = float(np.ptp(t[w])) if w.any() else 0.0
-    signals = {"pinion speed": k.column("omega1_rad_s")[w],
-               "gear speed": k.column("omega2_rad_s")[w],
-               "load torque": k.column("load_torque_Nmm")[w]}
-    turning = {"pinion speed": abs(signals["pinion speed"].mean()) * span * g.pinion.teeth
-               > 2.0 * math.pi,
-               "gear speed": abs(signals["gear speed"].mean()) * span * g.gear.teeth
-               > 2.0 * math.pi}
-    return operating_state(t[w], signals, turning)
+    w = k.column("t_s") >= res.window.t0_s
+    return window_state(*(k.column(c)[w] for c in ("t_s", "omega1_rad_s", "omega2_rad_s",
+                                                     "load_torque_Nmm")),
+                        (g.pinion.teeth, g.gear.teeth))
 
 
 def mesh_mode_of(res: SimulationResult) -> tuple[float, float]:

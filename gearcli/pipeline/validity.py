@@ -258,3 +258,17 @@ def operating_state(t_s: np.ndarray, signals: dict[str, np.ndarray],
         f"unsteady: the {name} changes by {100 * worst:+.3g} % over the steady window "
         f"(trend; steady below {100 * UNSTEADY_FRACTION:g} %): the dynamic factor is not that "
         "of one steady operating point")
+
+
+def window_state(t_s: np.ndarray, omega1_rad_s: np.ndarray, omega2_rad_s: np.ndarray,
+                 load_torque_Nmm: np.ndarray, teeth: tuple[int, int]) -> tuple[str, float, str]:
+    """:func:`operating_state` of a window's samples: the pinion and gear speeds [rad/s] (a
+    body counts when it turns by more than a tooth pitch over the window; ``teeth`` = (z1,
+    z2)) and the load torque [N·mm]."""
+    span = float(np.ptp(t_s)) if t_s.size else 0.0
+    signals = {"pinion speed": omega1_rad_s, "gear speed": omega2_rad_s,
+               "load torque": load_torque_Nmm}
+    turning = {name: abs(float(np.mean(w))) * span * z > 2.0 * math.pi if w.size else False
+               for name, w, z in (("pinion speed", omega1_rad_s, teeth[0]),
+                                  ("gear speed", omega2_rad_s, teeth[1]))}
+    return operating_state(t_s, signals, turning)

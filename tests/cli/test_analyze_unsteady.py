@@ -1,0 +1,30 @@
+"""`gearcli analyze` does not pass a dynamic factor measured off a steady operating point
+(docs/theory.md §7.8, §10.2 "Operating state").
+
+Measured before: `cases/iso_pair.yaml` ended at 0.1 s, half-way up its 0.2 s ramps (the gear
+speed changes by +88 % over the window, load and speed never reach the case's): analyze passed
+``dynamic_factor`` with 1.095 (the steady run: 1.326); the seed ended inside its ramps passes
+it while the steady seed fails it (4.03 > 2).
+"""
+
+from __future__ import annotations
+
+from gearcli.pipeline.analyze import analyze
+from tests.physics.simrun import FAST, write_run
+
+
+def _check(analysis, name):
+    return next(c for c in analysis.checks if c.name == name)
+
+
+def test_a_run_that_ends_inside_its_ramps_has_no_dynamic_factor_verdict(tmp_path):
+    folder = write_run(tmp_path / "short", [*FAST, "run.end_time=0.15"])
+    check = _check(analyze(folder), "dynamic_factor")
+    assert not check.checked and check.value is None
+    assert check.note.startswith("not checked:") and "changes by" in check.note
+
+
+def test_the_steady_seed_still_gets_its_verdict(tmp_path):
+    folder = write_run(tmp_path / "steady", FAST)
+    check = _check(analyze(folder), "dynamic_factor")
+    assert check.checked and check.value > 2.0 and not check.passed  # the seed's 4.0
