@@ -195,7 +195,12 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
     """The run's :class:`gearcli.pipeline.validity.Validity` (docs/theory.md §10.2);
     ``left_tables``: the solver stopped where a penetration left the gap tables."""
     from gearcli.core.layout import DRIVE_SPEED, P
-    from gearcli.pipeline.validity import check_validity, table_exit, tolerance_check
+    from gearcli.pipeline.validity import (
+        check_validity,
+        table_exit,
+        tolerance_check,
+        tolerance_reference,
+    )
 
     k = res.kernel
     if left_tables:
@@ -213,7 +218,10 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
         window_s=res.window.t1_s - res.window.t0_s,
         teeth=(res.geometry.geometry.pinion.teeth, res.geometry.geometry.gear.teeth),
         energy_relative_residual=res.summary.energy_relative_residual)
-    return tolerance_check(res) if valid.status == "ok" else valid
+    if valid.status != "ok":
+        return valid
+    res.reference_kernel = tolerance_reference(res)  # None at the default tolerances
+    return tolerance_check(res, res.reference_kernel)
 
 
 def output_rows(case, f_z: float | None) -> tuple[float, str]:

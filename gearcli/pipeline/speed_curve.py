@@ -241,7 +241,15 @@ def run_direction(task: DirectionTask) -> DirectionOutcome:
     except GearcliError as exc:  # every level of this direction is a failed row, with the reason
         return failed_direction(task, str(exc).splitlines()[0])
     f_n = res.summary.mesh_natural_frequency_Hz
-    return DirectionOutcome(measure_levels(res, stairs, task.direction, f_n, task.first), f_n)
+    rows = measure_levels(res, stairs, task.direction, f_n, task.first)
+    ref = res.reference_kernel  # loosened tolerances: each level against the defaults'
+    if ref is not None:
+        from gearcli.pipeline.validity import converged_levels
+
+        rows = converged_levels(res, rows, measure_levels(dataclasses.replace(
+            res, kernel=ref, status="ok"), stairs, task.direction, f_n, task.first)
+            if ref.ok else None)
+    return DirectionOutcome(rows, f_n)
 
 
 def failed_direction(task: DirectionTask, error: str, cause: str = "") -> DirectionOutcome:

@@ -114,31 +114,49 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
 TOLERANCE_AGREEMENT = 0.01
 
 
-def tolerance_check(res) -> Validity:
-    """Item 4 of the module notes for a finished run ``res`` (pipeline.simulation
-    .SimulationResult) that is valid by items 1-3: OK at the default tolerances or tighter;
-    else the run once more at the defaults, compared by its true extrema from the steady
-    window on (taken at every accepted step and every output sample, docs/theory.md §7.4: the
-    same output times, so both runs' maxima see the same samples)."""
+def tolerance_reference(res):
+    """The run ``res`` (pipeline.simulation.SimulationResult) integrated once more at the
+    default tolerances (module notes, item 4): its kernel result, with the true extrema from
+    the steady window on at the same output times (taken at every accepted step and every
+    output sample, docs/theory.md §7.4, so both runs' maxima see the same samples); None when
+    the case's tolerances are the defaults or tighter (nothing to compare)."""
     from gearcli.core.integrate import simulate
+    from gearcli.core.layout import P
+
+    ki = res.kernel_input
+    params = ki.params.copy()
+    (rtol, atol), (rtol_0, atol_0) = _tolerances(res)
+    if rtol <= rtol_0 and atol <= atol_0:
+        return None
+    params[P.rtol], params[P.atol_delta] = min(rtol, rtol_0), min(atol, atol_0)
+    params[P.atol_deltadot] *= params[P.atol_delta] / atol  # the same speed scale
+    params[P.extrema_t_start] = res.window.t0_s
+    return simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
+                    load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp, **ki.arrays)
+
+
+def _tolerances(res) -> tuple[tuple[float, float], tuple[float, float]]:
+    """((rtol, atol [mm]) of the run, (rtol, atol) of gearcli's defaults for its case)."""
     from gearcli.core.layout import PARAM_DEFAULTS, P
     from gearcli.pipeline.kernel_input import deflection_atol
 
     ki = res.kernel_input
-    params = ki.params.copy()
-    rtol, atol = float(params[P.rtol]), float(params[P.atol_delta])
-    rtol_0 = PARAM_DEFAULTS["rtol"]
-    atol_0 = deflection_atol(None, ki.mesh.static_deflection_mm)
-    if rtol <= rtol_0 and atol <= atol_0:
+    return ((float(ki.params[P.rtol]), float(ki.params[P.atol_delta])),
+            (PARAM_DEFAULTS["rtol"], deflection_atol(None, ki.mesh.static_deflection_mm)))
+
+
+def _tolerance_texts(res) -> tuple[str, str]:
+    (rtol, atol), (rtol_0, atol_0) = _tolerances(res)
+    return (f"the case's solver tolerances (rtol {rtol:.3g}, atol {atol:.3g} mm)",
+            f"gearcli's defaults (rtol {rtol_0:g}, atol {atol_0:.3g} mm)")
+
+
+def tolerance_check(res, ref) -> Validity:
+    """Item 4 of the module notes for a run ``res`` valid by items 1-3 and its
+    :func:`tolerance_reference` ``ref`` (None: OK, nothing loosened)."""
+    if ref is None:
         return Validity(OK, "")
-    params[P.rtol], params[P.atol_delta] = min(rtol, rtol_0), min(atol, atol_0)
-    params[P.atol_deltadot] *= params[P.atol_delta] / atol  # the same speed scale
-    params[P.extrema_t_start] = res.window.t0_s
-    ref = simulate(params, ki.tables.tables, t_out=ki.t_out,
-                   drive_pp=ki.drive_pp, load_pp=ki.load_pp,
-                   drive_angle_pp=ki.drive_angle_pp, **ki.arrays)
-    asked = f"the case's solver tolerances (rtol {rtol:.3g}, atol {atol:.3g} mm)"
-    defaults = f"gearcli's defaults (rtol {rtol_0:g}, atol {atol_0:.3g} mm)"
+    asked, defaults = _tolerance_texts(res)
     if not ref.ok:
         return Validity(INVALID, (
             f"the run at {asked} finished, but not at {defaults}: {ref.message}; its numbers "
@@ -149,14 +167,51 @@ def tolerance_check(res) -> Validity:
         value, expected = k.extremum(key), ref.extremum(key)
         if math.isnan(value) and math.isnan(expected):  # not recorded in either run
             continue
-        change = (value - expected) / max(abs(expected), 1e-300)
-        if not abs(change) <= TOLERANCE_AGREEMENT:
-            return Validity(INVALID, (
-                f"not converged at {asked}: the {name} is {value:.5g} {unit}, at {defaults} "
-                f"{expected:.5g} {unit} ({100 * change:+.3g} %, limit "
-                f"{100 * TOLERANCE_AGREEMENT:g} %): its numbers are those of the tolerances; "
-                "tighten or remove run.rtol / run.atol"))
+        reason = _disagreement(name, value, expected, unit, asked, defaults)
+        if reason:
+            return Validity(INVALID, reason)
     return Validity(OK, "")
+
+
+def _disagreement(name: str, value: float, expected: float, unit: str, asked: str,
+                  defaults: str) -> str:
+    """The reason ``value`` (at the case's tolerances) is not ``expected`` (at the defaults)
+    within :data:`TOLERANCE_AGREEMENT`, or ""."""
+    change = (value - expected) / max(abs(expected), 1e-300)
+    if abs(change) <= TOLERANCE_AGREEMENT:
+        return ""
+    return (f"not converged at {asked}: the {name} is {value:.5g} {unit}, at {defaults} "
+            f"{expected:.5g} {unit} ({100 * change:+.3g} %, limit "
+            f"{100 * TOLERANCE_AGREEMENT:g} %): its numbers are those of the tolerances; "
+            "tighten or remove run.rtol / run.atol")
+
+
+def converged_levels(res, rows: list, reference_rows: list | None) -> list:
+    """Speed-curve levels (results.SpeedLevel rows of the run ``res``) against the same
+    levels measured on its :func:`tolerance_reference` (``reference_rows``; None when that
+    run failed): a level whose largest force is more than :data:`TOLERANCE_AGREEMENT` away
+    from the reference's, or valid only at the loose tolerances, is invalid (item 4)."""
+    import dataclasses
+
+    asked, defaults = _tolerance_texts(res)
+    out = []
+    for i, row in enumerate(rows):
+        ref = reference_rows[i] if reference_rows is not None else None
+        if row.status == INVALID:
+            out.append(row)
+            continue
+        if ref is None or ref.status == INVALID:
+            reason = (f"the level at {asked} is not one at {defaults}: "
+                      + (ref.error if ref is not None else res.invalid_reason))
+        else:
+            reason = _disagreement("largest total force", row.force_max_N, ref.force_max_N,
+                                   "N", asked, defaults)
+        if reason:
+            row = dataclasses.replace(row, status=INVALID, error=reason, dynamic_factor=math.nan,
+                                      force_max_N=math.nan, dte_peak_to_peak_mm=math.nan,
+                                      contact_loss_fraction=math.nan)
+        out.append(row)
+    return out
 
 
 def table_exit(penetration_mm: float, t_s: float, cap_mm: float) -> Validity:
