@@ -29,7 +29,7 @@ from gearcli.pipeline.spectrum import (
     measure_line,
     mesh_lines,
 )
-from gearcli.pipeline.validity import window_state
+from gearcli.pipeline.validity import drift_phrase, window_state
 from gearcli.pipeline.window import MIN_MESH_CYCLES, Window
 from gearcli.results import AnalysisMetrics, Check, ResonanceMargin, StoredMode, Summary
 
@@ -346,7 +346,7 @@ def _checks(res: Analysis, case, s: Summary, resonance: Check, unsteady: str = "
         # ramps, a run-up) is no operating point's dynamic factor (docs/theory.md §10.2)
         out.append(Check("dynamic_factor", None, f"<= {ck.dynamic_factor_max:g}", True,
                          "not checked: the window is not one steady operating point ("
-                         + unsteady.removeprefix("unsteady: ").split(" (trend")[0] + ")",
+                         f"{drift_phrase(unsteady)})",
                          checked=False))
     elif m.dynamic_factor is not None:
         out.append(Check("dynamic_factor", m.dynamic_factor, f"<= {ck.dynamic_factor_max:g}",

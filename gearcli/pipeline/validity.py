@@ -327,3 +327,9 @@ def window_state(t_s: np.ndarray, omega1_rad_s: np.ndarray, omega2_rad_s: np.nda
                for name, w, z in (("pinion speed", omega1_rad_s, teeth[0]),
                                   ("gear speed", omega2_rad_s, teeth[1]))}
     return operating_state(t_s, signals, turning)
+
+
+def drift_phrase(unsteady_reason: str) -> str:
+    """The "the gear speed changes by +87.6 % over the steady window" part of a reason of
+    :func:`operating_state`, for notes of other documents."""
+    return unsteady_reason.removeprefix("unsteady: ").split(" (trend")[0]

@@ -28,3 +28,14 @@ def test_the_steady_seed_still_gets_its_verdict(tmp_path):
     folder = write_run(tmp_path / "steady", FAST)
     check = _check(analyze(folder), "dynamic_factor")
     assert check.checked and check.value > 2.0 and not check.passed  # the seed's 4.0
+
+
+def test_stress_of_a_run_that_ends_inside_its_ramps_says_its_window_is_unsteady(tmp_path):
+    # measured before: `gearcli stress` printed dynamic/static σ_H 1.003 against the static
+    # load of the ramps' end (never reached) with no word of it
+    from gearcli.pipeline.stress import compute_stress
+
+    short = compute_stress(write_run(tmp_path / "short", [*FAST, "run.end_time=0.15"]), None)
+    assert any("not one steady operating point" in w for w in short.warnings)
+    steady = compute_stress(write_run(tmp_path / "steady", FAST), None)
+    assert not any("steady operating point" in w for w in steady.warnings)
