@@ -23,7 +23,7 @@ from gearcli.pipeline.sensors import check_sensors, output_rate_Hz
 from gearcli.pipeline.simulation import SimulationResult
 from gearcli.pipeline.spectrum import alias_frequency
 from gearcli.pipeline.structure import refuse_unsupported
-from gearcli.pipeline.window import MIN_MESH_CYCLES, steady_window
+from gearcli.pipeline.window import MIN_MESH_CYCLES, settling_warnings, steady_window
 from gearcli.results import EnergyBalance, Summary
 from gearcli.results.metrics import json_number
 
@@ -477,16 +477,7 @@ def collect_warnings(res: SimulationResult) -> list[str]:
                        f"{harmonics} analysed mesh harmonics (default rate resolves "
                        f"{HARMONICS_RESOLVED})")
     ramp_end, end_time = last_ramp_s(res.loaded.case), res.loaded.case.run.end_time
-    if ramp_end >= end_time:
-        out.append(f"no steady state: the drive/load functions reach their final values at "
-                   f"{ramp_end:g} s, " + ("when" if ramp_end == end_time else "after")
-                   + f" the run ends ({end_time:g} s); the nominal speed, "
-                   "mesh frequency and static force are never reached")
-    elif res.window.reason.startswith("the second half"):
-        out.append("no steady state: the run ends before the ramps have settled")
-    elif ramp_end > res.window.t0_s:
-        out.append(f"not settled: the window starts at {res.window.t0_s:g} s, before the "
-                   f"ramps end ({ramp_end:g} s); its values still carry the ramp")
+    out += settling_warnings(res.window, ramp_end, end_time)
     unsteady = steadiness(res)[2]
     if unsteady:
         out.append(unsteady)
