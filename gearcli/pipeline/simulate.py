@@ -197,6 +197,7 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
     from gearcli.core.layout import DRIVE_SPEED, P
     from gearcli.pipeline.validity import (
         check_validity,
+        reference_deflection_for,
         table_exit,
         tolerance_check,
         tolerance_reference,
@@ -208,8 +209,10 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
                           res.kernel_input.params[P.penetration_limit])
     w = k.column("t_s") >= res.window.t0_s
     free_pinion = res.kernel_input.params[P.drive_mode] != DRIVE_SPEED
+    penetration = k.extremum("penetration_max_mm")
     valid = check_validity(
-        penetration_max_mm=k.extremum("penetration_max_mm"),
+        penetration_max_mm=penetration,
+        reference_deflection_mm=reference_deflection_for(res, penetration),
         # without load the guard is the thickness bound alone (validity.py, item 1)
         static_deflection_mm=res.kernel_input.mesh.loaded_deflection_mm,
         module_mm=res.geometry.geometry.module_mm,

@@ -13,7 +13,11 @@ Checked, in this order (the first that fails is the reason):
    most about 2-3 at the main resonance, docs/theory.md §10.4), i.e. a vibro-impact state of an
    undamped, error-free model, not a gear's response. The thickness term (5 % of the tooth
    thickness) bounds the small-deflection geometry of the gap tables (contact points of the
-   rigid profiles) for soft penalty contacts and for runs without load (δ_s = 0).
+   rigid profiles) for soft penalty contacts and for runs without load (δ_s = 0). The static
+   term is never below the deflection at ISO 6336-1's reference line load of 100 N/mm
+   (:func:`reference_deflection_for`): a penetration every loaded gear reaches is inside the
+   tooth model's range, so the rattle of a lightly loaded pair (tens of newtons, a ratio of
+   tens to its tiny static deflection) is not an excursion out of the model.
 2. **Speed reversal** — the gear (and, with a torque drive, the pinion) running backwards (by
    more than one tooth pitch over the window: e.g. a load larger than a torque drive) or turning
    backwards in the steady window by more than 1 % of its mean speed: the pair's kinematics
@@ -59,28 +63,51 @@ class Validity(NamedTuple):
     reason: str  #: one line; empty when OK
 
 
-def penetration_limit_mm(static_deflection_mm: float, module_mm: float) -> float:
-    """The largest penetration [mm] inside the contact model's range (module notes, item 1)."""
+def penetration_limit_mm(static_deflection_mm: float, module_mm: float,
+                         reference_deflection_mm: float = 0.0) -> float:
+    """The largest penetration [mm] inside the contact model's range (module notes, item 1);
+    ``reference_deflection_mm``: the deflection at the reference line load, the floor of the
+    static term (0: none)."""
     thickness = PENETRATION_PER_THICKNESS * math.pi * module_mm / 2.0
     if static_deflection_mm > 0.0:
-        return min(PENETRATION_PER_STATIC * static_deflection_mm, thickness)
+        return min(max(PENETRATION_PER_STATIC * static_deflection_mm, reference_deflection_mm),
+                   thickness)
     return thickness
+
+
+def reference_deflection_for(res, penetration_mm: float) -> float:
+    """The floor of item 1's static term for a run ``res`` (pipeline.simulation
+    .SimulationResult) whose largest penetration is ``penetration_mm``: the deflection at the
+    reference line load (pipeline.mesh_input.reference_deflection_mm), computed only when it
+    decides (a loaded run beyond 10 static deflections), else 0."""
+    from gearcli.pipeline.mesh_input import reference_deflection_mm
+
+    static = res.kernel_input.mesh.loaded_deflection_mm
+    if not (static > 0.0 and penetration_mm > PENETRATION_PER_STATIC * static):
+        return 0.0
+    return reference_deflection_mm(res.loaded.case, res.geometry)
 
 
 def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, module_mm: float,
                    gear_speed_rad_s: np.ndarray, pinion_speed_rad_s: np.ndarray | None,
                    window_s: float, teeth: tuple[int, int],
-                   energy_relative_residual: float) -> Validity:
+                   energy_relative_residual: float,
+                   reference_deflection_mm: float = 0.0) -> Validity:
     """Validity of one run (module notes). Speeds are the steady window's samples [rad/s]
     (``window_s`` long); ``pinion_speed_rad_s`` only when the pinion is free (torque drive),
-    else None; ``teeth`` = (z1, z2)."""
-    limit = penetration_limit_mm(static_deflection_mm, module_mm)
+    else None; ``teeth`` = (z1, z2); ``reference_deflection_mm``: item 1's floor
+    (:func:`reference_deflection_for`)."""
+    limit = penetration_limit_mm(static_deflection_mm, module_mm, reference_deflection_mm)
     if not penetration_max_mm <= limit:
+        from gearcli.pipeline.mesh_input import REFERENCE_LINE_LOAD_N_MM
+
+        floor = (f", at least the deflection {reference_deflection_mm:.4g} mm at "
+                 f"{REFERENCE_LINE_LOAD_N_MM:g} N/mm" if reference_deflection_mm > 0.0 else "")
         return Validity(INVALID, (
             f"tooth penetration {penetration_max_mm:.4g} mm is beyond the contact model's range "
             f"{limit:.4g} mm ({PENETRATION_PER_STATIC:g} x the static deflection "
-            f"{static_deflection_mm:.4g} mm, at most {100 * PENETRATION_PER_THICKNESS:g} % of "
-            "the tooth thickness)"))
+            f"{static_deflection_mm:.4g} mm{floor}, at most "
+            f"{100 * PENETRATION_PER_THICKNESS:g} % of the tooth thickness)"))
     for name, omega, z in (("gear", gear_speed_rad_s, teeth[1]),
                            ("pinion", pinion_speed_rad_s, teeth[0])):
         if omega is None or omega.size == 0:
