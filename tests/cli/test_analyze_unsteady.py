@@ -39,3 +39,20 @@ def test_stress_of_a_run_that_ends_inside_its_ramps_says_its_window_is_unsteady(
     assert any("not one steady operating point" in w for w in short.warnings)
     steady = compute_stress(write_run(tmp_path / "steady", FAST), None)
     assert not any("steady operating point" in w for w in steady.warnings)
+
+
+def test_a_remedy_run_off_its_operating_point_gives_no_dynamic_factor(tmp_path):
+    # the NREL stage ended at 0.15 s, inside its 0.2 s ramps, fails its contact-loss check;
+    # measured before: the remedy said "with it the dynamic factor is 0.931" (a transient's:
+    # below 1) from its 0.15 s run
+    from gearcli.pipeline.outputs import write_simulation
+    from gearcli.pipeline.simulate import run_simulation
+    from tests.conftest import ROOT
+
+    folder = tmp_path / "nrel"
+    write_simulation(run_simulation(ROOT / "cases" / "nrel5mw_sun_planet.yaml",
+                                    ["run.end_time=0.15"], zoom=False), folder, force=False)
+    remedy = next(c.remedy for c in analyze(folder, remedies=True).checks
+                  if c.name == "contact_loss_fraction")
+    assert remedy is not None and remedy.dynamic_factor is None
+    assert "steady operating point" in remedy.text
