@@ -435,6 +435,11 @@ def energy_balance(k) -> EnergyBalance:
 COAST_FORCE_FRACTION = 1e-3
 
 
+#: Mesh damping ratio below which a warning says the mesh is nearly undamped: a third of the
+#: lowest measured (0.03-0.1, docs/theory.md §4c)
+UNDERDAMPED_RATIO = 0.01
+
+
 def collect_warnings(res: SimulationResult) -> list[str]:
     """Warnings the terminal and the summary show (docs/theory.md §4, §7)."""
     from gearcli.pipeline.mesh_input import bore_notes
@@ -445,6 +450,10 @@ def collect_warnings(res: SimulationResult) -> list[str]:
         out.append(f"overdamped mesh: damping ratio {s.mesh_damping_ratio:.2f} > 1 "
                    f"(c_max {res.loaded.case.contact.max_damping:g} N*s/mm); measured gear "
                    "meshes have 0.03-0.1")
+    elif s.mesh_damping_ratio < UNDERDAMPED_RATIO:
+        out.append(f"nearly undamped mesh: damping ratio {s.mesh_damping_ratio:.2g} < "
+                   f"{UNDERDAMPED_RATIO:g}; measured gear meshes have 0.03-0.1, so resonant "
+                   "amplitudes and impacts are far larger than a real gear's")
     if s.contact_loss_fraction > 0.0:
         out.append(f"contact loss: no drive-flank contact during "
                    f"{100 * s.contact_loss_fraction:.3g} % of the steady window "
