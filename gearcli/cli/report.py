@@ -159,6 +159,8 @@ def _rating_lines(rating) -> list[str]:
         out.append(f"rating ({label}, ISO 6336): S_H {p.S_H:.3f}/{g.S_H:.3f} "
                    f"(minimum {p.S_H_min:g}), S_F {p.S_F:.3f}/{g.S_F:.3f} "
                    f"(minimum {p.S_F_min:g}) pinion/gear: {'pass' if col.ok else 'FAIL'}")
+    # a run off its operating point has no simulated column: say why (pipeline/run_rating)
+    out += [f"rating: {n}" for n in rating.notes if n.startswith("no simulated column")]
     return out
 
 

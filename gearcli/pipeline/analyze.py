@@ -29,6 +29,7 @@ from gearcli.pipeline.spectrum import (
     measure_line,
     mesh_lines,
 )
+from gearcli.pipeline.validity import drift_phrase, window_state
 from gearcli.pipeline.window import MIN_MESH_CYCLES, Window
 from gearcli.results import AnalysisMetrics, Check, ResonanceMargin, StoredMode, Summary
 
@@ -114,7 +115,11 @@ def analyze(folder: str | Path, window: tuple[float, float] | None = None,
     metrics = dataclasses.replace(metrics, resonance_margins_percent=resonance.margins_percent,
                                   resonance_margins=resonance.margins)
     result = Analysis(run, win, metrics, spectra, lines, case=case)
-    result.checks = _checks(result, case, s, resonance.check)
+    # the operating state of this window (a --window may differ from simulate's)
+    unsteady = window_state(*(run.column(c)[sel] for c in (
+        "t_s", "omega1_rad_s", "omega2_rad_s", "load_torque_Nmm")),
+        (geo.pinion.teeth, geo.gear.teeth))[2]
+    result.checks = _checks(result, case, s, resonance.check, unsteady)
     if remedies:
         from gearcli.pipeline.remedy import add_remedies
 
@@ -302,7 +307,10 @@ def resonance_check(modes: tuple[StoredMode, ...], mesh_mode: tuple[float, float
                            note), per_harmonic, margins)
 
 
-def _checks(res: Analysis, case, s: Summary, resonance: Check) -> list[Check]:
+def _checks(res: Analysis, case, s: Summary, resonance: Check, unsteady: str = ""
+            ) -> list[Check]:
+    """The checks of docs/theory.md §7.8; ``unsteady``: the reason the window is not one
+    steady operating point (pipeline/validity.operating_state), empty when it is."""
     m, ck = res.metrics, case.checks
     f_z, rate = m.gear_mesh_frequency_Hz, m.output_rate_Hz
     out = [
@@ -333,7 +341,14 @@ def _checks(res: Analysis, case, s: Summary, resonance: Check) -> list[Check]:
                      bool(present), "" if gmf.resolvable else "f_z is above the Nyquist frequency"
                      if f_z >= rate / 2.0 else "no peak within 1 bin of f_z"))
     out.append(resonance)
-    if m.dynamic_factor is not None:
+    if m.dynamic_factor is not None and unsteady:
+        # F_max/F_static of a window whose speed or load drifts (a run ending inside its
+        # ramps, a run-up) is no operating point's dynamic factor (docs/theory.md §10.2)
+        out.append(Check("dynamic_factor", None, f"<= {ck.dynamic_factor_max:g}", True,
+                         "not checked: the window is not one steady operating point ("
+                         f"{drift_phrase(unsteady)})",
+                         checked=False))
+    elif m.dynamic_factor is not None:
         out.append(Check("dynamic_factor", m.dynamic_factor, f"<= {ck.dynamic_factor_max:g}",
                          m.dynamic_factor <= ck.dynamic_factor_max,
                          "max normal force / static force over the window"))

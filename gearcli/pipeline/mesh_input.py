@@ -47,12 +47,13 @@ def iso_stiffness(case: Case, geo: GeometryResult, force_N: float | None = None)
                                   case.material.youngs_modulus)
 
 
-def contact_stiffness(case: Case, geo: GeometryResult) -> float:
+def contact_stiffness(case: Case, geo: GeometryResult, force_N: float | None = None) -> float:
     """k of the IMPACT law [N/mm^e]: given, or 'derived' (e = 1): the constant pair stiffness
-    whose mean over the mesh cycle, ε_α k, is ISO 6336-1's c_γα b (docs/theory.md §4)."""
+    whose mean over the mesh cycle, ε_α k, is ISO 6336-1's c_γα b (docs/theory.md §4) at the
+    static normal force (or ``force_N`` [N])."""
     if case.contact.stiffness != "derived":
         return float(case.contact.stiffness)
-    return iso_stiffness(case, geo).mesh_stiffness_N_mm / geo.geometry.eps_alpha
+    return iso_stiffness(case, geo, force_N).mesh_stiffness_N_mm / geo.geometry.eps_alpha
 
 
 #: Line load [N/mm] of the tooth law's contact term when the case has no load: ISO 6336-1's
@@ -130,21 +131,31 @@ def bore_notes(case: Case, geo: GeometryResult) -> list[str]:
     return out
 
 
-def case_mesh(case: Case, geo: GeometryResult) -> MeshMode:
-    """The mesh linearised at the static load (docs/theory.md §4, §4b, §6): with a prescribed
-    pinion speed only the gear vibrates, else both gears are free."""
+def case_mesh(case: Case, geo: GeometryResult, force_N: float | None = None) -> MeshMode:
+    """The mesh linearised at the static load (or at a normal force ``force_N`` [N]; docs/
+    theory.md §4, §4b, §6): with a prescribed pinion speed only the gear vibrates, else both
+    gears are free."""
     g, ct = geo.geometry, case.contact
+    force = static_force_N(case, geo) if force_N is None else force_N
     if ct.law == "tooth":
         x = np.linspace(0.0, g.g_alpha_mm, _PATH_POINTS)
-        k = tooth_stiffness(case, geo, x).k_N_mm
-        return tooth_mesh_mode(static_force_N(case, geo), x, k, g.g_alpha_mm, g.p_b_mm,
+        k = tooth_stiffness(case, geo, x, force_N).k_N_mm
+        return tooth_mesh_mode(force, x, k, g.g_alpha_mm, g.p_b_mm,
                                ct.damping_ratio, g.pinion.r_b_mm, g.gear.r_b_mm,
                                geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,
                                pinion_free=case.drive.type != "speed")
-    return mesh_mode(static_force_N(case, geo), g.eps_alpha, contact_stiffness(case, geo),
+    return mesh_mode(force, g.eps_alpha, contact_stiffness(case, geo, force_N),
                      ct.exponent, ct.max_damping, ct.penetration_depth, g.pinion.r_b_mm,
                      g.gear.r_b_mm, geo.mass[0].inertia_t_mm2, geo.mass[1].inertia_t_mm2,
                      pinion_free=case.drive.type != "speed")
+
+
+def reference_deflection_mm(case: Case, geo: GeometryResult) -> float:
+    """The static deflection [mm] of the case's contact law at the reference line load
+    :data:`REFERENCE_LINE_LOAD_N_MM` (normal force over the narrower face width): the
+    validity guard's floor of its penetration limit (pipeline/validity.py, item 1)."""
+    force = REFERENCE_LINE_LOAD_N_MM * geo.geometry.narrow_face_width_mm
+    return case_mesh(case, geo, force).static_deflection_mm
 
 
 def iso_dynamic(case: Case, geo: GeometryResult) -> IsoResonance:

@@ -18,6 +18,7 @@ import numpy as np
 
 from gearcli.case.load import LoadedCase
 from gearcli.pipeline.speed_bands import resonance_remedy
+from gearcli.pipeline.validity import UNSTEADY
 from gearcli.results import AnalysisMetrics, Check, Remedy
 
 #: Checks a tip relief addresses (the mesh's excitation, STE): the metrics whose field says so.
@@ -116,14 +117,19 @@ def relief_remedy(loaded: LoadedCase, window_start_s: float, f_z_Hz: float) -> R
     short = dict(overrides, **{"run.end_time": f"{float(end):.6g} s"})
     sim = run_simulation(_with(_strip_relief(loaded), short), notice=None, zoom=False)
     s = sim.summary
-    factor = s.dynamic_factor if sim.status == "ok" else None
-    loss = s.contact_loss_fraction if sim.status == "ok" else None
+    # a run off one operating point (it ends inside its ramps) measures a transient
+    steady = sim.status == "ok" and s.operating_state != UNSTEADY
+    factor = s.dynamic_factor if steady else None
+    loss = s.contact_loss_fraction if steady else None
     text = (f"a linear tip relief of {1e3 * amount:.3g} µm over {length:.3g} mm of the line of "
             f"action on both gears minimises the loaded STE at the case load "
             f"({1e3 * ste_without:.3g} -> {1e3 * ste_with:.3g} µm peak to peak)")
     if factor is not None:
         text += (f"; with it the dynamic factor is {factor:.3g} and the contact loss "
                  f"{100.0 * loss:.3g} % (a {end:.3g} s run)")
+    elif sim.status == "ok":
+        text += (f"; the {end:.3g} s run with it is not at one steady operating point, so it "
+                 "gives no dynamic factor (simulate longer: run.end_time)")
     else:
         text += f"; the run with it is not valid: {sim.invalid_reason}"
     return Remedy(kind="tip_relief", text=text, tip_relief_amount_mm=amount,

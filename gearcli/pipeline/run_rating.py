@@ -53,9 +53,30 @@ def rate_run(folder: str | Path, loaded: LoadedCase, stress_files: bool = False
         res = compute_stress(folder, None)
         if stress_files:
             write_stress(res)
+        off = _off_operating_point(res.run)
+        if off and loaded.case.rating.dynamic_factor != "simulated":
+            rating = rate_case(loaded)  # the ISO column alone, with the case's own K_v
+            return dataclasses.replace(rating, notes=(*rating.notes, off)), ""
+        if off:
+            return None, off
         return rate_case(loaded, simulated=simulated_load_of(res)), ""
     except GearcliError as exc:
         return None, _first_line(exc)
+
+
+def _off_operating_point(run) -> str:
+    """Why the run's F_max/F_static is no operating point's dynamic factor (its window is not
+    one steady operating point: summary.json's operating_state, docs/theory.md §10.2), or ""
+    when it is."""
+    from gearcli.pipeline.validity import UNSTEADY, drift_phrase
+
+    s = run.summary
+    if s.scalars.operating_state != UNSTEADY:
+        return ""
+    drift = next((w for w in s.warnings if w.startswith("unsteady:")), "")
+    return ("no simulated column: the run's window is not one steady operating point"
+            + (f" ({drift_phrase(drift)})" if drift else "")
+            + ", so its F_max/F_static is no operating point's K_v")
 
 
 def simulated_safeties(loaded: LoadedCase, dynamic_factor: float | None

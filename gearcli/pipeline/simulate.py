@@ -23,7 +23,7 @@ from gearcli.pipeline.sensors import check_sensors, output_rate_Hz
 from gearcli.pipeline.simulation import SimulationResult
 from gearcli.pipeline.spectrum import alias_frequency
 from gearcli.pipeline.structure import refuse_unsupported
-from gearcli.pipeline.window import MIN_MESH_CYCLES, steady_window
+from gearcli.pipeline.window import MIN_MESH_CYCLES, settling_warnings, steady_window
 from gearcli.results import EnergyBalance, Summary
 from gearcli.results.metrics import json_number
 
@@ -195,7 +195,13 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
     """The run's :class:`gearcli.pipeline.validity.Validity` (docs/theory.md §10.2);
     ``left_tables``: the solver stopped where a penetration left the gap tables."""
     from gearcli.core.layout import DRIVE_SPEED, P
-    from gearcli.pipeline.validity import check_validity, table_exit
+    from gearcli.pipeline.validity import (
+        check_validity,
+        reference_deflection_for,
+        table_exit,
+        tolerance_check,
+        tolerance_reference,
+    )
 
     k = res.kernel
     if left_tables:
@@ -203,8 +209,10 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
                           res.kernel_input.params[P.penetration_limit])
     w = k.column("t_s") >= res.window.t0_s
     free_pinion = res.kernel_input.params[P.drive_mode] != DRIVE_SPEED
-    return check_validity(
-        penetration_max_mm=k.extremum("penetration_max_mm"),
+    penetration = k.extremum("penetration_max_mm")
+    valid = check_validity(
+        penetration_max_mm=penetration,
+        reference_deflection_mm=reference_deflection_for(res, penetration),
         # without load the guard is the thickness bound alone (validity.py, item 1)
         static_deflection_mm=res.kernel_input.mesh.loaded_deflection_mm,
         module_mm=res.geometry.geometry.module_mm,
@@ -213,6 +221,10 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
         window_s=res.window.t1_s - res.window.t0_s,
         teeth=(res.geometry.geometry.pinion.teeth, res.geometry.geometry.gear.teeth),
         energy_relative_residual=res.summary.energy_relative_residual)
+    if valid.status != "ok":
+        return valid
+    res.reference_kernel = tolerance_reference(res)  # None at the default tolerances
+    return tolerance_check(res, res.reference_kernel)
 
 
 def output_rows(case, f_z: float | None) -> tuple[float, str]:
@@ -373,20 +385,13 @@ def steadiness(res: SimulationResult) -> tuple[str, float, str]:
     """The window's operating state (pipeline/validity.operating_state, docs/theory.md
     §10.2): the pinion and gear speeds (a body counts when it turns by more than a tooth pitch
     over the window) and the load torque."""
-    from gearcli.pipeline.validity import operating_state
+    from gearcli.pipeline.validity import window_state
 
     k, g = res.kernel, res.geometry.geometry
-    t = k.column("t_s")
-    w = t >= res.window.t0_s
-    span = float(np.ptp(t[w])) if w.any() else 0.0
-    signals = {"pinion speed": k.column("omega1_rad_s")[w],
-               "gear speed": k.column("omega2_rad_s")[w],
-               "load torque": k.column("load_torque_Nmm")[w]}
-    turning = {"pinion speed": abs(signals["pinion speed"].mean()) * span * g.pinion.teeth
-               > 2.0 * math.pi,
-               "gear speed": abs(signals["gear speed"].mean()) * span * g.gear.teeth
-               > 2.0 * math.pi}
-    return operating_state(t[w], signals, turning)
+    w = k.column("t_s") >= res.window.t0_s
+    return window_state(*(k.column(c)[w] for c in ("t_s", "omega1_rad_s", "omega2_rad_s",
+                                                     "load_torque_Nmm")),
+                        (g.pinion.teeth, g.gear.teeth))
 
 
 def mesh_mode_of(res: SimulationResult) -> tuple[float, float]:
@@ -431,6 +436,11 @@ def energy_balance(k) -> EnergyBalance:
 COAST_FORCE_FRACTION = 1e-3
 
 
+#: Mesh damping ratio below which a warning says the mesh is nearly undamped: a third of the
+#: lowest measured (0.03-0.1, docs/theory.md §4c)
+UNDERDAMPED_RATIO = 0.01
+
+
 def collect_warnings(res: SimulationResult) -> list[str]:
     """Warnings the terminal and the summary show (docs/theory.md §4, §7)."""
     from gearcli.pipeline.mesh_input import bore_notes
@@ -441,6 +451,10 @@ def collect_warnings(res: SimulationResult) -> list[str]:
         out.append(f"overdamped mesh: damping ratio {s.mesh_damping_ratio:.2f} > 1 "
                    f"(c_max {res.loaded.case.contact.max_damping:g} N*s/mm); measured gear "
                    "meshes have 0.03-0.1")
+    elif s.mesh_damping_ratio < UNDERDAMPED_RATIO:
+        out.append(f"nearly undamped mesh: damping ratio {s.mesh_damping_ratio:.2g} < "
+                   f"{UNDERDAMPED_RATIO:g}; measured gear meshes have 0.03-0.1, so resonant "
+                   "amplitudes and impacts are far larger than a real gear's")
     if s.contact_loss_fraction > 0.0:
         out.append(f"contact loss: no drive-flank contact during "
                    f"{100 * s.contact_loss_fraction:.3g} % of the steady window "
@@ -459,7 +473,9 @@ def collect_warnings(res: SimulationResult) -> list[str]:
         out.append(text)
     f_z, rate = ki.gear_mesh_frequency_Hz, ki.output_rate_Hz
     asked = res.loaded.case.run.output_rate
-    if asked is not None and rate > asked * (1.0 + 1e-9):
+    # kernel_input.output_times rounds every rate up to whole intervals: only fewer than 10
+    # samples is a change worth a warning
+    if asked is not None and math.ceil(res.loaded.case.run.end_time * asked) < 10:
         out.append(f"output rate {asked:g} Hz gives fewer than 10 samples in the run: "
                    f"written at {rate:g} Hz instead")
     if f_z:
@@ -474,16 +490,7 @@ def collect_warnings(res: SimulationResult) -> list[str]:
                        f"{harmonics} analysed mesh harmonics (default rate resolves "
                        f"{HARMONICS_RESOLVED})")
     ramp_end, end_time = last_ramp_s(res.loaded.case), res.loaded.case.run.end_time
-    if ramp_end >= end_time:
-        out.append(f"no steady state: the drive/load functions reach their final values at "
-                   f"{ramp_end:g} s, " + ("when" if ramp_end == end_time else "after")
-                   + f" the run ends ({end_time:g} s); the nominal speed, "
-                   "mesh frequency and static force are never reached")
-    elif res.window.reason.startswith("the second half"):
-        out.append("no steady state: the run ends before the ramps have settled")
-    elif ramp_end > res.window.t0_s:
-        out.append(f"not settled: the window starts at {res.window.t0_s:g} s, before the "
-                   f"ramps end ({ramp_end:g} s); its values still carry the ramp")
+    out += settling_warnings(res.window, ramp_end, end_time)
     unsteady = steadiness(res)[2]
     if unsteady:
         out.append(unsteady)

@@ -40,6 +40,9 @@ class SimulationResult:
     zoom: dict = field(default_factory=dict)
     #: whether ``wall_time_s`` includes compiling the solver (the first run after install)
     compiled: bool = False
+    #: the same run at the default tolerances when the case loosened them (its kernel result;
+    #: pipeline/validity.tolerance_reference), else None
+    reference_kernel: object = None
     #: the ``--set`` texts it was run with (the manifest's)
     overrides: list[str] = field(default_factory=list)
     _series: object = field(default=None, repr=False, compare=False)

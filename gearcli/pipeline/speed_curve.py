@@ -121,7 +121,7 @@ def direction_case_json(base_case_json: str, stairs: Staircase, f_max_Hz: float)
 def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_point: int):
     """One row per level of a finished run (module notes)."""
     from gearcli.core.layout import DRIVE_SPEED, P
-    from gearcli.pipeline.validity import check_validity
+    from gearcli.pipeline.validity import check_validity, reference_deflection_for
 
     k, ki = res.kernel, res.kernel_input
     t = k.column("t_s")
@@ -133,7 +133,7 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
     free_pinion = ki.params[P.drive_mode] != DRIVE_SPEED
     residual = res.summary.energy_relative_residual
     z1 = res.geometry.geometry.pinion.teeth
-    rows = []
+    rows, floor = [], None
     for i, (fz, (t0, t1)) in enumerate(zip(stairs.f_z_Hz, stairs.windows_s, strict=True)):
         w = (t >= t0) & (t <= t1)
         if res.status != "ok" and t1 > t[-1]:  # stopped where it left the tables
@@ -143,7 +143,8 @@ def measure_levels(res, stairs: Staircase, direction: str, f_n_Hz: float, first_
                 iso_resonance_ratio=math.nan, status="invalid", error=res.invalid_reason))
             continue
         bound = float(max(delta[w].max(), (-delta[w] - j_n).max(), 0.0))
-        status, reason = check_validity(
+        floor = floor or reference_deflection_for(res, bound)  # once, when it decides
+        status, reason = check_validity(reference_deflection_mm=floor,
             penetration_max_mm=bound, static_deflection_mm=ki.mesh.loaded_deflection_mm,
             module_mm=res.geometry.geometry.module_mm, gear_speed_rad_s=omega2[w],
             pinion_speed_rad_s=omega1[w] if free_pinion else None, window_s=t1 - t0,
@@ -241,7 +242,15 @@ def run_direction(task: DirectionTask) -> DirectionOutcome:
     except GearcliError as exc:  # every level of this direction is a failed row, with the reason
         return failed_direction(task, str(exc).splitlines()[0])
     f_n = res.summary.mesh_natural_frequency_Hz
-    return DirectionOutcome(measure_levels(res, stairs, task.direction, f_n, task.first), f_n)
+    rows = measure_levels(res, stairs, task.direction, f_n, task.first)
+    ref = res.reference_kernel  # loosened tolerances: each level against the defaults'
+    if ref is not None:
+        from gearcli.pipeline.validity import converged_levels
+
+        rows = converged_levels(res, rows, measure_levels(dataclasses.replace(
+            res, kernel=ref, status="ok"), stairs, task.direction, f_n, task.first)
+            if ref.ok else None)
+    return DirectionOutcome(rows, f_n)
 
 
 def failed_direction(task: DirectionTask, error: str, cause: str = "") -> DirectionOutcome:

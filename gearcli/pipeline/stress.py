@@ -41,6 +41,7 @@ from gearcli.model.rating import (
     static_rating,
 )
 from gearcli.pipeline.geometry import run_geometry
+from gearcli.pipeline.validity import drift_phrase, window_state
 from gearcli.results.metrics import json_number
 from gearcli.results.stress import (
     GearPeaks,
@@ -239,6 +240,14 @@ def _warnings(res: StressResult) -> list[str]:
             out.append(f"coast-flank contact (up to {coast:.4g} N) is not in the stress "
                        "histories (per-pair coast forces are not written); it reverses the "
                        "root stress")
+    # the dynamic/static ratios compare with the static load of the ramps' end: a window
+    # whose speed or load drifts does not carry it (docs/theory.md §10.2, operating state)
+    unsteady = window_state(*(res.run.column(c)[sel] for c in (
+        "t_s", "omega1_rad_s", "omega2_rad_s", "load_torque_Nmm")),
+        (res.geometry.pinion.teeth, res.geometry.gear.teeth))[2]
+    if unsteady:
+        out.append(f"the window is not one steady operating point ({drift_phrase(unsteady)}): "
+                   "its stresses are not those of the static load's operating point")
     s = res.run.summary.scalars
     rate, f_z = s.output_rate_Hz, s.gear_mesh_frequency_Hz
     if rate and f_z and rate / f_z < SAMPLES_PER_MESH_FOR_PEAKS:

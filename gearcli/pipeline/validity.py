@@ -13,7 +13,11 @@ Checked, in this order (the first that fails is the reason):
    most about 2-3 at the main resonance, docs/theory.md §10.4), i.e. a vibro-impact state of an
    undamped, error-free model, not a gear's response. The thickness term (5 % of the tooth
    thickness) bounds the small-deflection geometry of the gap tables (contact points of the
-   rigid profiles) for soft penalty contacts and for runs without load (δ_s = 0).
+   rigid profiles) for soft penalty contacts and for runs without load (δ_s = 0). The static
+   term is never below the deflection at ISO 6336-1's reference line load of 100 N/mm
+   (:func:`reference_deflection_for`): a penetration every loaded gear reaches is inside the
+   tooth model's range, so the rattle of a lightly loaded pair (tens of newtons, a ratio of
+   tens to its tiny static deflection) is not an excursion out of the model.
 2. **Speed reversal** — the gear (and, with a torque drive, the pinion) running backwards (by
    more than one tooth pitch over the window: e.g. a load larger than a torque drive) or turning
    backwards in the steady window by more than 1 % of its mean speed: the pair's kinematics
@@ -22,6 +26,13 @@ Checked, in this order (the first that fails is the reason):
 3. **Runaway energy** — the energy balance's relative residual (docs/theory.md §6.6) above
    ``ENERGY_RESIDUAL_LIMIT``: the integration did not conserve energy, so no number of the run
    is trustworthy (measured residuals of valid runs: 1e-9 … 1e-5).
+4. **Loose tolerances** — a case that loosens the solver tolerances beyond gearcli's defaults
+   (``run.rtol`` above 1e-6, ``run.atol`` above the default deflection tolerance) is integrated
+   once more at the defaults (for its true extrema); its largest total force or largest
+   penetration more than ``TOLERANCE_AGREEMENT`` away from theirs means the run's numbers are
+   those of its tolerances (:func:`tolerance_check`). The defaults are the verified ones
+   (docs/theory.md §10.3: within 1 % of 100 times tighter tolerances at five speeds); the
+   energy residual of item 3 does not see this error (7e-5 with a dynamic factor 31 % off).
 
 Before these, a run the solver stopped because a penetration left the gap tables (their cap
 max(0.05 m, 20 δ_s), above the limit of item 1 whenever there is a load) is ``invalid`` up to
@@ -52,28 +63,51 @@ class Validity(NamedTuple):
     reason: str  #: one line; empty when OK
 
 
-def penetration_limit_mm(static_deflection_mm: float, module_mm: float) -> float:
-    """The largest penetration [mm] inside the contact model's range (module notes, item 1)."""
+def penetration_limit_mm(static_deflection_mm: float, module_mm: float,
+                         reference_deflection_mm: float = 0.0) -> float:
+    """The largest penetration [mm] inside the contact model's range (module notes, item 1);
+    ``reference_deflection_mm``: the deflection at the reference line load, the floor of the
+    static term (0: none)."""
     thickness = PENETRATION_PER_THICKNESS * math.pi * module_mm / 2.0
     if static_deflection_mm > 0.0:
-        return min(PENETRATION_PER_STATIC * static_deflection_mm, thickness)
+        return min(max(PENETRATION_PER_STATIC * static_deflection_mm, reference_deflection_mm),
+                   thickness)
     return thickness
+
+
+def reference_deflection_for(res, penetration_mm: float) -> float:
+    """The floor of item 1's static term for a run ``res`` (pipeline.simulation
+    .SimulationResult) whose largest penetration is ``penetration_mm``: the deflection at the
+    reference line load (pipeline.mesh_input.reference_deflection_mm), computed only when it
+    decides (a loaded run beyond 10 static deflections), else 0."""
+    from gearcli.pipeline.mesh_input import reference_deflection_mm
+
+    static = res.kernel_input.mesh.loaded_deflection_mm
+    if not (static > 0.0 and penetration_mm > PENETRATION_PER_STATIC * static):
+        return 0.0
+    return reference_deflection_mm(res.loaded.case, res.geometry)
 
 
 def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, module_mm: float,
                    gear_speed_rad_s: np.ndarray, pinion_speed_rad_s: np.ndarray | None,
                    window_s: float, teeth: tuple[int, int],
-                   energy_relative_residual: float) -> Validity:
+                   energy_relative_residual: float,
+                   reference_deflection_mm: float = 0.0) -> Validity:
     """Validity of one run (module notes). Speeds are the steady window's samples [rad/s]
     (``window_s`` long); ``pinion_speed_rad_s`` only when the pinion is free (torque drive),
-    else None; ``teeth`` = (z1, z2)."""
-    limit = penetration_limit_mm(static_deflection_mm, module_mm)
+    else None; ``teeth`` = (z1, z2); ``reference_deflection_mm``: item 1's floor
+    (:func:`reference_deflection_for`)."""
+    limit = penetration_limit_mm(static_deflection_mm, module_mm, reference_deflection_mm)
     if not penetration_max_mm <= limit:
+        from gearcli.pipeline.mesh_input import REFERENCE_LINE_LOAD_N_MM
+
+        floor = (f", at least the deflection {reference_deflection_mm:.4g} mm at "
+                 f"{REFERENCE_LINE_LOAD_N_MM:g} N/mm" if reference_deflection_mm > 0.0 else "")
         return Validity(INVALID, (
             f"tooth penetration {penetration_max_mm:.4g} mm is beyond the contact model's range "
             f"{limit:.4g} mm ({PENETRATION_PER_STATIC:g} x the static deflection "
-            f"{static_deflection_mm:.4g} mm, at most {100 * PENETRATION_PER_THICKNESS:g} % of "
-            "the tooth thickness)"))
+            f"{static_deflection_mm:.4g} mm{floor}, at most "
+            f"{100 * PENETRATION_PER_THICKNESS:g} % of the tooth thickness)"))
     for name, omega, z in (("gear", gear_speed_rad_s, teeth[1]),
                            ("pinion", pinion_speed_rad_s, teeth[0])):
         if omega is None or omega.size == 0:
@@ -99,6 +133,112 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
             f"energy balance residual {energy_relative_residual:.3g} of the largest energy term "
             f"(limit {ENERGY_RESIDUAL_LIMIT:g}): the integration is not trustworthy"))
     return Validity(OK, "")
+
+
+#: Largest relative difference of the largest total force or penetration between a run at the
+#: case's loosened tolerances and the same run at the defaults (module notes, item 4): the
+#: defaults themselves agree with 100 x tighter tolerances within 1 % (docs/theory.md §10.3).
+TOLERANCE_AGREEMENT = 0.01
+
+
+def tolerance_reference(res):
+    """The run ``res`` (pipeline.simulation.SimulationResult) integrated once more at the
+    default tolerances (module notes, item 4): its kernel result, with the true extrema from
+    the steady window on at the same output times (taken at every accepted step and every
+    output sample, docs/theory.md §7.4, so both runs' maxima see the same samples); None when
+    the case's tolerances are the defaults or tighter (nothing to compare)."""
+    from gearcli.core.integrate import simulate
+    from gearcli.core.layout import P
+
+    ki = res.kernel_input
+    params = ki.params.copy()
+    (rtol, atol), (rtol_0, atol_0) = _tolerances(res)
+    if rtol <= rtol_0 and atol <= atol_0:
+        return None
+    params[P.rtol], params[P.atol_delta] = min(rtol, rtol_0), min(atol, atol_0)
+    params[P.atol_deltadot] *= params[P.atol_delta] / atol  # the same speed scale
+    params[P.extrema_t_start] = res.window.t0_s
+    return simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
+                    load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp, **ki.arrays)
+
+
+def _tolerances(res) -> tuple[tuple[float, float], tuple[float, float]]:
+    """((rtol, atol [mm]) of the run, (rtol, atol) of gearcli's defaults for its case)."""
+    from gearcli.core.layout import PARAM_DEFAULTS, P
+    from gearcli.pipeline.kernel_input import deflection_atol
+
+    ki = res.kernel_input
+    return ((float(ki.params[P.rtol]), float(ki.params[P.atol_delta])),
+            (PARAM_DEFAULTS["rtol"], deflection_atol(None, ki.mesh.static_deflection_mm)))
+
+
+def _tolerance_texts(res) -> tuple[str, str]:
+    (rtol, atol), (rtol_0, atol_0) = _tolerances(res)
+    return (f"the case's solver tolerances (rtol {rtol:.3g}, atol {atol:.3g} mm)",
+            f"gearcli's defaults (rtol {rtol_0:g}, atol {atol_0:.3g} mm)")
+
+
+def tolerance_check(res, ref) -> Validity:
+    """Item 4 of the module notes for a run ``res`` valid by items 1-3 and its
+    :func:`tolerance_reference` ``ref`` (None: OK, nothing loosened)."""
+    if ref is None:
+        return Validity(OK, "")
+    asked, defaults = _tolerance_texts(res)
+    if not ref.ok:
+        return Validity(INVALID, (
+            f"the run at {asked} finished, but not at {defaults}: {ref.message}; its numbers "
+            "are those of the loose tolerances"))
+    k = res.kernel
+    for name, key, unit in (("largest total force", "force_total_max_N", "N"),
+                            ("largest penetration", "penetration_max_mm", "mm")):
+        value, expected = k.extremum(key), ref.extremum(key)
+        if math.isnan(value) and math.isnan(expected):  # not recorded in either run
+            continue
+        reason = _disagreement(name, value, expected, unit, asked, defaults)
+        if reason:
+            return Validity(INVALID, reason)
+    return Validity(OK, "")
+
+
+def _disagreement(name: str, value: float, expected: float, unit: str, asked: str,
+                  defaults: str) -> str:
+    """The reason ``value`` (at the case's tolerances) is not ``expected`` (at the defaults)
+    within :data:`TOLERANCE_AGREEMENT`, or ""."""
+    change = (value - expected) / max(abs(expected), 1e-300)
+    if abs(change) <= TOLERANCE_AGREEMENT:
+        return ""
+    return (f"not converged at {asked}: the {name} is {value:.5g} {unit}, at {defaults} "
+            f"{expected:.5g} {unit} ({100 * change:+.3g} %, limit "
+            f"{100 * TOLERANCE_AGREEMENT:g} %): its numbers are those of the tolerances; "
+            "tighten or remove run.rtol / run.atol")
+
+
+def converged_levels(res, rows: list, reference_rows: list | None) -> list:
+    """Speed-curve levels (results.SpeedLevel rows of the run ``res``) against the same
+    levels measured on its :func:`tolerance_reference` (``reference_rows``; None when that
+    run failed): a level whose largest force is more than :data:`TOLERANCE_AGREEMENT` away
+    from the reference's, or valid only at the loose tolerances, is invalid (item 4)."""
+    import dataclasses
+
+    asked, defaults = _tolerance_texts(res)
+    out = []
+    for i, row in enumerate(rows):
+        ref = reference_rows[i] if reference_rows is not None else None
+        if row.status == INVALID:
+            out.append(row)
+            continue
+        if ref is None or ref.status == INVALID:
+            reason = (f"the level at {asked} is not one at {defaults}: "
+                      + (ref.error if ref is not None else res.invalid_reason))
+        else:
+            reason = _disagreement("largest total force", row.force_max_N, ref.force_max_N,
+                                   "N", asked, defaults)
+        if reason:
+            row = dataclasses.replace(row, status=INVALID, error=reason, dynamic_factor=math.nan,
+                                      force_max_N=math.nan, dte_peak_to_peak_mm=math.nan,
+                                      contact_loss_fraction=math.nan)
+        out.append(row)
+    return out
 
 
 def table_exit(penetration_mm: float, t_s: float, cap_mm: float) -> Validity:
@@ -200,3 +340,23 @@ def operating_state(t_s: np.ndarray, signals: dict[str, np.ndarray],
         f"unsteady: the {name} changes by {100 * worst:+.3g} % over the steady window "
         f"(trend; steady below {100 * UNSTEADY_FRACTION:g} %): the dynamic factor is not that "
         "of one steady operating point")
+
+
+def window_state(t_s: np.ndarray, omega1_rad_s: np.ndarray, omega2_rad_s: np.ndarray,
+                 load_torque_Nmm: np.ndarray, teeth: tuple[int, int]) -> tuple[str, float, str]:
+    """:func:`operating_state` of a window's samples: the pinion and gear speeds [rad/s] (a
+    body counts when it turns by more than a tooth pitch over the window; ``teeth`` = (z1,
+    z2)) and the load torque [N·mm]."""
+    span = float(np.ptp(t_s)) if t_s.size else 0.0
+    signals = {"pinion speed": omega1_rad_s, "gear speed": omega2_rad_s,
+               "load torque": load_torque_Nmm}
+    turning = {name: abs(float(np.mean(w))) * span * z > 2.0 * math.pi if w.size else False
+               for name, w, z in (("pinion speed", omega1_rad_s, teeth[0]),
+                                  ("gear speed", omega2_rad_s, teeth[1]))}
+    return operating_state(t_s, signals, turning)
+
+
+def drift_phrase(unsteady_reason: str) -> str:
+    """The "the gear speed changes by +87.6 % over the steady window" part of a reason of
+    :func:`operating_state`, for notes of other documents."""
+    return unsteady_reason.removeprefix("unsteady: ").split(" (trend")[0]

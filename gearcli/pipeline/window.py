@@ -16,6 +16,9 @@ class Window:
     t0_s: float
     t1_s: float
     reason: str
+    #: when the run is settled: the ramps' end + the settling time (NaN: not known, e.g. a
+    #: window given to `gearcli analyze`)
+    settled_s: float = math.nan
 
     @property
     def length_s(self) -> float:
@@ -57,16 +60,43 @@ def steady_window(
     if slowest > settle:
         settle = slowest
         reason = "after the ramps and the settling time of the slowest mode"
-    t0 = max(last_ramp_s, 0.0) + settle
+    t0 = settled = max(last_ramp_s, 0.0) + settle
     if gear_mesh_frequency_Hz:
         latest = t_end_s - MIN_MESH_CYCLES / gear_mesh_frequency_Hz
         if latest <= 0.0:
             return Window(0.0, t_end_s, f"the whole run (shorter than {MIN_MESH_CYCLES} mesh "
-                          "cycles)")
+                          "cycles)", settled)
         if not t0 <= latest:
             t0 = latest
             reason = f"the last {MIN_MESH_CYCLES} mesh cycles (the run is short for settling)"
     if not t0 < t_end_s:
         t0 = 0.5 * t_end_s
         reason = "the second half of the run (no steady state is reached)"
-    return Window(t0, t_end_s, reason)
+    return Window(t0, t_end_s, reason, settled)
+
+
+def settling_warnings(window: Window, ramp_end_s: float, end_time_s: float) -> list[str]:
+    """The warnings of a window that is not settled: the run ends before or at the end of
+    the drive/load ramps, its window starts before they end, or after them but before the
+    settling time has passed (the last 20 mesh cycles of a run short for settling: the
+    leftover of the ramps' transient is e^-n of it after n time constants)."""
+    t0 = window.t0_s
+    if ramp_end_s >= end_time_s:
+        return [f"no steady state: the drive/load functions reach their final values at "
+                f"{ramp_end_s:g} s, " + ("when" if ramp_end_s == end_time_s else "after")
+                + f" the run ends ({end_time_s:g} s); the nominal speed, mesh frequency and "
+                "static force are never reached"]
+    if window.reason.startswith("the second half"):
+        return ["no steady state: the run ends before the ramps have settled"]
+    if ramp_end_s > t0:
+        return [f"not settled: the window starts at {t0:g} s, before the ramps end "
+                f"({ramp_end_s:g} s); its values still carry the ramp"]
+    if t0 < window.settled_s:  # NaN (not known): False
+        n = SETTLING_TIME_CONSTANTS * (t0 - max(ramp_end_s, 0.0)) / (
+            window.settled_s - max(ramp_end_s, 0.0))
+        return [f"not settled: the window starts at {t0:g} s, {n:.2g} time constants of the "
+                f"slowest mode after the ramps end ({ramp_end_s:g} s; settled after "
+                f"{SETTLING_TIME_CONSTANTS:g}, at {window.settled_s:.4g} s): up to "
+                f"{100.0 * math.exp(-n):.2g} % of the ramps' transient is left in its values; "
+                "simulate longer (run.end_time)"]
+    return []

@@ -49,7 +49,10 @@ def rating_table(rating: RatingDocument) -> Table:
             f"{rating.load.dynamic_factor_source}; simulated column K_v = the run's "
             "F_max/F_static; stress peaks: σ_G over the run's peak stresses (gearcli stress, "
             "their positions starred on the stress figure) times √(K_A K_γ K_Hβ) resp. "
-            "K_A K_γ K_Fβ Y_β Y_B Y_DT. Verdict: " + rating.verdict + ".")
+            "K_A K_γ K_Fβ Y_β Y_B Y_DT. Verdict: " + rating.verdict + "."
+            # a run off its operating point has no simulated column (pipeline/run_rating)
+            + "".join(f" {n[0].upper()}{n[1:]}." for n in rating.notes
+                      if n.startswith("no simulated column")))
     return Table("Rating (ISO 6336): safety factors, ISO beside simulated",
                  ("gear", "safety", "ISO", "simulated", "simulated, stress peaks", "minimum",
                   "verdict ISO", "verdict simulated"), rows, note=note, status=status)

@@ -114,3 +114,30 @@ def test_run_of_a_pair_below_its_minimum_safety_exits_4_and_says_so(tmp_path):
     lines = [ln for ln in res.output.splitlines() if ln.startswith("rating (")]
     assert len(lines) == 2 and all(ln.endswith("FAIL") for ln in lines), lines
     assert json.loads((out / "rating.json").read_text())["verdict"] == "fail"
+
+
+def test_a_run_off_its_operating_point_gets_no_simulated_rating_column(tmp_path):
+    # iso_pair ended at 0.15 s, inside its 0.2 s ramps: its F_max/F_static (1.0) is no
+    # operating point's dynamic factor; measured before: the simulated column rated with it
+    # (the NREL case ended at 0.15 s: S_H 1.113 from its transient's 1.25) with no word of it
+    out = tmp_path / "short"
+    res = runner.invoke(app, ["run", ISO_PAIR, "-o", str(out), "--set", "run.end_time=0.15",
+                              "--format", "md", *LIMITS])
+    assert res.exit_code in (0, 4), res.output
+    rating = json.loads((out / "rating.json").read_text())
+    assert rating["simulated"] is None and rating["iso"] is not None
+    assert any("not one steady operating point" in n for n in rating["notes"])
+
+
+def test_a_sweep_point_off_its_operating_point_has_no_safeties():
+    # the sweep's safety_pitting_min / safety_bending_min rate the point with its K_v: none
+    # from a window that is not one steady operating point (measured before: S_H 2.70 from
+    # the transient)
+    from gearcli.pipeline.simulate import run_simulation
+    from gearcli.pipeline.sweep.metrics import point_metrics
+
+    limits = [LIMITS[1], LIMITS[3]]
+    short = point_metrics(run_simulation(ISO_PAIR, [*limits, "run.end_time=0.15"], zoom=False))
+    assert short["safety_pitting_min"] is None and short["safety_bending_min"] is None
+    steady = point_metrics(run_simulation(ISO_PAIR, [*limits, "run.end_time=0.3"], zoom=False))
+    assert steady["safety_pitting_min"] > 1.0

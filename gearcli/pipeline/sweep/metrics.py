@@ -13,6 +13,7 @@ import dataclasses
 from gearcli.model.frequencies import mesh_frequencies
 from gearcli.pipeline.run_rating import simulated_safeties
 from gearcli.pipeline.spectrum import amplitude_spectrum, measure_line
+from gearcli.pipeline.validity import UNSTEADY
 from gearcli.results import PointLines, shown_values, sweep_metrics
 from gearcli.results.metrics import json_number
 
@@ -38,7 +39,9 @@ def point_metrics(res) -> dict[str, float | None]:
             freq, amp = amplitude_spectrum(k.column(f.metadata["signal"])[sel], rate)
             line = measure_line(freq, amp, f_z)
             lines[f.name] = _num(line.amplitude) if line.resolvable else None
-    s_h, s_f = simulated_safeties(res.loaded, s.dynamic_factor)
+    # no safeties from a window off one operating point (pipeline/validity.operating_state)
+    s_h, s_f = (simulated_safeties(res.loaded, s.dynamic_factor)
+                if s.operating_state != UNSTEADY else (None, None))
     extra = PointLines(**lines, energy_balance_relative_residual=_num(
         s.energy_relative_residual), safety_pitting_min=_num(s_h), safety_bending_min=_num(s_f))
     out.update(extra.to_dict())
