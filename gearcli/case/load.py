@@ -41,6 +41,29 @@ class LoadedCase:
                 f"{g.gear.teeth} teeth, module {g.module:g} mm, face width {g.face_width:g} mm, "
                 f"{self.case.model} model, {self.case.contact.law} contact law>")
 
+    def written_bare(self, loc: Loc) -> bool:
+        """Whether the value at ``loc`` was written without a unit, so that its numbers mean the
+        case's bare unit (gearcli/case/types.py): a number, a number as text, an expression of
+        time outside a mapping with ``unit``, such a mapping without ``unit``. False for a
+        value with units and for one not written (its default)."""
+        from gearcli.case.expr import is_expression
+
+        node = self.source.data
+        for part in loc:
+            if not isinstance(node, dict) or part not in node:
+                return False
+            node = node[part]
+        if isinstance(node, dict):
+            return "function" in node and "unit" not in node
+        if isinstance(node, bool) or not isinstance(node, int | float | str):
+            return False
+        if isinstance(node, str) and not is_expression(node):
+            try:
+                float(node)
+            except ValueError:
+                return False  # "450 N*m"
+        return True
+
     def error_at(self, loc: Loc, message: str):
         """:meth:`error` quoting the value as written at ``loc`` (none for a section or a
         list): for checks of the validated case that point back at the YAML."""

@@ -56,30 +56,45 @@ def input_digest(res) -> InputDigest:
     return InputDigest(power_kW=f_t * v_m_s / 1000.0, pitch_line_velocity_m_s=v_m_s,
                        line_load_N_mm=f_t / b, sigma_H0_MPa=sigma, gear_mesh_frequency_Hz=f_z,
                        resonance_ratio=ratio,
-                       warnings=tuple(slip_warnings(f_t / b, v_m_s, g.module_mm, case.units)))
+                       warnings=tuple(slip_warnings(
+                           f_t / b, v_m_s, g.module_mm, case.units,
+                           (res.loaded.written_bare(("load", "torque")),
+                            res.loaded.written_bare(("drive", "speed"))))))
 
 
 def slip_warnings(line_load_N_mm: float, velocity_m_s: float, module_mm: float,
-                  system: str | None = None) -> list[str]:
+                  system: str | None = None, bare: tuple[bool, bool] = (True, True)) -> list[str]:
     """"Did you mean" warnings for a line load or a speed of an implausible magnitude, in the
     terms of the case's unit ``system`` (its ``units:`` key; None: "adams"): where bare torques
     are N·mm (adams) a tiny line load reads as N·m meant, where they are N·m already
     (engineering, si) it is only implausible; likewise a slow speed where bare speeds are not
-    rpm (adams: deg/s, si: rad/s) or are (engineering)."""
+    rpm (adams: deg/s, si: rad/s) or are (engineering). ``bare``: whether the torque and the
+    speed were written without a unit (LoadedCase.written_bare); a value written with its unit
+    is only implausible, never "did you mean"."""
     from gearcli import units
 
     torque_unit = units.in_system(units.TORQUE, system).default
     speed_unit = units.in_system(units.ANGULAR_VELOCITY, system).default
+    torque_bare, speed_bare = bare
     out = []
     if 0.0 < line_load_N_mm < SLIP_LINE_LOAD_N_MM and module_mm >= SLIP_MODULE_MM:
-        hint = ("did you mean N·m? the torque reads as N·mm" if torque_unit == "N*mm" else
-                f"implausibly small for the pair (bare torques are {torque_unit} in this case)")
+        if not torque_bare:
+            hint = "implausibly small for the pair, as written"
+        elif torque_unit == "N*mm":
+            hint = "did you mean N·m? bare torques read as N·mm (write the unit, e.g. '450 N*m')"
+        else:
+            hint = (f"implausibly small for the pair (bare torques are {torque_unit} in this "
+                    "case; write the unit, e.g. '450 N*m')")
         out.append(f"load.torque: F_t/b = {line_load_N_mm:.3g} N/mm on a module "
-                   f"{module_mm:g} mm pair: {hint} (write the unit, e.g. '450 N*m')")
+                   f"{module_mm:g} mm pair: {hint}")
     if 0.0 < velocity_m_s < SLIP_VELOCITY_M_S:
-        hint = (f"implausibly slow (bare speeds are {speed_unit} in this case)"
-                if speed_unit == "rpm" else
-                f"did you mean rpm? bare speeds read as {speed_unit}")
-        out.append(f"drive.speed: a pitch-line velocity of {velocity_m_s:.3g} m/s: {hint} "
-                   "(write the unit, e.g. '1500 rpm')")
+        if not speed_bare:
+            hint = "implausibly slow, as written"
+        elif speed_unit == "rpm":
+            hint = (f"implausibly slow (bare speeds are {speed_unit} in this case; write the "
+                    "unit, e.g. '1500 rpm')")
+        else:
+            hint = (f"did you mean rpm? bare speeds read as {speed_unit} (write the unit, e.g. "
+                    "'1500 rpm')")
+        out.append(f"drive.speed: a pitch-line velocity of {velocity_m_s:.3g} m/s: {hint}")
     return out

@@ -51,7 +51,18 @@ def test_bare_torque_on_seed_warns_did_you_mean_Nm():
     """The seed with `torque: 450` (N·mm, meant 450 N·m): F_t/b = 0.036 N/mm on module 10."""
     r = CliRunner().invoke(app, ["simulate", str(SEED), "-o", "-", "--set", "load.torque=450",
                                  "--set", "run.end_time=1.2"])
-    assert "did you mean N·m? the torque reads as N·mm" in r.stderr
+    assert "did you mean N·m? bare torques read as N·mm" in r.stderr
+
+
+def test_a_tiny_torque_written_with_its_unit_is_no_slip():
+    """`torque: 0.45 N*m` on the seed is as tiny (0.036 N/mm) but says what it means: the
+    warning calls it implausible, without "did you mean N·m?" (the user wrote N·m) or "reads
+    as N·mm" (it does not)."""
+    r = CliRunner().invoke(app, ["simulate", str(SEED), "-o", "-", "--set",
+                                 "load.torque=0.45 N*m", "--set", "run.end_time=1.2"])
+    assert "load.torque: F_t/b = 0.036 N/mm" in r.stderr, r.stderr
+    assert "implausibly small for the pair, as written" in r.stderr
+    assert "did you mean" not in r.stderr and "N·mm" not in r.stderr
 
 
 def test_slip_warnings_thresholds():
@@ -69,7 +80,12 @@ def test_slip_warnings_speak_the_case_unit_system():
     for system in ("engineering", "si"):
         (torque,) = slip_warnings(0.5, 5.0, 5.0, system)
         assert "did you mean" not in torque and "bare torques are N*m" in torque
-    assert "the torque reads as N·mm" in slip_warnings(0.5, 5.0, 5.0, "adams")[0]
+    assert "bare torques read as N·mm" in slip_warnings(0.5, 5.0, 5.0, "adams")[0]
+    # written with units: implausible, never "did you mean" (in any system)
+    for system in ("adams", "engineering", "si"):
+        (torque, speed) = slip_warnings(0.5, 0.01, 5.0, system, (False, False))
+        assert "did you mean" not in torque + speed and "as written" in torque
+        assert "implausibly slow, as written" in speed
     (speed,) = slip_warnings(50.0, 0.01, 10.0, "engineering")
     assert "did you mean" not in speed and "bare speeds are rpm" in speed
     assert "did you mean rpm? bare speeds read as rad/s" in slip_warnings(50.0, 0.01, 10.0, "si")[0]
@@ -86,3 +102,17 @@ def test_tiny_torque_in_the_engineering_starter_is_not_called_N_mm(tmp_path):
                             "--set", "load.torque=STEP(time, 0, 0, 0.2, 0.5)"])
     assert "load.torque: F_t/b = 0.0851 N/mm" in r.stderr, r.stderr
     assert "reads as N·mm" not in r.stderr and "bare torques are N*m" in r.stderr
+
+
+@pytest.mark.parametrize(("value", "bare"), [
+    ("450", True), ("'450'", True), ("STEP(time, 0, 0, 0.2, 450)", True),
+    ("{function: 'STEP(time, 0, 0, 0.2, 450)'}", True), ("450 N*m", False),
+    ("{function: 'STEP(time, 0, 0, 0.2, 450)', unit: N*m}", False),
+    ("{function: 450, unit: N*m}", False),
+])
+def test_written_bare_tells_a_bare_value_from_one_with_units(value, bare):
+    from gearcli.case.load import load_case
+
+    loaded = load_case(SEED, [f"load.torque={value}"])
+    assert loaded.written_bare(("load", "torque")) is bare
+    assert loaded.written_bare(("run", "max_step")) is False  # not written: its default
