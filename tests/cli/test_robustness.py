@@ -204,9 +204,9 @@ def test_output_size_is_checked_before_allocation(setting, key):
 
 def test_output_rows_agree_with_the_sampling():
     from gearcli.case.load import load_case
+    from gearcli.pipeline.case_checks import output_rows
     from gearcli.pipeline.geometry import run_geometry
     from gearcli.pipeline.kernel_input import output_times
-    from gearcli.pipeline.case_checks import output_rows
 
     for extra in ([], ["run.output_steps=123"], ["run.output_rate=777"], ["drive.speed=0"],
                   ["run.end_time=1e-4"]):
