@@ -136,7 +136,7 @@ def run_simulation(source: str | Path | LoadedCase, overrides: list[str] | None 
     result = SimulationResult(loaded, geo, ki, kr, wall, window, modes, compiled=compiling)
     result.summary = summarize(result)
     result.warnings = collect_warnings(result)
-    result.status, result.invalid_reason = validity_of(result, left_tables)
+    result.status, result.invalid_reason = validity_of(result, left_tables, status, progress)
     if zoom and ki.gear_mesh_frequency_Hz and not left_tables:
         with cyclic_gc_paused():
             result.zoom = dense_zoom(result, params)
@@ -188,12 +188,16 @@ def dense_zoom(res: SimulationResult, params) -> dict[str, np.ndarray]:
     return out
 
 
-def validity_of(res: SimulationResult, left_tables: bool = False):
+def validity_of(res: SimulationResult, left_tables: bool = False, status=None, progress=None):
     """The run's :class:`gearcli.pipeline.validity.Validity` (docs/theory.md §10.2);
-    ``left_tables``: the solver stopped where a penetration left the gap tables."""
+    ``left_tables``: the solver stopped where a penetration left the gap tables; ``status``,
+    ``progress`` as for :func:`run_simulation` (told of the run at the default tolerances that
+    checks a case with loosened ones)."""
     from gearcli.core.layout import DRIVE_SPEED, P
     from gearcli.pipeline.validity import (
+        Validity,
         check_validity,
+        loosened_tolerance_hint,
         reference_deflection_for,
         table_exit,
         tolerance_check,
@@ -219,8 +223,10 @@ def validity_of(res: SimulationResult, left_tables: bool = False):
         teeth=(res.geometry.geometry.pinion.teeth, res.geometry.geometry.gear.teeth),
         energy_relative_residual=res.summary.energy_relative_residual)
     if valid.status != "ok":
-        return valid
-    res.reference_kernel = tolerance_reference(res)  # None at the default tolerances
+        return Validity(valid.status, valid.reason + loosened_tolerance_hint(res))
+    if status and loosened_tolerance_hint(res):
+        status("integrating once more at the default tolerances (the case loosens them)")
+    res.reference_kernel = tolerance_reference(res, progress)  # None at the defaults
     return tolerance_check(res, res.reference_kernel)
 
 

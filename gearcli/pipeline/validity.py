@@ -141,12 +141,25 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
 TOLERANCE_AGREEMENT = 0.01
 
 
-def tolerance_reference(res):
+def loosened_tolerance_hint(res) -> str:
+    """For an invalid run (pipeline.simulation.SimulationResult) of a case that loosens the
+    solver tolerances beyond the defaults: the clause that says so (its invalidity may be the
+    tolerances' doing: a run that "reverses" or leaves its energy balance at a 1 m atol);
+    "" otherwise."""
+    (rtol, atol), (rtol_0, atol_0) = _tolerances(res)
+    if rtol <= rtol_0 and atol <= atol_0:
+        return ""
+    asked, defaults = _tolerance_texts(res)
+    return f"; {asked} are looser than {defaults}: try without run.rtol / run.atol"
+
+
+def tolerance_reference(res, progress=None):
     """The run ``res`` (pipeline.simulation.SimulationResult) integrated once more at the
     default tolerances (module notes, item 4): its kernel result, with the true extrema from
     the steady window on at the same output times (taken at every accepted step and every
     output sample, docs/theory.md §7.4, so both runs' maxima see the same samples); None when
-    the case's tolerances are the defaults or tighter (nothing to compare)."""
+    the case's tolerances are the defaults or tighter (nothing to compare). ``progress`` as
+    for gearcli.core.integrate.simulate."""
     from gearcli.core.integrate import simulate
     from gearcli.core.layout import P
 
@@ -159,7 +172,8 @@ def tolerance_reference(res):
     params[P.atol_deltadot] *= params[P.atol_delta] / atol  # the same speed scale
     params[P.extrema_t_start] = res.window.t0_s
     return simulate(params, ki.tables.tables, t_out=ki.t_out, drive_pp=ki.drive_pp,
-                    load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp, **ki.arrays)
+                    load_pp=ki.load_pp, drive_angle_pp=ki.drive_angle_pp, progress=progress,
+                    **ki.arrays)
 
 
 def _tolerances(res) -> tuple[tuple[float, float], tuple[float, float]]:

@@ -47,6 +47,21 @@ def test_a_loose_relative_tolerance_is_invalid_and_the_cli_exits_4(tmp_path):
     assert '"status": "invalid"' in (out / "summary.json").read_text()
 
 
+def test_an_invalid_run_of_a_loosened_case_names_the_tolerances():
+    """atol = 1 m (the robustness sweep's try): the pair "runs backwards" (item 2), a reason
+    that does not mention the tolerance that caused it unless it says the case loosened them;
+    the progress display also hears of the run at the defaults of a valid loosened case."""
+    res = run_simulation(ISO_PAIR, [*SHORT, "run.atol=1 m"], zoom=False)
+    assert res.status == INVALID
+    assert "try without run.rtol / run.atol" in res.invalid_reason, res.invalid_reason
+    told = []
+    run_simulation(ISO_PAIR, [*SHORT, "run.rtol=1e-5"], zoom=False, status=told.append)
+    assert told[-1].startswith("integrating once more at the default tolerances")
+    told.clear()
+    res = run_simulation(ISO_PAIR, SHORT, zoom=False, status=told.append)
+    assert "try without" not in res.invalid_reason and not any("once more" in t for t in told)
+
+
 def test_a_slightly_loosened_tolerance_that_converges_stays_valid():
     # rtol 1e-5 (10 x the default): the factor within 1e-5 of the default's (measured)
     res = run_simulation(ISO_PAIR, [*SHORT, "run.rtol=1e-5"], zoom=False)
