@@ -181,6 +181,26 @@ def _gear_input(case: Case, geo: GeometryResult, role: str, limits, f_pb_um: flo
         ball_diameter_mm=rg.ball_diameter)
 
 
+def _check_inspection(loaded: LoadedCase, geo: GeometryResult, gears: list[GearInput]) -> None:
+    """Refuse, at the key that sets it, a thickness allowance that leaves no tooth or a ball
+    that cannot touch the flanks (model.iso6336.inspection.inspection_input_error): the
+    inspection dimensions of the rating could not be computed."""
+    from gearcli.model.iso6336.inspection import inspection_input_error
+
+    g = geo.geometry
+    for role, gear in zip(_ROLES, gears, strict=True):
+        found = inspection_input_error(gear.teeth, gear.profile_shift, g.module_mm,
+                                       g.pressure_angle_rad, gear.tip_diameter_mm,
+                                       gear.thickness_allowances_mm, gear.ball_diameter_mm)
+        if found is None:
+            continue
+        key, reason = found
+        if key == "thickness_allowances" and getattr(loaded.case.rating, role).\
+                thickness_allowances is None:  # the gear's own allowance (gears.<role>)
+            raise loaded.error_at(("gears", role, "thickness_allowance"), reason)
+        raise loaded.error_at(("rating", role, key), reason)
+
+
 def _iso_kv(iso: IsoResonance, speed_rpm: float, k_a: float) -> tuple[float, IsoDynamic]:
     """K_v by ISO 6336-1 Method B at the pinion speed with the line load F_t K_A/b."""
     from gearcli.model.iso_kv import dynamic_factor
@@ -221,6 +241,7 @@ def rating_input(loaded: LoadedCase, geo: GeometryResult | None = None
         source = f"ISO 6336-1 Method B ({info.speed_range}, N = {info.resonance_ratio:.3g})"
     gears = [_gear_input(case, geo, role, lim, iso.f_pb_eff_um)
              for role, lim in zip(_ROLES, limits, strict=True)]
+    _check_inspection(loaded, geo, gears)
     g, rack = geo.geometry, case.gears.rack
     try:
         inp = RatingInput(

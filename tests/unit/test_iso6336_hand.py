@@ -24,6 +24,7 @@ from gearcli.model.iso6336.factors import (
 from gearcli.model.iso6336.inspection import (
     BALL_SERIES_MM,
     dimension_over_balls,
+    inspection_input_error,
     span,
     span_teeth,
     standard_ball_diameter,
@@ -223,6 +224,28 @@ def test_theoretical_ball_touches_on_the_shifted_circle():
     assert math.hypot(r_b, t_contact) == pytest.approx(0.5 * m * z + x * m, rel=1e-12)
     assert standard_ball_diameter(d_m) >= d_m
     assert standard_ball_diameter(8.6) == 8.75 and standard_ball_diameter(26.0) == 30.0
+
+
+def test_the_largest_ball_touches_at_the_tip_by_an_independent_construction():
+    """inspection_input_error's tip bound against the contact point built from M_dK (as the
+    test above: the ball centre radius from the dimension over balls, the contact on the
+    normal from the base tangent point): the ball whose contact is on the tip circle
+    (brentq) is the largest allowed, 0.1 % more is refused, and tiny balls fall through."""
+    z, x, m, alpha = 24, 0.3, 5.0, math.radians(20.0)
+    r_b, d_a = 0.5 * m * z * math.cos(alpha), m * z + 2.0 * m * (1.0 + x)
+
+    def contact_radius(d_m):
+        r_k = 0.5 * (dimension_over_balls(z, x, m, alpha, d_m) - d_m)
+        return math.hypot(r_b, math.sqrt(r_k ** 2 - r_b ** 2) - 0.5 * d_m)
+
+    d_tip = brentq(lambda d_m: contact_radius(d_m) - 0.5 * d_a, 8.6, 30.0, xtol=1e-12)
+    assert inspection_input_error(z, x, m, alpha, d_a, (0.0, 0.0), 0.999 * d_tip) is None
+    key, reason = inspection_input_error(z, x, m, alpha, d_a, (0.0, 0.0), 1.001 * d_tip)
+    assert key == "ball_diameter" and "above the tip" in reason
+    key, reason = inspection_input_error(z, x, m, alpha, d_a, (0.0, 0.0), 1.0)
+    assert key == "ball_diameter" and "falls between the flanks" in reason
+    key, _ = inspection_input_error(z, x, m, alpha, d_a, (-0.05, -9.0), None)
+    assert key == "thickness_allowances"
 
 
 def test_ball_beyond_the_series_continues_in_its_last_step():

@@ -254,6 +254,22 @@ def test_hardness_gives_the_iso_6336_5_limits():
         assert g.factor("σ_Hlim").value == 1500.0 and g.factor("σ_Flim").value == 425.0
 
 
+@pytest.mark.parametrize(("override", "key", "reason"), [
+    ("rating.pinion.thickness_allowances=[-30, -40]", "rating.pinion.thickness_allowances",
+     "leaves no tooth"),
+    ("rating.gear.ball_diameter=400", "rating.gear.ball_diameter", "above the tip"),
+    ("rating.pinion.ball_diameter=5 mm", "rating.pinion.ball_diameter", "falls between"),
+])
+def test_impossible_inspection_inputs_are_errors_at_their_keys(override, key, reason):
+    """A thickness allowance that thins the tooth away or a ball that cannot touch both flanks
+    between the base circle and the tip: a one-line error at the key (it was "rating: cannot
+    rate this case: involute value ... outside 0…1")."""
+    with pytest.raises(CaseError) as err:
+        rate_case(NREL, [override])
+    text = str(err.value)
+    assert key in text and reason in text and "involute value" not in text, text
+
+
 @pytest.mark.parametrize(("override", "key"), [
     ("rating.application_factor=0", "rating.application_factor"),
     ("rating.application_factor=0.5", "rating.application_factor"),  # K_A >= 1 (ISO 6336-6)

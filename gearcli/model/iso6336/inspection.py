@@ -30,7 +30,7 @@ from gearcli.model.iso6336.common import inverse_involute, involute
 __all__ = ["arc_tooth_thickness", "span_teeth", "span", "theoretical_ball_diameter",
            "BALL_SERIES_MM", "standard_ball_diameter", "dimension_over_balls",
            "chordal_thickness", "chordal_height", "InspectionDimensions",
-           "inspection_dimensions"]
+           "inspection_dimensions", "inspection_input_error"]
 
 #: Ball/pin diameters offered as "next standard size" [mm]: 0.25 mm steps to 10, 0.5 mm to 20,
 #: 1 mm to 25, 5 mm to 300. A project convention (the DIN 3977 series is not at hand); it gives
@@ -157,3 +157,44 @@ def inspection_dimensions(z: int, x: float, m_mm: float, alpha_rad: float,
         tuple(dimension_over_balls(z, x, m_mm, alpha_rad, ball, a) for a in allow),
         tuple(chordal_thickness(z, x, m_mm, alpha_rad, a) for a in allow),
         tuple(chordal_height(z, x, m_mm, alpha_rad, tip_diameter_mm, a) for a in allow))
+
+
+def inspection_input_error(z: int, x: float, m_mm: float, alpha_rad: float,
+                           tip_diameter_mm: float, allowances_mm: tuple[float, float],
+                           ball_mm: float | None) -> tuple[str, str] | None:
+    """What makes :func:`inspection_dimensions` of these inputs impossible, as (the input's
+    name, "thickness_allowances" or "ball_diameter", and a one-line reason), or None.
+
+    An allowance that thins the tooth to nothing at the reference circle (s + A_sn <= 0), or
+    a ball that touches the flank (at every allowance) outside the involute between the base
+    circle and the tip: the contact point's pressure angle from tan α_c = tan α_K − D_M/d_b
+    (the ball centre on the base tangent at r_b tan α_K, the contact D_M/2 before it;
+    DIN 3960 / ISO 21771, module notes)."""
+    d = m_mm * z
+    d_b = d * math.cos(alpha_rad)
+    s0 = arc_tooth_thickness(z, x, m_mm, alpha_rad)
+    if not s0 + min(0.0, *allowances_mm) > 0.0:
+        return "thickness_allowances", (
+            f"an allowance of {min(allowances_mm):g} mm leaves no tooth at the reference circle "
+            f"(arc thickness {s0:.4g} mm); expected allowances above {-s0:.4g} mm (typically a "
+            "few hundredths of the module)")
+    d_th = theoretical_ball_diameter(z, x, m_mm, alpha_rad)
+    ball = standard_ball_diameter(d_th) if ball_mm is None else float(ball_mm)
+    for allowance in (0.0, *allowances_mm):
+        s = arc_tooth_thickness(z, x, m_mm, alpha_rad, allowance)
+        inv_k = s / d + involute(alpha_rad) + ball / d_b - math.pi / z
+        if not inv_k > 0.0:
+            where = "falls between the flanks, too small to touch both"
+        elif inv_k > 1.0:
+            where = "does not enter the tooth space"
+        else:
+            tan_c = math.tan(inverse_involute(inv_k)) - ball / d_b
+            d_c = d_b * math.sqrt(1.0 + tan_c * tan_c)
+            where = ("touches below the base circle" if not tan_c > 0.0 else
+                     f"touches at d = {d_c:.4g} mm, above the tip" if d_c > tip_diameter_mm
+                     else "")
+        if where:
+            return "ball_diameter", (
+                f"a ball of {ball:g} mm {where} (d_b {d_b:.4g} mm, d_a {tip_diameter_mm:.4g} "
+                f"mm); expected about {d_th:.4g} mm (the ball touching on d + 2 x m)")
+    return None
