@@ -157,7 +157,8 @@ def run_geometry(source: str | Path | LoadedCase) -> GeometryResult:
 def check_relief_extents(loaded: LoadedCase, geo: PairGeometry) -> None:
     """A profile relief must start on the active flank: a length shorter than the path of
     contact g_alpha, a start diameter between the active profile start d_Nf and the tip d_a
-    (model.gap measures it from the end of the path it grows towards)."""
+    (model.gap measures it from the end of the path it grows towards); a tip relief must leave
+    a tip (below s_a cos α_a / 2)."""
     for kind in ("tip_relief", "root_relief"):
         for role in ("pinion", "gear"):
             relief = getattr(getattr(loaded.case.modifications, kind), role)
@@ -170,6 +171,17 @@ def check_relief_extents(loaded: LoadedCase, geo: PairGeometry) -> None:
                                       f"the path of contact, which is g_alpha = "
                                       f"{geo.g_alpha_mm:.4g} mm long; expected < "
                                       f"{geo.g_alpha_mm:.4g} mm")
+            # a tip relief C_a (normal to the profile, both flanks: the coast flank mirrors the
+            # drive flank) thins the tip's arc thickness by 2 C_a / cos α_a (ds_y = dC / cos α_y,
+            # ISO 21771's thickness at a radius): at C_a >= s_a cos α_a / 2 no tip is left
+            most = 0.5 * gg.s_a_mm * gg.d_b_mm / gg.d_a_mm
+            if kind == "tip_relief" and relief.amount >= most:
+                loc = ("modifications", kind, role, "amount")
+                raise loaded.error_at(loc, f"a tip relief of {relief.amount:g} mm leaves no tip: "
+                                      f"the reliefs of both flanks meet at C_a = s_a cos α_a / 2 = "
+                                      f"{most:.4g} mm ({role} tip thickness s_a = "
+                                      f"{gg.s_a_mm:.4g} mm); expected less (tip reliefs are "
+                                      "typically tens of µm)")
             d = relief.start_diameter
             if d is not None and not gg.d_Nf_mm < d < gg.d_a_mm:
                 loc = ("modifications", kind, role, "start_diameter")

@@ -451,6 +451,10 @@ def test_an_edited_window_in_summary_json_is_refused(tmp_path):
      "1 mm is off the pinion's active flank; expected between its active profile start d_Nf"),
     ("{amount: 15 um, length: 1000 mm}", "length",
      "a relief 1000 mm long does not start on the path of contact, which is g_alpha = 23.17"),
+    # 3 mm on both flanks of a 2.8 mm tip (the validity sweep's try ran and ended invalid,
+    # "left the contact tables", naming neither the relief nor its amount)
+    ("{amount: 3 mm, length: 20 mm}", "amount",
+     "a tip relief of 3 mm leaves no tip: the reliefs of both flanks meet at C_a = s_a cos α_a"),
 ])
 def test_a_relief_off_the_active_flank_is_refused(relief, key, fragment):
     # both passed silently (iso_pair's path of contact is 23.17 mm long)
@@ -459,6 +463,15 @@ def test_a_relief_off_the_active_flank_is_refused(relief, key, fragment):
     assert r.exit_code == 1
     line = error_line(r)
     assert f"modifications.tip_relief.pinion.{key}:" in line and fragment in line, line
+
+
+def test_a_tip_relief_just_short_of_the_tip_runs_the_geometry():
+    """The bound is the tip's: s_a cos α_a / 2 = 1.166 mm on iso_pair's pinion (s_a 2.802 mm,
+    cos α_a = d_b/d_a); 1.1 mm leaves a tip, so geometry accepts it (a bad design, not an
+    impossible one)."""
+    r = invoke("geometry", ROOT / "cases" / "iso_pair.yaml", "--set",
+               "modifications.tip_relief.pinion={amount: 1.1 mm, length: 5 mm}")
+    assert r.exit_code == 0, r.output
 
 
 def test_rtol_below_double_precision_is_refused_with_a_readable_bound():
