@@ -38,7 +38,9 @@ Checked, in this order (the first that fails is the reason):
    touches are not converged at the defaults either.
 
 Before these, a run the solver stopped because a penetration left the gap tables (their cap
-max(0.05 m, 20 δ_s), above the limit of item 1 whenever there is a load) is ``invalid`` up to
+max(0.05 m, 20 δ_s), above the limit of item 1 whenever there is a load and 10 δ_s sets
+that limit; its floor, the deflection at the reference line load, can exceed the cap for a soft,
+lightly loaded pair: E 3 GPa, module 1, 0.05 N*m: limit 0.0785 mm, cap 0.05 mm) is ``invalid`` up to
 where it stopped (:func:`cut_at_table_exit`, :func:`table_exit`): the same status, folder and
 exit code 4 as a run that stays inside the tables but beyond item 1's limit.
 """
