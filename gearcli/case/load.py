@@ -44,8 +44,8 @@ class LoadedCase:
     def written_bare(self, loc: Loc) -> bool:
         """Whether the value at ``loc`` was written without a unit, so that its numbers mean the
         case's bare unit (gearcli/case/types.py): a number, a number as text, an expression of
-        time outside a mapping with ``unit``, such a mapping without ``unit``. False for a
-        value with units and for one not written (its default)."""
+        time outside a mapping with ``unit``, such a mapping without ``unit`` (whose function
+        is itself bare). False for a value with units and for one not written (its default)."""
         from gearcli.case.expr import is_expression
 
         node = self.source.data
@@ -53,8 +53,10 @@ class LoadedCase:
             if not isinstance(node, dict) or part not in node:
                 return False
             node = node[part]
-        if isinstance(node, dict):
-            return "function" in node and "unit" not in node
+        if isinstance(node, dict):  # a time function: bare unless it gives a unit, or its
+            if "function" not in node or "unit" in node:  # constant carries one ("450 N*m")
+                return False
+            node = node["function"]
         if isinstance(node, bool) or not isinstance(node, int | float | str):
             return False
         if isinstance(node, str) and not is_expression(node):

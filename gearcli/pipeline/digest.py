@@ -38,6 +38,8 @@ def input_digest(res) -> InputDigest:
     from gearcli.pipeline.mesh_input import static_force_N
 
     case, g = res.loaded.case, res.geometry.geometry
+    # the key ω1 comes from: a torque drive has no drive.speed
+    speed_key = ("drive", "reference_speed" if case.drive.type == "torque" else "speed")
     g1, g2 = g.pinion, g.gear
     omega1 = abs(res.geometry.pinion_speed_rad_s or 0.0)  # [rad/s]
     f_t = static_force_N(case, res.geometry) * math.cos(g.pressure_angle_rad)  # [N]
@@ -59,18 +61,20 @@ def input_digest(res) -> InputDigest:
                        warnings=tuple(slip_warnings(
                            f_t / b, v_m_s, g.module_mm, case.units,
                            (res.loaded.written_bare(("load", "torque")),
-                            res.loaded.written_bare(("drive", "speed"))))))
+                            res.loaded.written_bare(speed_key)), ".".join(speed_key))))
 
 
 def slip_warnings(line_load_N_mm: float, velocity_m_s: float, module_mm: float,
-                  system: str | None = None, bare: tuple[bool, bool] = (True, True)) -> list[str]:
+                  system: str | None = None, bare: tuple[bool, bool] = (True, True),
+                  speed_key: str = "drive.speed") -> list[str]:
     """"Did you mean" warnings for a line load or a speed of an implausible magnitude, in the
     terms of the case's unit ``system`` (its ``units:`` key; None: "adams"): where bare torques
     are N·mm (adams) a tiny line load reads as N·m meant, where they are N·m already
     (engineering, si) it is only implausible; likewise a slow speed where bare speeds are not
     rpm (adams: deg/s, si: rad/s) or are (engineering). ``bare``: whether the torque and the
     speed were written without a unit (LoadedCase.written_bare); a value written with its unit
-    is only implausible, never "did you mean"."""
+    is only implausible, never "did you mean". ``speed_key``: the key of the speed
+    (drive.reference_speed for a torque drive)."""
     from gearcli import units
 
     torque_unit = units.in_system(units.TORQUE, system).default
@@ -96,5 +100,5 @@ def slip_warnings(line_load_N_mm: float, velocity_m_s: float, module_mm: float,
         else:
             hint = (f"did you mean rpm? bare speeds read as {speed_unit} (write the unit, e.g. "
                     "'1500 rpm')")
-        out.append(f"drive.speed: a pitch-line velocity of {velocity_m_s:.3g} m/s: {hint}")
+        out.append(f"{speed_key}: a pitch-line velocity of {velocity_m_s:.3g} m/s: {hint}")
     return out

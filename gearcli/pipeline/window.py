@@ -91,12 +91,17 @@ def settling_warnings(window: Window, ramp_end_s: float, end_time_s: float) -> l
     if ramp_end_s > t0:
         return [f"not settled: the window starts at {t0:g} s, before the ramps end "
                 f"({ramp_end_s:g} s); its values still carry the ramp"]
+    if t0 < window.settled_s and math.isinf(window.settled_s):  # an undamped slowest mode
+        return [f"not settled: the window starts at {t0:g} s, after the ramps end "
+                f"({ramp_end_s:g} s), but the slowest mode is undamped and its transient never "
+                "decays: its values carry the ramps' transient"]
     if t0 < window.settled_s:  # NaN (not known): False
         n = SETTLING_TIME_CONSTANTS * (t0 - max(ramp_end_s, 0.0)) / (
             window.settled_s - max(ramp_end_s, 0.0))
+        left = 100.0 * math.exp(-n)  # [%], 3 digits: 99.85 % is not "1e+02 %"
         return [f"not settled: the window starts at {t0:g} s, {n:.2g} time constants of the "
                 f"slowest mode after the ramps end ({ramp_end_s:g} s; settled after "
                 f"{SETTLING_TIME_CONSTANTS:g}, at {window.settled_s:.4g} s): up to "
-                f"{100.0 * math.exp(-n):.2g} % of the ramps' transient is left in its values; "
-                "simulate longer (run.end_time)"]
+                f"{left:.3g} % of the ramps' transient is left in its "
+                "values; simulate longer (run.end_time)"]
     return []

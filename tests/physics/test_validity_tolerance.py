@@ -95,3 +95,19 @@ def test_speed_curve_levels_at_loose_tolerances_are_checked_level_by_level(tmp_p
     if status == INVALID:
         assert all(row["error"].startswith("not converged") and row["dynamic_factor"] in
                    ("", "nan") for row in rows)
+
+
+def test_a_loosened_run_without_load_is_not_refused_for_noise_of_a_floating_gear():
+    """Without load the gear floats in its backlash: whether and how hard it touches is not
+    converged at the defaults either (the starter pair, measured: a 46 N coast touch of 46 nm
+    at the defaults, no contact at rtol 1e-7, 1e-8 and 1e-5). Item 4 called the rtol-1e-5 run,
+    the one that agrees with the tight ones, "not converged" (-100 %, exit 4). Without load,
+    differences below 1 % of the reference line load's force and deflection (100 N/mm: 5 kN,
+    5.9 µm here) are no disagreement; a loaded pair's 1 % stays as it was (the tests above)."""
+    from gearcli.data import __file__ as data_init
+
+    pair = Path(data_init).parent / "pair.yaml"
+    res = run_simulation(pair, ["load.torque=0", "run.end_time=0.6", "run.rtol=1e-5"],
+                         zoom=False)
+    assert res.status == OK, res.invalid_reason
+    assert res.reference_kernel is not None  # the check ran

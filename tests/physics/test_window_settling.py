@@ -30,3 +30,15 @@ def test_a_window_inside_the_settling_time_is_named_with_its_leftover_transient(
 def test_a_settled_window_has_no_such_warning():
     res = run_simulation(ISO_PAIR, [*LOW_DAMPING, "run.end_time=0.4"], zoom=False)
     assert res.window.t0_s < 0.4 - 0.05 and _settling(res) == []
+
+
+def test_the_leftover_of_an_almost_or_fully_undamped_mesh_reads_as_a_percentage():
+    """ζ 1e-6: 0.0015 time constants after the ramps, 99.85 % left, which the warning printed
+    as "up to 1e+02 %"; ζ 0 (no settling at all) printed "0 time constants ... settled after
+    5, at inf s ... up to 1e+02 %"."""
+    (tiny,) = _settling(run_simulation(ISO_PAIR, ["contact.damping_ratio=1e-6",
+                                                  "run.end_time=0.4"], zoom=False))
+    assert "e+" not in tiny and "up to 99.8 %" in tiny, tiny
+    (none,) = _settling(run_simulation(ISO_PAIR, ["contact.damping_ratio=0",
+                                                  "run.end_time=0.4"], zoom=False))
+    assert "e+" not in none and "inf" not in none and "never" in none, none

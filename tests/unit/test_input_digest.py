@@ -109,6 +109,7 @@ def test_tiny_torque_in_the_engineering_starter_is_not_called_N_mm(tmp_path):
     ("{function: 'STEP(time, 0, 0, 0.2, 450)'}", True), ("450 N*m", False),
     ("{function: 'STEP(time, 0, 0, 0.2, 450)', unit: N*m}", False),
     ("{function: 450, unit: N*m}", False),
+    ("{function: '450 N*m'}", False),  # a constant with its unit, in a mapping without unit
 ])
 def test_written_bare_tells_a_bare_value_from_one_with_units(value, bare):
     from gearcli.case.load import load_case
@@ -116,3 +117,19 @@ def test_written_bare_tells_a_bare_value_from_one_with_units(value, bare):
     loaded = load_case(SEED, [f"load.torque={value}"])
     assert loaded.written_bare(("load", "torque")) is bare
     assert loaded.written_bare(("run", "max_step")) is False  # not written: its default
+
+
+def test_a_torque_drives_bare_reference_speed_is_named_and_read_as_bare():
+    """A torque drive's speed is drive.reference_speed (there is no drive.speed): written bare
+    (30, deg/s in the adams units of cases/drivetrain.yaml) it is a slip like a bare
+    drive.speed, not "implausibly slow, as written", and the warning names its key."""
+    drivetrain = SEED.parent / "drivetrain.yaml"
+    r = CliRunner().invoke(app, ["simulate", str(drivetrain), "-o", "-", "--set",
+                                 "drive.reference_speed=30", "--set", "run.end_time=0.8"])
+    (line,) = [w for w in r.stderr.splitlines() if "pitch-line velocity" in w]
+    assert line.startswith("warning: drive.reference_speed:"), line
+    assert "did you mean rpm? bare speeds read as deg/s" in line and "as written" not in line
+    r = CliRunner().invoke(app, ["simulate", str(drivetrain), "-o", "-", "--set",
+                                 "drive.reference_speed=30 deg/s", "--set", "run.end_time=0.8"])
+    (line,) = [w for w in r.stderr.splitlines() if "pitch-line velocity" in w]
+    assert "implausibly slow, as written" in line and "did you mean" not in line, line

@@ -248,6 +248,19 @@ def test_the_largest_ball_touches_at_the_tip_by_an_independent_construction():
     assert key == "thickness_allowances"
 
 
+def test_the_standard_ball_of_fine_pitch_gears_touches_between_base_and_tip():
+    """No ball given: the series' size must be one inspection_input_error accepts. With the
+    series starting at 1 mm, modules below ~0.4 mm (theoretical D_M ≈ 1.7 m) got a ball whose
+    contact lay above the tip (m 0.3, z 24: 1 mm against 0.50 mm)."""
+    alpha = math.radians(20.0)
+    for m in (0.1, 0.2, 0.3, 0.35, 0.5, 1.0):
+        for z in (17, 24, 50, 100, 200):
+            for x in (0.0, 0.3):
+                d_a = m * z + 2.0 * m * (1.0 + x)
+                assert inspection_input_error(z, x, m, alpha, d_a, (0.0, -0.02 * m),
+                                              None) is None, (m, z, x)
+
+
 def test_ball_beyond_the_series_continues_in_its_last_step():
     """A module large enough to need a ball beyond the series (here m 200, D_M ≈ 360 mm)
     still gets a size: the series' last step (5 mm) continued, never an error that would stop

@@ -270,6 +270,19 @@ def test_impossible_inspection_inputs_are_errors_at_their_keys(override, key, re
     assert key in text and reason in text and "involute value" not in text, text
 
 
+def test_a_fine_pitch_pair_is_rated_with_its_own_standard_ball():
+    """Module 0.3 (an instrument pair): no ball given, the "next standard" ball must touch the
+    flanks. The series began at 1 mm, twice the theoretical 0.50 mm: its contact lay above the
+    tip, and the whole rating was refused at rating.gear.ball_diameter, a key the case never
+    wrote (before the inspection check it rated with M_d of that impossible ball)."""
+    fine = ["gears.module=0.3", "gears.face_width=3", "gears.pinion.bore_diameter=1",
+            "gears.gear.bore_diameter=2", "load.torque={function: 'STEP(time, 0, 0, 0.2, 0.1)',"
+            " unit: N*m}", "material.contact_fatigue_limit=1500 MPa",
+            "material.bending_fatigue_limit=430 MPa"]
+    rated = rate_case(ISO_PAIR, fine)
+    assert rated.iso.pinion.S_H > 0.0 and rated.iso.gear.S_F > 0.0
+
+
 @pytest.mark.parametrize(("override", "key"), [
     ("rating.application_factor=0", "rating.application_factor"),
     ("rating.application_factor=0.5", "rating.application_factor"),  # K_A >= 1 (ISO 6336-6)

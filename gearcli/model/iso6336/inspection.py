@@ -32,14 +32,16 @@ __all__ = ["arc_tooth_thickness", "span_teeth", "span", "theoretical_ball_diamet
            "chordal_thickness", "chordal_height", "InspectionDimensions",
            "inspection_dimensions", "inspection_input_error"]
 
-#: Ball/pin diameters offered as "next standard size" [mm]: 0.25 mm steps to 10, 0.5 mm to 20,
-#: 1 mm to 25, 5 mm to 300. A project convention (the DIN 3977 series is not at hand); it gives
-#: KISSsoft's choices of the NREL 5 MW printouts (stage 2: 34.70 → 35, 38.73 → 40, 41.07 → 45
-#: mm; stage 1, m_n 45: 75.93 → 80, 94.95 → 95, 106.19 → 110 mm). The 5 mm steps went to 100
-#: mm only until stage 1's planet (106.19 mm) made the rating fail (docs/theory.md, "ISO 6336
-#: rating" §6); 300 mm covers modules to ~120 mm (D_M ≈ 1.7…2.4 m).
+#: Ball/pin diameters offered as "next standard size" [mm]: 0.05 mm steps from 0.1 to 1 (fine
+#: pitch: from 1 mm on, modules below ~0.4 mm got a ball touching above the tip), 0.25 mm steps
+#: to 10, 0.5 mm to 20, 1 mm to 25, 5 mm to 300. A project convention (the DIN 3977 series is
+#: not at hand); it gives KISSsoft's choices of the NREL 5 MW printouts (stage 2: 34.70 → 35,
+#: 38.73 → 40, 41.07 → 45 mm; stage 1, m_n 45: 75.93 → 80, 94.95 → 95, 106.19 → 110 mm). The 5
+#: mm steps went to 100 mm only until stage 1's planet (106.19 mm) made the rating fail
+#: (docs/theory.md, "ISO 6336 rating" §6); 300 mm covers modules to ~120 mm (D_M ≈ 1.7…2.4 m).
 BALL_SERIES_MM: tuple[float, ...] = tuple(
-    [1.0 + 0.25 * i for i in range(37)] + [10.5 + 0.5 * i for i in range(20)]
+    [round(0.1 + 0.05 * i, 2) for i in range(18)] + [1.0 + 0.25 * i for i in range(37)]
+    + [10.5 + 0.5 * i for i in range(20)]
     + [21.0 + i for i in range(5)] + [30.0 + 5.0 * i for i in range(55)])
 
 
@@ -194,7 +196,9 @@ def inspection_input_error(z: int, x: float, m_mm: float, alpha_rad: float,
                      f"touches at d = {d_c:.4g} mm, above the tip" if d_c > tip_diameter_mm
                      else "")
         if where:
+            which = (f"a ball of {ball:g} mm" if ball_mm is not None else
+                     f"the standard ball of {ball:g} mm (none given: the series' next size)")
             return "ball_diameter", (
-                f"a ball of {ball:g} mm {where} (d_b {d_b:.4g} mm, d_a {tip_diameter_mm:.4g} "
+                f"{which} {where} (d_b {d_b:.4g} mm, d_a {tip_diameter_mm:.4g} "
                 f"mm); expected about {d_th:.4g} mm (the ball touching on d + 2 x m)")
     return None
