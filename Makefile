@@ -34,11 +34,11 @@ demo: $(STAMP)
 	@$(BIN)/gearcli run $(CASE) -o $(OUT) --force; rc=$$?; \
 	if [ $$rc -ne 0 ] && [ $$rc -ne 4 ]; then exit $$rc; fi
 
-# The suite's duration, measured with `bash .ci/run` on a clean clone (2044 tests, empty solver
-# cache, chromium present, 2-core VM with nothing else running): pytest 3.6 min, about 4.5 min
+# The suite's duration, measured with `bash .ci/run` on a clean clone (2057 tests, empty solver
+# cache, chromium present, 2-core VM with nothing else running): pytest 4.0 min, about 5 min
 # wall with the install; on the same VM at load average 7-11 from other jobs the suite took
 # 12-13 min. Update it when the suite changes much.
-TEST_DURATION := ~4 min on 2 quiet cores (measured: 2044 tests in 215 s; 12-13 min on a busy 2-core VM)
+TEST_DURATION := ~4 min on 2 quiet cores (measured: 2057 tests in 239 s; 12-13 min on a busy 2-core VM)
 test: lint browser
 	@echo "running the test suite (pytest -n $(JOBS)): $(TEST_DURATION); make test-fast skips the slow tests"
 	$(BIN)/python -m pytest -n $(JOBS) -q
