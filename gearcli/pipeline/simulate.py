@@ -199,6 +199,7 @@ def validity_of(res: SimulationResult, left_tables: bool = False, status=None, p
     from gearcli.pipeline.validity import (
         Validity,
         check_validity,
+        loosened,
         loosened_tolerance_hint,
         reference_deflection_for,
         table_exit,
@@ -226,7 +227,7 @@ def validity_of(res: SimulationResult, left_tables: bool = False, status=None, p
         energy_relative_residual=res.summary.energy_relative_residual)
     if valid.status != "ok":
         return Validity(valid.status, valid.reason + loosened_tolerance_hint(res))
-    if status and loosened_tolerance_hint(res):
+    if status and loosened(res):
         status("integrating once more at the default tolerances (the case loosens them)")
     res.reference_kernel = tolerance_reference(res, progress)  # None at the defaults
     return tolerance_check(res, res.reference_kernel)

@@ -146,13 +146,18 @@ def check_validity(*, penetration_max_mm: float, static_deflection_mm: float, mo
 TOLERANCE_AGREEMENT = 0.01
 
 
-def loosened_tolerance_hint(res) -> str:
-    """For an invalid run (pipeline.simulation.SimulationResult) of a case that loosens the
-    solver tolerances beyond the defaults: the clause that says so (its invalidity may be the
-    tolerances' doing: a run that "reverses" or leaves its energy balance at a 1 m atol);
-    "" otherwise."""
+def loosened(res) -> bool:
+    """Whether the case of the run ``res`` (pipeline.simulation.SimulationResult) loosens the
+    solver tolerances beyond gearcli's defaults (module notes, item 4)."""
     (rtol, atol), (rtol_0, atol_0) = _tolerances(res)
-    if rtol <= rtol_0 and atol <= atol_0:
+    return rtol > rtol_0 or atol > atol_0
+
+
+def loosened_tolerance_hint(res) -> str:
+    """For an invalid run of a case that loosens the solver tolerances (:func:`loosened`):
+    the clause that says so (its invalidity may be the tolerances' doing: a run that
+    "reverses" or leaves its energy balance at a 1 m atol); "" otherwise."""
+    if not loosened(res):
         return ""
     asked, defaults = _tolerance_texts(res)
     return f"; {asked} are looser than {defaults}: try without run.rtol / run.atol"
@@ -168,11 +173,11 @@ def tolerance_reference(res, progress=None):
     from gearcli.core.integrate import simulate
     from gearcli.core.layout import P
 
+    if not loosened(res):
+        return None
     ki = res.kernel_input
     params = ki.params.copy()
     (rtol, atol), (rtol_0, atol_0) = _tolerances(res)
-    if rtol <= rtol_0 and atol <= atol_0:
-        return None
     params[P.rtol], params[P.atol_delta] = min(rtol, rtol_0), min(atol, atol_0)
     params[P.atol_deltadot] *= params[P.atol_delta] / atol  # the same speed scale
     params[P.extrema_t_start] = res.window.t0_s
