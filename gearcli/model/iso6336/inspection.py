@@ -28,8 +28,8 @@ from dataclasses import dataclass
 from gearcli.model.iso6336.common import inverse_involute, involute
 
 __all__ = ["arc_tooth_thickness", "span_teeth", "span", "theoretical_ball_diameter",
-           "BALL_SERIES_MM", "standard_ball_diameter", "dimension_over_balls",
-           "chordal_thickness", "chordal_height", "InspectionDimensions",
+           "BALL_SERIES_MM", "standard_ball_diameter", "ball_centre_involute",
+           "dimension_over_balls", "chordal_thickness", "chordal_height", "InspectionDimensions",
            "inspection_dimensions", "inspection_input_error"]
 
 #: Ball/pin diameters offered as "next standard size" [mm]: 0.05 mm steps from 0.1 to 1 (fine
@@ -97,14 +97,23 @@ def standard_ball_diameter(theoretical_mm: float,
     return float(last + step * math.ceil((theoretical_mm - last - 1e-9) / step))
 
 
+def ball_centre_involute(z: int, x: float, m_mm: float, alpha_rad: float, ball_mm: float,
+                         allowance_mm: float = 0.0) -> float:
+    """inv α_K = s/d + inv α + D_M/d_b − π/z [rad] of the ball centre's pressure angle α_K
+    (ISO 21771 / DIN 3960; module notes), thickness allowance A_sn [mm] in s; the ball touches
+    both flanks only for 0 < inv α_K <= 1 (:func:`inspection_input_error`)."""
+    d = m_mm * z
+    s = arc_tooth_thickness(z, x, m_mm, alpha_rad, allowance_mm)
+    return s / d + involute(alpha_rad) + ball_mm / (d * math.cos(alpha_rad)) - math.pi / z
+
+
 def dimension_over_balls(z: int, x: float, m_mm: float, alpha_rad: float, ball_mm: float,
                          allowance_mm: float = 0.0) -> float:
     """Dimension over two balls (pins) M_dK [mm] for z even or odd (ISO 21771 / DIN 3960;
     module notes); ball diameter D_M [mm], thickness allowance A_sn [mm]."""
-    d = m_mm * z
-    d_b = d * math.cos(alpha_rad)
-    s = arc_tooth_thickness(z, x, m_mm, alpha_rad, allowance_mm)
-    alpha_k = inverse_involute(s / d + involute(alpha_rad) + ball_mm / d_b - math.pi / z)
+    d_b = m_mm * z * math.cos(alpha_rad)
+    alpha_k = inverse_involute(ball_centre_involute(z, x, m_mm, alpha_rad, ball_mm,
+                                                    allowance_mm))
     centre = d_b / math.cos(alpha_k)
     if z % 2:
         centre *= math.cos(0.5 * math.pi / z)
@@ -183,8 +192,7 @@ def inspection_input_error(z: int, x: float, m_mm: float, alpha_rad: float,
     d_th = theoretical_ball_diameter(z, x, m_mm, alpha_rad)
     ball = standard_ball_diameter(d_th) if ball_mm is None else float(ball_mm)
     for allowance in (0.0, *allowances_mm):
-        s = arc_tooth_thickness(z, x, m_mm, alpha_rad, allowance)
-        inv_k = s / d + involute(alpha_rad) + ball / d_b - math.pi / z
+        inv_k = ball_centre_involute(z, x, m_mm, alpha_rad, ball, allowance)
         if not inv_k > 0.0:
             where = "falls between the flanks, too small to touch both"
         elif inv_k > 1.0:
